@@ -1,0 +1,49 @@
+//! # geom — the geometry kernel of hotcut
+//!
+//! B-spline curves and surfaces, planar curve analysis (curvature, inflections), the
+//! surfaces hotcut cuts (meshes, height fields, B-spline surfaces) and their sections by
+//! parallel planes, boxes, convex hulls and a triangle index. No I/O beyond reading meshes;
+//! no serde: the job-file layer maps these types at the edge.
+//!
+//! ```
+//! use geom::{expr::Expr, heightfield::HeightField, surface::{Surface, SectionParams}};
+//! use geom::planar::{analyze_curve, CurveAnalysisParams};
+//! let hf = HeightField::try_new(Expr::parse("100*sin(y/200)").unwrap(), (0.0, 1000.0), (0.0, 2000.0)).unwrap();
+//! let (_frame, sections) = Surface::HeightField(hf)
+//!     .sections(&SectionParams { count: 4, ..Default::default() }, &|| {})
+//!     .unwrap();
+//! let a = analyze_curve(&sections[0].curve, &CurveAnalysisParams::default()).unwrap();
+//! // sin(y/200) changes sign at y = 200π·k: k = 1, 2, 3 lie inside (0, 2000)
+//! assert_eq!(a.inflections.len(), 3);
+//! ```
+
+/// Symmetric banded Cholesky solver for the spline fits.
+mod banded;
+/// Axis-aligned and oriented boxes.
+pub mod bbox;
+/// B-spline curves: evaluation, derivatives, knot insertion.
+pub mod bspline;
+/// The error type.
+pub mod error;
+/// Height-field expressions with exact derivatives along lines.
+pub mod expr;
+/// Least-squares and smoothing B-spline fits.
+pub mod fit;
+/// Height fields and their exact sections.
+pub mod heightfield;
+/// 3D convex hull.
+pub mod hull;
+/// R*-tree index over mesh triangles.
+pub mod index;
+/// Triangle meshes: OBJ loading, validation, area, volume.
+pub mod mesh;
+/// Planar curves: curvature, arc length, inflections, curvature maxima.
+pub mod planar;
+/// Plane frames, slab offsets and mesh slicing.
+pub mod slice;
+/// The `Surface` interface and sectioning by plane families.
+pub mod surface;
+/// Tensor-product B-spline, ruled and piecewise-ruled surfaces.
+pub mod surface_spline;
+
+pub use error::{GeomError, Result};

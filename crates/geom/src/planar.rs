@@ -1,0 +1,613 @@
+//! Planar curves: signed curvature (eq. 1.8), arc length and arc-length
+//! reparameterisation, inflection points (sign change, then the bisection of eq. 5.3) and
+//! curvature maxima between inflections.
+//!
+//! Entry points: the [`PlanarCurve`] capability trait (implemented by [`SplineCurve2`] and
+//! by height-field sections), [`signed_curvature`], [`ArcLength`], [`analyze_curve`] with
+//! [`CurveAnalysisParams`].
+//!
+//! # The false-inflection rule
+//! Between two consecutive inflections the curvature has one sign; call that stretch a
+//! *lobe* and its *turning* the change of the tangent angle across it (`∫κ ds`). Noise on a
+//! nearly straight stretch makes lobes that barely turn. The rule: while some lobe turns by
+//! less than `min_lobe_turning` radians, take the one that turns least; if it lies between
+//! two inflections, remove both (the lobe merges with its neighbours, like a pushed-out
+//! dent); if it touches an end of the curve, remove its one inflection. Every removal is
+//! counted in [`CurveAnalysis::suppressed_inflections`], so the report can say so.
+
+use nalgebra::Vector2;
+
+use crate::bspline::BSplineCurve;
+use crate::error::{GeomError, Result};
+
+/// Position and first two derivatives of a planar curve at one parameter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Jet2 {
+    /// Point `c(t)`.
+    pub p: Vector2<f64>,
+    /// First derivative `c'(t)`.
+    pub d1: Vector2<f64>,
+    /// Second derivative `c''(t)`.
+    pub d2: Vector2<f64>,
+}
+
+/// A regular parametric planar curve with two derivatives.
+pub trait PlanarCurve {
+    /// Parameter domain `[a, b]`, `a < b`.
+    fn domain(&self) -> (f64, f64);
+    /// Point and derivatives at `t`.
+    fn jet(&self, t: f64) -> Jet2;
+    /// The point at `t`.
+    fn point(&self, t: f64) -> Vector2<f64> {
+        self.jet(t).p
+    }
+}
+
+/// Signed curvature `det(c', c'') / |c'|³` (eq. 1.8); left turns are positive. Zero where the
+/// curve is not regular (`c' = 0`).
+pub fn signed_curvature(j: &Jet2) -> f64 {
+    let speed = j.d1.norm();
+    if speed <= f64::MIN_POSITIVE.sqrt() {
+        return 0.0;
+    }
+    let k = (j.d1.x * j.d2.y - j.d1.y * j.d2.x) / (speed * speed * speed);
+    if k.is_finite() {
+        k
+    } else {
+        0.0
+    }
+}
+
+/// A planar B-spline curve with its derivative curves precomputed.
+#[derive(Debug, Clone)]
+pub struct SplineCurve2 {
+    curve: BSplineCurve<2>,
+    d1: BSplineCurve<2>,
+    d2: BSplineCurve<2>,
+}
+
+impl SplineCurve2 {
+    /// Wraps a planar B-spline.
+    pub fn new(curve: BSplineCurve<2>) -> Self {
+        let d1 = curve.derivative();
+        let d2 = d1.derivative();
+        Self { curve, d1, d2 }
+    }
+
+    /// The underlying B-spline.
+    pub fn spline(&self) -> &BSplineCurve<2> {
+        &self.curve
+    }
+}
+
+impl PlanarCurve for SplineCurve2 {
+    fn domain(&self) -> (f64, f64) {
+        self.curve.domain()
+    }
+    fn jet(&self, t: f64) -> Jet2 {
+        Jet2 {
+            p: self.curve.eval(t),
+            d1: self.d1.eval(t),
+            d2: self.d2.eval(t),
+        }
+    }
+}
+
+/// Cumulative arc length of a curve, tabulated by 5-point Gauss–Legendre quadrature on
+/// `pieces` equal parameter intervals; `s(t)` and its inverse `t(s)` are then evaluated by
+/// local quadrature and Newton steps, so the table only brackets.
+#[derive(Debug, Clone)]
+pub struct ArcLength {
+    ts: Vec<f64>,
+    ss: Vec<f64>,
+}
+
+const GL_X: [f64; 5] = [
+    -0.906_179_845_938_664,
+    -0.538_469_310_105_683,
+    0.0,
+    0.538_469_310_105_683,
+    0.906_179_845_938_664,
+];
+const GL_W: [f64; 5] = [
+    0.236_926_885_056_189,
+    0.478_628_670_499_366,
+    0.568_888_888_888_889,
+    0.478_628_670_499_366,
+    0.236_926_885_056_189,
+];
+
+fn gauss_length(curve: &dyn PlanarCurve, a: f64, b: f64) -> f64 {
+    let (m, h) = (0.5 * (a + b), 0.5 * (b - a));
+    GL_X.iter()
+        .zip(GL_W)
+        .map(|(x, w)| w * curve.jet(m + h * x).d1.norm())
+        .sum::<f64>()
+        * h
+}
+
+impl ArcLength {
+    /// Tabulates the arc length with `pieces` intervals (at least 1).
+    pub fn new(curve: &dyn PlanarCurve, pieces: usize) -> Self {
+        let (a, b) = curve.domain();
+        let pieces = pieces.max(1);
+        let mut ts = Vec::with_capacity(pieces + 1);
+        let mut ss = Vec::with_capacity(pieces + 1);
+        let mut acc = 0.0;
+        ts.push(a);
+        ss.push(0.0);
+        for k in 1..=pieces {
+            let t0 = a + (b - a) * (k - 1) as f64 / pieces as f64;
+            let t1 = a + (b - a) * k as f64 / pieces as f64;
+            acc += gauss_length(curve, t0, t1);
+            ts.push(t1);
+            ss.push(acc);
+        }
+        Self { ts, ss }
+    }
+
+    /// Total length.
+    pub fn length(&self) -> f64 {
+        self.ss.last().copied().unwrap_or(0.0)
+    }
+
+    /// Arc length from the start to parameter `t`.
+    pub fn s_at(&self, curve: &dyn PlanarCurve, t: f64) -> f64 {
+        let t = t.clamp(self.ts[0], self.ts[self.ts.len() - 1]);
+        let i = match self.ts.binary_search_by(|x| x.total_cmp(&t)) {
+            Ok(i) => return self.ss[i],
+            Err(i) => i.saturating_sub(1).min(self.ts.len() - 2),
+        };
+        self.ss[i] + gauss_length(curve, self.ts[i], t)
+    }
+
+    /// The parameter at arc length `s` (clamped to `[0, length]`): the arc-length
+    /// reparameterisation `t(s)`.
+    pub fn t_at(&self, curve: &dyn PlanarCurve, s: f64) -> f64 {
+        let s = s.clamp(0.0, self.length());
+        let i = match self.ss.binary_search_by(|x| x.total_cmp(&s)) {
+            Ok(i) => return self.ts[i],
+            Err(i) => i.saturating_sub(1).min(self.ss.len() - 2),
+        };
+        let (t0, t1) = (self.ts[i], self.ts[i + 1]);
+        let (s0, s1) = (self.ss[i], self.ss[i + 1]);
+        let mut t = if s1 > s0 {
+            t0 + (t1 - t0) * (s - s0) / (s1 - s0)
+        } else {
+            t0
+        };
+        for _ in 0..8 {
+            let err = s0 + gauss_length(curve, t0, t) - s;
+            let speed = curve.jet(t).d1.norm();
+            if speed <= 0.0 {
+                break;
+            }
+            let next = (t - err / speed).clamp(t0, t1);
+            if (next - t).abs() <= 1e-15 * (1.0 + t.abs()) {
+                t = next;
+                break;
+            }
+            t = next;
+        }
+        t
+    }
+}
+
+/// Parameters of [`analyze_curve`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurveAnalysisParams {
+    /// Number of equally spaced parameter samples at which the curvature sign is read
+    /// (the `M` of eq. 5.2). At least 8.
+    pub samples: usize,
+    /// Bisection (eq. 5.3) stops when the bracket is shorter than this, in parameter units.
+    pub bisection_tolerance: f64,
+    /// Lobes that turn less than this many radians are noise; see the module docs.
+    pub min_lobe_turning: f64,
+}
+
+impl Default for CurveAnalysisParams {
+    fn default() -> Self {
+        Self {
+            samples: 2000,
+            bisection_tolerance: 1e-9,
+            min_lobe_turning: 1e-3,
+        }
+    }
+}
+
+/// A point of interest on a curve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurvePoint {
+    /// Curve parameter.
+    pub t: f64,
+    /// Arc length from the start of the curve.
+    pub s: f64,
+    /// The point.
+    pub point: Vector2<f64>,
+    /// Signed curvature there.
+    pub curvature: f64,
+}
+
+/// A stretch of one curvature sign between inflections (or curve ends).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lobe {
+    /// Start parameter.
+    pub t0: f64,
+    /// End parameter.
+    pub t1: f64,
+    /// Change of tangent angle across the lobe, radians (signed).
+    pub turning: f64,
+}
+
+/// What [`analyze_curve`] finds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurveAnalysis {
+    /// Arc length of the curve.
+    pub length: f64,
+    /// Inflection points in curve order, after the false-inflection rule.
+    pub inflections: Vec<CurvePoint>,
+    /// One curvature maximum (largest |κ|) per lobe, in curve order.
+    pub curvature_maxima: Vec<CurvePoint>,
+    /// The point of largest |κ| on the whole curve.
+    pub max_abs_curvature: CurvePoint,
+    /// Lobes between consecutive inflections, after the rule.
+    pub lobes: Vec<Lobe>,
+    /// Inflections removed by the false-inflection rule.
+    pub suppressed_inflections: usize,
+}
+
+fn sign(k: f64) -> i8 {
+    if k > 0.0 {
+        1
+    } else if k < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+/// Bisection of eq. (5.3) on a bracket `[t, t + dt]` whose ends have opposite curvature sign.
+fn bisect_inflection(curve: &dyn PlanarCurve, mut t: f64, mut dt: f64, tol: f64) -> f64 {
+    let s_end = sign(signed_curvature(&curve.jet(t + dt)));
+    while dt > tol {
+        let half = 0.5 * dt;
+        let mid = sign(signed_curvature(&curve.jet(t + half)));
+        if mid == s_end {
+            dt = half;
+        } else {
+            t += half;
+            dt = half;
+        }
+        if half == 0.0 {
+            break;
+        }
+    }
+    t + 0.5 * dt
+}
+
+fn wrap_angle(a: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let mut a = a % tau;
+    if a > std::f64::consts::PI {
+        a -= tau;
+    } else if a < -std::f64::consts::PI {
+        a += tau;
+    }
+    a
+}
+
+fn tangent_angle(j: &Jet2) -> f64 {
+    j.d1.y.atan2(j.d1.x)
+}
+
+/// Turning of the curve over `[t0, t1]`, summing wrapped angle steps at the given samples.
+fn turning(curve: &dyn PlanarCurve, t0: f64, t1: f64, ts: &[f64]) -> f64 {
+    let mut prev = tangent_angle(&curve.jet(t0));
+    let mut sum = 0.0;
+    for &t in ts
+        .iter()
+        .filter(|&&t| t > t0 && t < t1)
+        .chain(std::iter::once(&t1))
+    {
+        let a = tangent_angle(&curve.jet(t));
+        sum += wrap_angle(a - prev);
+        prev = a;
+    }
+    sum
+}
+
+/// Golden-section search for the largest |κ| on `[a, b]`.
+fn refine_max(curve: &dyn PlanarCurve, mut a: f64, mut b: f64, tol: f64) -> f64 {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let f = |t: f64| signed_curvature(&curve.jet(t)).abs();
+    let mut c = b - g * (b - a);
+    let mut d = a + g * (b - a);
+    let (mut fc, mut fd) = (f(c), f(d));
+    for _ in 0..100 {
+        if (b - a).abs() <= tol {
+            break;
+        }
+        if fc >= fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - g * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + g * (b - a);
+            fd = f(d);
+        }
+    }
+    0.5 * (a + b)
+}
+
+/// Analyses a planar curve: length, inflections, lobes, curvature maxima, max |κ|.
+///
+/// # Errors
+/// [`GeomError::InvalidDomain`] for an empty domain or a curve of zero length,
+/// [`GeomError::NonFinite`] when the curve evaluates to NaN.
+///
+/// # Example
+/// ```
+/// use geom::planar::{analyze_curve, CurveAnalysisParams, Jet2, PlanarCurve};
+/// use nalgebra::Vector2;
+/// // y = sin(x) on [0.5, 7]: inflections at π and 2π.
+/// struct Sine;
+/// impl PlanarCurve for Sine {
+///     fn domain(&self) -> (f64, f64) { (0.5, 7.0) }
+///     fn jet(&self, t: f64) -> Jet2 {
+///         Jet2 { p: Vector2::new(t, t.sin()), d1: Vector2::new(1.0, t.cos()), d2: Vector2::new(0.0, -t.sin()) }
+///     }
+/// }
+/// let a = analyze_curve(&Sine, &CurveAnalysisParams::default()).unwrap();
+/// assert_eq!(a.inflections.len(), 2);
+/// assert!((a.inflections[0].t - std::f64::consts::PI).abs() < 1e-8);
+/// ```
+pub fn analyze_curve(
+    curve: &dyn PlanarCurve,
+    params: &CurveAnalysisParams,
+) -> Result<CurveAnalysis> {
+    let (a, b) = curve.domain();
+    if !(b > a) || !a.is_finite() || !b.is_finite() {
+        return Err(GeomError::InvalidDomain(format!(
+            "curve domain [{a}, {b}] is empty"
+        )));
+    }
+    let m = params.samples.max(8);
+    let ts: Vec<f64> = (0..=m).map(|i| a + (b - a) * i as f64 / m as f64).collect();
+    let jets: Vec<Jet2> = ts.iter().map(|&t| curve.jet(t)).collect();
+    if jets.iter().any(|j| {
+        !(j.p
+            .iter()
+            .chain(j.d1.iter())
+            .chain(j.d2.iter())
+            .all(|v| v.is_finite()))
+    }) {
+        return Err(GeomError::NonFinite {
+            what: "the curve (or its derivatives) at some parameter".into(),
+        });
+    }
+    let arc = ArcLength::new(curve, m.min(4000));
+    let length = arc.length();
+    if !(length > 0.0) {
+        return Err(GeomError::InvalidDomain("the curve has zero length".into()));
+    }
+    let ks: Vec<f64> = jets.iter().map(signed_curvature).collect();
+
+    // Sign changes, skipping exact zeros (carry the last non-zero sign).
+    let mut raw = Vec::new();
+    let mut last: Option<(usize, i8)> = None;
+    for (i, &k) in ks.iter().enumerate() {
+        let s = sign(k);
+        if s == 0 {
+            continue;
+        }
+        if let Some((j, ls)) = last {
+            if ls != s {
+                let t = bisect_inflection(curve, ts[j], ts[i] - ts[j], params.bisection_tolerance);
+                raw.push(t);
+            }
+        }
+        last = Some((i, s));
+    }
+
+    // Lobes between consecutive inflections, then the false-inflection rule.
+    let mut bounds: Vec<f64> = std::iter::once(a)
+        .chain(raw.iter().copied())
+        .chain(std::iter::once(b))
+        .collect();
+    let mut turns: Vec<f64> = bounds
+        .windows(2)
+        .map(|w| turning(curve, w[0], w[1], &ts))
+        .collect();
+    let mut suppressed = 0;
+    loop {
+        if bounds.len() <= 2 {
+            break;
+        }
+        let Some((i, &tmin)) = turns
+            .iter()
+            .enumerate()
+            .min_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
+        else {
+            break;
+        };
+        if tmin.abs() >= params.min_lobe_turning {
+            break;
+        }
+        let n = turns.len();
+        if i == 0 {
+            // end lobe at the start: drop its inflection bounds[1]
+            bounds.remove(1);
+            let merged = turns[0] + turns[1];
+            turns.splice(0..2, [merged]);
+            suppressed += 1;
+        } else if i == n - 1 {
+            bounds.remove(n - 1);
+            let merged = turns[n - 2] + turns[n - 1];
+            turns.splice(n - 2..n, [merged]);
+            suppressed += 1;
+        } else {
+            bounds.drain(i..=i + 1);
+            let merged = turns[i - 1] + turns[i] + turns[i + 1];
+            turns.splice(i - 1..=i + 1, [merged]);
+            suppressed += 2;
+        }
+    }
+
+    let at = |t: f64| {
+        let j = curve.jet(t);
+        CurvePoint {
+            t,
+            s: arc.s_at(curve, t),
+            point: j.p,
+            curvature: signed_curvature(&j),
+        }
+    };
+    let inflections: Vec<CurvePoint> = bounds[1..bounds.len() - 1].iter().map(|&t| at(t)).collect();
+    let lobes: Vec<Lobe> = bounds
+        .windows(2)
+        .zip(&turns)
+        .map(|(w, &turning)| Lobe {
+            t0: w[0],
+            t1: w[1],
+            turning,
+        })
+        .collect();
+
+    // One maximum of |κ| per lobe: best sample, then golden-section refinement.
+    let dt = (b - a) / m as f64;
+    let mut maxima = Vec::with_capacity(lobes.len());
+    for lobe in &lobes {
+        let mut best: Option<(f64, f64)> = None;
+        for (&t, &k) in ts.iter().zip(&ks) {
+            if t < lobe.t0 || t > lobe.t1 {
+                continue;
+            }
+            if best.is_none_or(|(_, bk)| k.abs() > bk) {
+                best = Some((t, k.abs()));
+            }
+        }
+        let t = match best {
+            Some((t, _)) => refine_max(
+                curve,
+                (t - dt).max(lobe.t0),
+                (t + dt).min(lobe.t1),
+                params.bisection_tolerance.max(1e-12),
+            ),
+            None => 0.5 * (lobe.t0 + lobe.t1),
+        };
+        maxima.push(at(t));
+    }
+    let mut max_point = at(a);
+    for (&t, &k) in ts.iter().zip(&ks) {
+        if k.abs() > max_point.curvature.abs() {
+            max_point = at(t);
+        }
+    }
+    for p in &maxima {
+        if p.curvature.abs() > max_point.curvature.abs() {
+            max_point = *p;
+        }
+    }
+    Ok(CurveAnalysis {
+        length,
+        inflections,
+        curvature_maxima: maxima,
+        max_abs_curvature: max_point,
+        lobes,
+        suppressed_inflections: suppressed,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    struct Circle(f64);
+    impl PlanarCurve for Circle {
+        fn domain(&self) -> (f64, f64) {
+            (0.0, 5.0)
+        }
+        fn jet(&self, t: f64) -> Jet2 {
+            let r = self.0;
+            Jet2 {
+                p: Vector2::new(r * t.cos(), r * t.sin()),
+                d1: Vector2::new(-r * t.sin(), r * t.cos()),
+                d2: Vector2::new(-r * t.cos(), -r * t.sin()),
+            }
+        }
+    }
+
+    #[test]
+    fn circle_has_curvature_one_over_r_and_no_inflections() {
+        let c = Circle(2.5);
+        let a = analyze_curve(&c, &CurveAnalysisParams::default()).unwrap();
+        assert!(a.inflections.is_empty());
+        assert!((a.max_abs_curvature.curvature - 0.4).abs() < 1e-12);
+        assert!((a.length - 12.5).abs() < 1e-9);
+        let arc = ArcLength::new(&c, 50);
+        let t = arc.t_at(&c, 5.0);
+        assert!((t - 2.0).abs() < 1e-10);
+    }
+
+    struct Wiggle;
+    impl PlanarCurve for Wiggle {
+        fn domain(&self) -> (f64, f64) {
+            (0.0, 10.0)
+        }
+        fn jet(&self, t: f64) -> Jet2 {
+            // a gentle arc plus a tiny dent near t = 5 that makes two false inflections
+            let x = t - 5.0;
+            let dent = 3e-5 * (-50.0 * x * x).exp();
+            Jet2 {
+                p: Vector2::new(t, 0.001 * t * t + dent),
+                d1: Vector2::new(1.0, 0.002 * t - 100.0 * x * dent),
+                d2: Vector2::new(0.0, 0.002 + dent * (1e4 * x * x - 100.0)),
+            }
+        }
+    }
+
+    #[test]
+    fn tiny_dent_inflections_are_suppressed() {
+        let raw = analyze_curve(
+            &Wiggle,
+            &CurveAnalysisParams {
+                min_lobe_turning: 0.0,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(raw.inflections.len(), 2, "the dent makes two inflections");
+        let a = analyze_curve(&Wiggle, &CurveAnalysisParams::default()).unwrap();
+        assert!(a.inflections.is_empty());
+        assert_eq!(a.suppressed_inflections, 2);
+        assert_eq!(a.curvature_maxima.len(), 1);
+    }
+
+    #[test]
+    fn line_has_zero_curvature() {
+        struct Line;
+        impl PlanarCurve for Line {
+            fn domain(&self) -> (f64, f64) {
+                (0.0, 1.0)
+            }
+            fn jet(&self, t: f64) -> Jet2 {
+                Jet2 {
+                    p: Vector2::new(3.0 * t, 4.0 * t),
+                    d1: Vector2::new(3.0, 4.0),
+                    d2: Vector2::zeros(),
+                }
+            }
+        }
+        let a = analyze_curve(&Line, &CurveAnalysisParams::default()).unwrap();
+        assert_eq!(a.max_abs_curvature.curvature, 0.0);
+        assert!(a.inflections.is_empty());
+        assert!((a.length - 5.0).abs() < 1e-12);
+        let _ = PI;
+    }
+}
