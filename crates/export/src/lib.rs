@@ -1,1 +1,73 @@
-//! placeholder
+//! # export — deterministic writers of hotcut
+//!
+//! Every writer takes `impl Write` and formats floats to a fixed, documented precision, so
+//! the same data always gives the same bytes.
+//!
+//! ```
+//! let mut out = Vec::new();
+//! export::json::write_json(&mut out, &serde_json::json!({"length": 1.0 / 3.0}), 6).unwrap();
+//! assert_eq!(String::from_utf8(out).unwrap(), "{\n  \"length\": 0.333333\n}\n");
+//! ```
+
+/// Deterministic JSON with rounded floats.
+pub mod json;
+/// Wavefront OBJ writer for meshes and polylines.
+pub mod obj;
+/// A small SVG builder with a world-to-page viewport.
+pub mod svg;
+
+/// Errors of the writers.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ExportError {
+    /// Writing failed.
+    #[error("write failed: {0}")]
+    Io(#[from] std::io::Error),
+    /// The value could not be serialised.
+    #[error("cannot serialise: {0}")]
+    Serialize(#[from] serde_json::Error),
+}
+
+/// Result alias of this crate.
+pub type Result<T, E = ExportError> = std::result::Result<T, E>;
+
+/// Formats `x` with `decimals` digits after the point, trimming trailing zeros, and printing
+/// `-0` as `0`. Non-finite values print as `nan`, `inf` or `-inf`.
+pub fn fmt_float(x: f64, decimals: usize) -> String {
+    if !x.is_finite() {
+        return if x.is_nan() {
+            "nan".into()
+        } else if x > 0.0 {
+            "inf".into()
+        } else {
+            "-inf".into()
+        };
+    }
+    let mut s = format!("{x:.decimals$}");
+    if s.contains('.') {
+        while s.ends_with('0') {
+            s.pop();
+        }
+        if s.ends_with('.') {
+            s.pop();
+        }
+    }
+    if s == "-0" {
+        s = "0".into();
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn float_formatting() {
+        assert_eq!(fmt_float(1.0, 3), "1");
+        assert_eq!(fmt_float(-0.0001, 3), "0");
+        assert_eq!(fmt_float(2.5, 3), "2.5");
+        assert_eq!(fmt_float(1.0 / 3.0, 4), "0.3333");
+        assert_eq!(fmt_float(f64::NAN, 2), "nan");
+    }
+}

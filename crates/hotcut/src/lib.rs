@@ -1,1 +1,74 @@
-//! placeholder
+//! # hotcut — job files, validation, the task runner and the `hotcut` CLI
+//!
+//! A job file (RON) is read in three layers ([`load`]), resolved into checked geometry, run
+//! by its task ([`analyze`]) and written atomically ([`run`]). Schemas of the job file and
+//! the report come from the types in [`job`] and [`report`].
+//!
+//! ```
+//! let dir = tempfile::tempdir().unwrap();
+//! let path = dir.path().join("wave.ron");
+//! std::fs::write(&path, r#"Job(
+//!     name: "wave",
+//!     surface: HeightField(z: "100*sin(y/200)", x: (0, 400), y: (0, 1500)),
+//!     cutting: Cutting(sections: 4),
+//!     task: Analyze(),
+//! )"#).unwrap();
+//! let job = hotcut::load::load_job(&path).unwrap();
+//! let out = hotcut::run::run_job(&job, &dir.path().join("out"), &hotcut::NoProgress).unwrap();
+//! // sin(y/200) changes sign at y = 200π and 400π inside (0, 1500)
+//! assert_eq!(out.report.sections[0].inflections.len(), 2);
+//! assert!(out.dir.join("report.json").is_file());
+//! ```
+
+/// The `Analyze` task.
+pub mod analyze;
+/// The `sections.svg` drawing.
+pub mod draw;
+/// Error types.
+pub mod error;
+/// Job-file types (serde + JSON Schema).
+pub mod job;
+/// Reading, validating and resolving job files.
+pub mod load;
+/// Report types (serde + JSON Schema).
+pub mod report;
+/// Running a job and writing its outputs.
+pub mod run;
+
+pub use error::{HotcutError, JobError, Result};
+
+/// Progress of long steps; the CLI draws bars, libraries and tests pass [`NoProgress`].
+/// `tick` may be called from worker threads.
+pub trait Progress: Sync {
+    /// A step with `total` units of work begins.
+    fn start(&self, label: &str, total: u64);
+    /// One unit is done.
+    fn tick(&self);
+    /// The step is done.
+    fn finish(&self);
+}
+
+/// Reports nothing.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoProgress;
+
+impl Progress for NoProgress {
+    fn start(&self, _: &str, _: u64) {}
+    fn tick(&self) {}
+    fn finish(&self) {}
+}
+
+/// The JSON Schema of job files, as written to `schemas/job.schema.json`.
+pub fn job_schema_json() -> String {
+    let mut s = serde_json::to_string_pretty(&load::job_schema()).unwrap_or_default();
+    s.push('\n');
+    s
+}
+
+/// The JSON Schema of `report.json`, as written to `schemas/report.schema.json`.
+pub fn report_schema_json() -> String {
+    let v = serde_json::to_value(schemars::schema_for!(report::AnalyzeReport)).unwrap_or_default();
+    let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
+    s.push('\n');
+    s
+}

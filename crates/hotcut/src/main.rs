@@ -1,1 +1,217 @@
-fn main() {}
+//! The `hotcut` command-line tool. Exit codes: 0 success, 1 invalid input or failed run,
+//! 2 usage error.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use hotcut::load::{load_job, ResolvedJob};
+use hotcut::report::{AnalyzeReport, Violation};
+use hotcut::Progress;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+/// hotcut: from freeform designs to hot-wire and hot-blade cutting data.
+#[derive(Parser)]
+#[command(version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run job files; outputs go to <OUT>/<job name>/.
+    Run {
+        /// Job files (RON).
+        #[arg(required = true)]
+        jobs: Vec<PathBuf>,
+        /// Output directory.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+    },
+    /// Check job files (syntax, schema, semantics) without running them.
+    Validate {
+        /// Job files (RON).
+        #[arg(required = true)]
+        jobs: Vec<PathBuf>,
+    },
+    /// Print the JSON Schema of job files (or of report.json), or write both to a folder.
+    Schema {
+        /// Print the schema of report.json instead.
+        #[arg(long)]
+        report: bool,
+        /// Write job.schema.json and report.schema.json into this folder.
+        #[arg(long, value_name = "DIR")]
+        write: Option<PathBuf>,
+    },
+}
+
+/// indicatif bars, hidden when stdout is not a terminal.
+struct Bars {
+    bar: ProgressBar,
+}
+
+impl Bars {
+    fn new() -> Self {
+        let bar = ProgressBar::hidden();
+        Self { bar }
+    }
+}
+
+impl Progress for Bars {
+    fn start(&self, label: &str, total: u64) {
+        if std::io::stdout().is_terminal() {
+            self.bar.set_draw_target(ProgressDrawTarget::stderr());
+        }
+        self.bar.reset();
+        self.bar.set_length(total);
+        self.bar.set_position(0);
+        self.bar.set_style(
+            ProgressStyle::with_template("{msg:>20} [{bar:40}] {pos}/{len} {elapsed}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .progress_chars("=> "),
+        );
+        self.bar.set_message(label.to_string());
+    }
+    fn tick(&self) {
+        self.bar.inc(1);
+    }
+    fn finish(&self) {
+        self.bar.finish_and_clear();
+        self.bar.set_draw_target(ProgressDrawTarget::hidden());
+    }
+}
+
+fn load_all(jobs: &[PathBuf]) -> Result<Vec<ResolvedJob>, ()> {
+    let mut ok = Vec::new();
+    let mut failed = false;
+    for j in jobs {
+        match load_job(j) {
+            Ok(r) => ok.push(r),
+            Err(errors) => {
+                failed = true;
+                for e in errors {
+                    eprintln!("error: {e}");
+                }
+            }
+        }
+    }
+    if failed {
+        Err(())
+    } else {
+        Ok(ok)
+    }
+}
+
+fn print_summary(r: &AnalyzeReport, units: &str) {
+    let s = &r.summary;
+    println!(
+        "{}: {} section(s) on {} plane(s), longest {:.1} {units}, {} inflection(s) (at most {} on one), max |curvature| {:.5} /{units}",
+        r.job, s.pieces, s.planes_with_sections, s.max_length, s.total_inflections, s.max_inflections, s.max_abs_curvature
+    );
+    let c = &r.constraints;
+    println!(
+        "  dimension:    {} section(s) longer than the blade ({} {units})",
+        s.sections_too_long, c.blade_length
+    );
+    for v in &s.surface_violations {
+        if let Violation::Dimension { what, value, limit } = v {
+            println!(
+                "                surface {:.1} {units} > block {limit} {units} ({what})",
+                value
+            );
+        }
+    }
+    if c.block_size.is_none() {
+        println!("                no block given: block size not checked");
+    }
+    println!(
+        "  shape:        {} section(s) with more than {} inflection(s)",
+        s.sections_too_many_inflections, c.max_inflections
+    );
+    println!(
+        "  blade strain: {} section(s) above |curvature| {} /{units}",
+        s.sections_too_curved, c.max_curvature
+    );
+    for w in &r.surface.warnings {
+        println!("  warning: {w}");
+    }
+    println!(
+        "  verdict: {}",
+        if s.cuttable_without_segmentation {
+            "cuttable with one blade from one block"
+        } else {
+            "needs segmentation or another tool (see report.json)"
+        }
+    );
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    match cli.command {
+        Command::Schema { report, write } => {
+            if let Some(dir) = write {
+                let files = [
+                    ("job.schema.json", hotcut::job_schema_json()),
+                    ("report.schema.json", hotcut::report_schema_json()),
+                ];
+                for (name, text) in files {
+                    let p = dir.join(name);
+                    if let Err(e) =
+                        std::fs::create_dir_all(&dir).and_then(|_| std::fs::write(&p, text))
+                    {
+                        eprintln!("error: {}: {e}", p.display());
+                        return ExitCode::from(1);
+                    }
+                    println!("wrote {}", p.display());
+                }
+            } else if report {
+                print!("{}", hotcut::report_schema_json());
+            } else {
+                print!("{}", hotcut::job_schema_json());
+            }
+            ExitCode::SUCCESS
+        }
+        Command::Validate { jobs } => match load_all(&jobs) {
+            Ok(list) => {
+                for j in list {
+                    println!("{}: ok", j.path.display());
+                    for w in &j.warnings {
+                        println!("  warning: {w}");
+                    }
+                }
+                ExitCode::SUCCESS
+            }
+            Err(()) => ExitCode::from(1),
+        },
+        Command::Run { jobs, out } => {
+            let Ok(list) = load_all(&jobs) else {
+                eprintln!("nothing was run: fix the errors above");
+                return ExitCode::from(1);
+            };
+            let bars = Bars::new();
+            let mut code = ExitCode::SUCCESS;
+            for j in &list {
+                match hotcut::run::run_job(j, &out, &bars) {
+                    Ok(o) => {
+                        print_summary(&o.report, j.job.units.symbol());
+                        println!("  wrote {}: {}", o.dir.display(), o.files.join(", "));
+                    }
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        code = ExitCode::from(1);
+                    }
+                }
+            }
+            code
+        }
+    }
+}

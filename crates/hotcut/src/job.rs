@@ -1,0 +1,292 @@
+//! The job file as the user writes it (RON): raw serde types with `deny_unknown_fields`.
+//! Their doc comments become the descriptions in `schemas/job.schema.json`.
+//!
+//! Every omitted field has the default documented on it. Lengths are in the job's
+//! [`Units`]; curvatures in 1/length; angles in radians.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// A hotcut job: what to cut, with which tool and constraints, which task to run and which
+/// files to write.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Job {
+    /// Name of the job; outputs go to `<out>/<name>/`. Letters, digits, `.`, `_` and `-`.
+    #[schemars(
+        regex(pattern = r"^[A-Za-z0-9][A-Za-z0-9._-]*$"),
+        length(min = 1, max = 100)
+    )]
+    pub name: String,
+    /// Length unit of every length in the job and its outputs. Default: `Millimetre`.
+    #[serde(default)]
+    pub units: Units,
+    /// The surface to cut. Required by `Analyze`.
+    #[serde(default)]
+    pub surface: Option<SurfaceSpec>,
+    /// The foam block. When omitted, the block-size constraint is not checked.
+    #[serde(default)]
+    pub block: Option<BlockSpec>,
+    /// The hot blade. Default: `Blade(length: 1000 mm, max_curvature: 0.011 /mm, max_inflections: 2)`
+    /// (converted when `units: Metre`).
+    #[serde(default)]
+    pub blade: Option<BladeSpec>,
+    /// Cutting direction and number of sections. Default: `Cutting(direction: (1, 0, 0), sections: 26)`.
+    #[serde(default)]
+    pub cutting: CuttingSpec,
+    /// Tolerances. Default: see each field.
+    #[serde(default)]
+    pub tolerance: ToleranceSpec,
+    /// The task to run.
+    pub task: TaskSpec,
+    /// Files to write. Default: `[Report, Svg]`.
+    #[serde(default = "default_outputs")]
+    pub outputs: Vec<OutputSpec>,
+    /// Seed of every random choice a task makes. Default: 0.
+    #[serde(default)]
+    pub seed: u64,
+}
+
+fn default_outputs() -> Vec<OutputSpec> {
+    vec![OutputSpec::Report, OutputSpec::Svg]
+}
+
+/// Length unit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+pub enum Units {
+    /// Millimetres (the default).
+    #[default]
+    Millimetre,
+    /// Metres.
+    Metre,
+}
+
+impl Units {
+    /// Short symbol for messages: `mm` or `m`.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Self::Millimetre => "mm",
+            Self::Metre => "m",
+        }
+    }
+
+    /// How many job units one millimetre is.
+    pub fn per_mm(self) -> f64 {
+        match self {
+            Self::Millimetre => 1.0,
+            Self::Metre => 1e-3,
+        }
+    }
+}
+
+/// Where the surface comes from.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub enum SurfaceSpec {
+    /// `z = f(x, y)` over a rectangle, sectioned exactly. Operators `+ - * / ^`, unary minus,
+    /// parentheses, `sin cos tan exp ln sqrt abs`, constants `pi` and `e`, variables `x`, `y`
+    /// in job units.
+    HeightField {
+        /// The expression for `z`.
+        #[schemars(length(min = 1))]
+        z: String,
+        /// `(min, max)` of `x`.
+        x: (f64, f64),
+        /// `(min, max)` of `y`.
+        y: (f64, f64),
+    },
+    /// A triangle mesh from a Wavefront OBJ file (path relative to the job file).
+    Mesh {
+        /// Path of the `.obj` file, relative to the job file.
+        #[schemars(length(min = 1))]
+        path: String,
+        /// Require a closed (watertight) mesh. Default: `false` (a facade is an open sheet).
+        #[serde(default)]
+        closed: bool,
+    },
+    /// A tensor-product B-spline surface from a JSON control-grid file (path relative to
+    /// the job file); see the README for the format.
+    Spline {
+        /// Path of the control-grid `.json` file, relative to the job file.
+        #[schemars(length(min = 1))]
+        path: String,
+    },
+}
+
+/// The foam block, an axis-aligned box in the job's frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename = "Block")]
+pub struct BlockSpec {
+    /// Edge lengths `(x, y, z)`, each > 0.
+    pub size: (f64, f64, f64),
+    /// Minimum corner `(x, y, z)`. Default: not placed (only the size is checked).
+    #[serde(default)]
+    pub origin: Option<(f64, f64, f64)>,
+}
+
+/// The hot blade.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename = "Blade")]
+pub struct BladeSpec {
+    /// Blade length (> 0): sections longer than this need segmentation.
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub length: f64,
+    /// Largest |curvature| the blade takes without permanent deformation (> 0), 1/length.
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub max_curvature: f64,
+    /// Most inflection points a blade shape may have. Default: 2 (thesis §5.1.3).
+    #[serde(default = "default_max_inflections")]
+    pub max_inflections: u32,
+}
+
+fn default_max_inflections() -> u32 {
+    2
+}
+
+/// How the surface is cut into sections.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename = "Cutting")]
+pub struct CuttingSpec {
+    /// Cutting direction, the normal of the section planes. Default: `(1, 0, 0)`. Height
+    /// fields need a horizontal direction (z = 0).
+    #[serde(default = "default_direction")]
+    pub direction: (f64, f64, f64),
+    /// Number of section planes, at the centres of equal slabs of the surface's extent
+    /// along the direction (≥ 1). Default: 26.
+    #[serde(default = "default_sections")]
+    #[schemars(range(min = 1, max = 100000))]
+    pub sections: u32,
+}
+
+fn default_direction() -> (f64, f64, f64) {
+    (1.0, 0.0, 0.0)
+}
+
+fn default_sections() -> u32 {
+    26
+}
+
+impl Default for CuttingSpec {
+    fn default() -> Self {
+        Self {
+            direction: default_direction(),
+            sections: default_sections(),
+        }
+    }
+}
+
+/// Tolerances, in job units.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename = "Tolerance")]
+pub struct ToleranceSpec {
+    /// RMS distance allowed between the surface and what is cut (> 0). Default: 0.5 mm.
+    #[serde(default = "default_rms")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub rms: f64,
+    /// Largest distance allowed between the surface and what is cut (> 0). Default: 2 mm.
+    #[serde(default = "default_max")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub max: f64,
+    /// RMS deviation allowed when a polyline section (mesh, spline surface) is replaced by
+    /// a smoothing spline before curvature is taken (≥ 0). Default: 0.05 mm.
+    #[serde(default = "default_smoothing")]
+    #[schemars(range(min = 0))]
+    pub smoothing: f64,
+    /// Inflections are located by bisection to within this arc length (> 0). Default: 1e-6 mm.
+    #[serde(default = "default_bisection")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub bisection: f64,
+    /// A stretch between inflections that turns the tangent by less than this many radians
+    /// is noise, and its inflections are dropped (≥ 0). Default: 0.002.
+    #[serde(default = "default_min_turning")]
+    #[schemars(range(min = 0))]
+    pub min_turning: f64,
+}
+
+fn default_rms() -> f64 {
+    0.5
+}
+fn default_max() -> f64 {
+    2.0
+}
+fn default_smoothing() -> f64 {
+    0.05
+}
+fn default_bisection() -> f64 {
+    1e-6
+}
+fn default_min_turning() -> f64 {
+    0.002
+}
+
+impl Default for ToleranceSpec {
+    fn default() -> Self {
+        Self {
+            rms: default_rms(),
+            max: default_max(),
+            smoothing: default_smoothing(),
+            bisection: default_bisection(),
+            min_turning: default_min_turning(),
+        }
+    }
+}
+
+/// The task to run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub enum TaskSpec {
+    /// Section the surface and report, per section, its length, inflections, curvature
+    /// maxima and the production constraints it breaks (thesis §5.1). Write `Analyze()`.
+    Analyze {
+        /// Curvature samples per section for the sign test of eq. (5.2) (≥ 8). Default: 2000.
+        #[serde(default = "default_samples")]
+        #[schemars(range(min = 8, max = 1000000))]
+        samples: u32,
+    },
+}
+
+fn default_samples() -> u32 {
+    2000
+}
+
+/// A file to write.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub enum OutputSpec {
+    /// `report.json`: the task's full result.
+    Report,
+    /// `sections.svg` (Analyze): plan and profile drawing of the sections.
+    Svg,
+    /// `sections.obj`: the section curves as 3D polylines.
+    Obj,
+    /// `model.gltf` (later tasks).
+    Gltf,
+    /// `sections.csv` (later tasks).
+    Csv,
+    /// Robot targets per block (hot-blade task).
+    RobotTargets {
+        /// Targets per block.
+        #[schemars(range(min = 2))]
+        per_block: u32,
+    },
+    /// ABB RAPID program (hot-blade task).
+    Rapid,
+    /// Hot-wire G-code (pre-cut task).
+    GCode,
+}
+
+impl OutputSpec {
+    /// Name as written in job files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Report => "Report",
+            Self::Svg => "Svg",
+            Self::Obj => "Obj",
+            Self::Gltf => "Gltf",
+            Self::Csv => "Csv",
+            Self::RobotTargets { .. } => "RobotTargets",
+            Self::Rapid => "Rapid",
+            Self::GCode => "GCode",
+        }
+    }
+}

@@ -1,0 +1,167 @@
+//! The report an `Analyze` run writes as `report.json`; its JSON Schema is
+//! `schemas/report.schema.json`. Lengths are in the job's units, curvatures in 1/unit,
+//! positions in the job's frame; floats are rounded to
+//! [`export::json::REPORT_DIGITS`] significant digits when written.
+
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use crate::job::Units;
+
+/// The result of the `Analyze` task.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct AnalyzeReport {
+    /// Job name.
+    pub job: String,
+    /// Task name, `Analyze`.
+    pub task: String,
+    /// Length unit.
+    pub units: Units,
+    /// The surface as loaded.
+    pub surface: SurfaceInfo,
+    /// The section planes.
+    pub cutting: CuttingInfo,
+    /// The constraints checked.
+    pub constraints: ConstraintsInfo,
+    /// Totals and the verdict.
+    pub summary: Summary,
+    /// One entry per section piece, by plane then piece.
+    pub sections: Vec<SectionReport>,
+}
+
+/// What was loaded.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct SurfaceInfo {
+    /// `HeightField`, `Mesh` or `Spline`.
+    pub kind: String,
+    /// Minimum corner of the bounding box (height-field and spline heights are sampled).
+    pub bbox_min: [f64; 3],
+    /// Maximum corner of the bounding box.
+    pub bbox_max: [f64; 3],
+    /// Non-fatal findings while loading.
+    pub warnings: Vec<String>,
+}
+
+/// The plane family.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct CuttingInfo {
+    /// Unit cutting direction (plane normal).
+    pub direction: [f64; 3],
+    /// First in-plane axis: section coordinates are `(u, v)`.
+    pub plane_u: [f64; 3],
+    /// Second in-plane axis.
+    pub plane_v: [f64; 3],
+    /// Number of planes.
+    pub planes: usize,
+    /// Extent of the surface along the direction, `[min, max]`.
+    pub extent: [f64; 2],
+}
+
+/// The production constraints checked (thesis §5.1).
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct ConstraintsInfo {
+    /// Blade length.
+    pub blade_length: f64,
+    /// Largest allowed |curvature|.
+    pub max_curvature: f64,
+    /// Most inflections allowed per section.
+    pub max_inflections: u32,
+    /// Block size, if given.
+    pub block_size: Option<[f64; 3]>,
+}
+
+/// A production constraint a section or the surface breaks.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(tag = "constraint", rename_all = "snake_case")]
+pub enum Violation {
+    /// Dimension (§5.1.1): the section is longer than the blade.
+    Dimension {
+        /// What exceeds: `section_longer_than_blade` or `surface_larger_than_block_<axis>`.
+        what: String,
+        /// The measured size.
+        value: f64,
+        /// The limit.
+        limit: f64,
+    },
+    /// Shape (§5.1.3): more inflections than the blade can hold.
+    Shape {
+        /// Inflections found.
+        inflections: usize,
+        /// Most allowed.
+        limit: u32,
+    },
+    /// Blade strain (§5.1.4): curvature above what the blade takes.
+    BladeStrain {
+        /// Largest |curvature| on the section.
+        max_abs_curvature: f64,
+        /// The limit.
+        limit: f64,
+        /// Arc length where it occurs.
+        at_s: f64,
+    },
+}
+
+/// A point on a section.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct SectionPoint {
+    /// Arc length from the section's start.
+    pub s: f64,
+    /// Position in the job's frame.
+    pub position: [f64; 3],
+    /// Signed curvature there (left turn in the `(u, v)` plane is positive).
+    pub curvature: f64,
+}
+
+/// One section piece.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct SectionReport {
+    /// Plane index, from 0.
+    pub index: usize,
+    /// Piece within the plane, from 0 (a plane can cut the surface in several pieces).
+    pub piece: usize,
+    /// Plane offset along the cutting direction.
+    pub offset: f64,
+    /// Whether the piece is a closed loop.
+    pub closed: bool,
+    /// Arc length.
+    pub length: f64,
+    /// RMS deviation of the smoothing spline from the sectioned points (0 for exact sections).
+    pub fit_rms: f64,
+    /// Inflection points in order along the section.
+    pub inflections: Vec<SectionPoint>,
+    /// Curvature maxima, one per stretch between inflections.
+    pub curvature_maxima: Vec<SectionPoint>,
+    /// Largest |curvature| on the section.
+    pub max_abs_curvature: f64,
+    /// Inflections dropped as noise (stretches turning less than `tolerance.min_turning`).
+    pub suppressed_inflections: usize,
+    /// Constraints this section breaks.
+    pub violations: Vec<Violation>,
+}
+
+/// Totals.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct Summary {
+    /// Planes that cut the surface.
+    pub planes_with_sections: usize,
+    /// Section pieces.
+    pub pieces: usize,
+    /// Longest section.
+    pub max_length: f64,
+    /// Inflections over all sections.
+    pub total_inflections: usize,
+    /// Most inflections on one section.
+    pub max_inflections: usize,
+    /// Largest |curvature| over all sections.
+    pub max_abs_curvature: f64,
+    /// Sections longer than the blade.
+    pub sections_too_long: usize,
+    /// Sections with too many inflections.
+    pub sections_too_many_inflections: usize,
+    /// Sections whose curvature strains the blade.
+    pub sections_too_curved: usize,
+    /// Violations of the surface as a whole (larger than the block).
+    pub surface_violations: Vec<Violation>,
+    /// True when nothing is violated: one block, one blade, no segmentation needed.
+    pub cuttable_without_segmentation: bool,
+}
