@@ -1,2 +1,36 @@
+//! Runs every job in `jobs/`: its `report.json` is snapshot-tested (snapshots live in the
+//! top-level `snapshots/`), and a second run must give byte-identical output files.
+
+use hotcut::load::load_job;
+use hotcut::run::run_job;
+use hotcut::NoProgress;
+use hotcut_workspace_tests::read_tree;
+
 #[test]
-fn t() {}
+fn every_job_runs_matches_its_snapshot_and_is_reproducible() {
+    let mut settings = insta::Settings::clone_current();
+    settings.set_snapshot_path("../snapshots");
+    settings.set_prepend_module_to_snapshot(false);
+    settings.bind(|| {
+        insta::glob!("../jobs", "*.ron", |path| {
+            let job = load_job(path).unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
+            let a = tempfile::tempdir().unwrap();
+            let b = tempfile::tempdir().unwrap();
+            let first = run_job(&job, a.path(), &NoProgress).unwrap();
+            let second = run_job(&job, b.path(), &NoProgress).unwrap();
+            let (ta, tb) = (read_tree(&first.dir), read_tree(&second.dir));
+            assert!(!ta.is_empty());
+            assert_eq!(ta.len(), tb.len());
+            for ((na, ba), (nb, bb)) in ta.iter().zip(&tb) {
+                assert_eq!(na, nb);
+                assert!(
+                    ba == bb,
+                    "{}: {na} differs between two runs",
+                    path.display()
+                );
+            }
+            let report = std::fs::read_to_string(first.dir.join("report.json")).unwrap();
+            insta::assert_snapshot!("report", report);
+        });
+    });
+}

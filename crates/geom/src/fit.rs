@@ -7,8 +7,11 @@
 //! The smoothing fit is a penalised spline (P-spline): many uniform knots and a penalty
 //! `λ Σ |c_{i+2} − 2c_{i+1} + c_i|²` on the control polygon's second differences. The
 //! largest `λ` whose RMS residual stays within the tolerance is found by bisection on
-//! `log λ`, so the result is the smoothest curve of the family that is still within the
-//! tolerance of the points. This is what removes the false inflections that mesh noise
+//! `log λ` such that no point is farther than the tolerance from the curve (at the point's
+//! parameter), so the result is the smoothest curve of the family within the tolerance of
+//! every point. A bound on the largest deviation, rather than the RMS, keeps the ends of the
+//! curve honest: an RMS bound lets the penalty flatten the last few millimetres and lose
+//! inflections there. This is what removes the false inflections that mesh noise
 //! produces on nearly straight stretches, while the tolerance bounds how far the curve may
 //! move away from the data.
 
@@ -110,19 +113,52 @@ fn solve_penalised<const D: usize>(
     Some(sol.into_iter().map(SVector::<f64, D>::from).collect())
 }
 
+/// RMS residual, largest residual, and largest residual relative to each point's allowance.
 fn residuals<const D: usize>(
     curve: &BSplineCurve<D>,
     points: &[SVector<f64, D>],
     params: &[f64],
-) -> (f64, f64) {
+    allow: &[f64],
+) -> (f64, f64, f64) {
     let mut sum = 0.0;
     let mut max: f64 = 0.0;
-    for (p, &t) in points.iter().zip(params) {
+    let mut ratio: f64 = 0.0;
+    for ((p, &t), &a) in points.iter().zip(params).zip(allow) {
         let d = (curve.eval(t) - p).norm();
         sum += d * d;
         max = max.max(d);
+        let r = if a > 0.0 {
+            d / a
+        } else if d > 0.0 {
+            f64::INFINITY
+        } else {
+            0.0
+        };
+        ratio = ratio.max(r);
     }
-    ((sum / points.len() as f64).sqrt(), max)
+    ((sum / points.len() as f64).sqrt(), max, ratio)
+}
+
+/// Sagitta of the polyline at each point: `h·θ/8` with `h` the mean of the two adjacent
+/// segment lengths and `θ` the turning angle there (the ends copy their neighbours). For a
+/// polyline that samples a smooth curve with spacing `h` this is the chordal error `κh²/8`.
+pub fn polyline_sagitta<const D: usize>(points: &[SVector<f64, D>]) -> Vec<f64> {
+    let n = points.len();
+    let mut out = vec![0.0; n];
+    for i in 1..n.saturating_sub(1) {
+        let a = points[i] - points[i - 1];
+        let b = points[i + 1] - points[i];
+        let (la, lb) = (a.norm(), b.norm());
+        if la > 0.0 && lb > 0.0 {
+            let cos = (a.dot(&b) / (la * lb)).clamp(-1.0, 1.0);
+            out[i] = 0.5 * (la + lb) * cos.acos() / 8.0;
+        }
+    }
+    if n >= 3 {
+        out[0] = out[1];
+        out[n - 1] = out[n - 2];
+    }
+    out
 }
 
 /// Least-squares fit of a degree-`degree` B-spline with the given knot vector to points with
@@ -156,11 +192,15 @@ pub fn fit_least_squares<const D: usize>(
 pub struct SmoothingParams {
     /// Spline degree (3 gives continuous curvature).
     pub degree: usize,
-    /// Largest allowed RMS distance between the points and the curve at their parameters,
-    /// in the points' units. Must be ≥ 0.
+    /// Largest allowed distance between a point and the curve at the point's parameter, in
+    /// the points' units. Must be ≥ 0.
     pub tolerance: f64,
     /// Upper bound on the number of control points (the fit uses about one per two points).
     pub max_control: usize,
+    /// Treat the points as a chordal polyline (a mesh section): each point may then deviate
+    /// by `max(tolerance, its sagitta)` (see [`polyline_sagitta`]), because a point on a
+    /// facet is only known to within the facet's distance from the true surface.
+    pub chordal: bool,
 }
 
 impl Default for SmoothingParams {
@@ -169,6 +209,7 @@ impl Default for SmoothingParams {
             degree: 3,
             tolerance: 1e-3,
             max_control: 400,
+            chordal: false,
         }
     }
 }
@@ -187,8 +228,9 @@ pub struct SplineFit<const D: usize> {
 }
 
 /// Smoothing spline through `points` (parameters by chord length when `params` is `None`):
-/// the smoothest P-spline whose RMS residual is at most `params.tolerance`. When even the
-/// least-squares spline misses the tolerance, that spline is returned and its `rms` says so.
+/// the smoothest P-spline whose largest residual is at most `params.tolerance`. When even
+/// the least-squares spline misses the tolerance, that spline is returned and its
+/// `max_error` says so.
 ///
 /// # Errors
 /// [`GeomError::InvalidFit`] for fewer than two distinct points or mismatched input;
@@ -234,10 +276,18 @@ pub fn fit_smoothing<const D: usize>(
         .clamp(degree + 1, opts.max_control.max(degree + 1))
         .min(m.max(degree + 1));
     let knots = clamped_uniform_knots(degree, n, a, b);
+    let allow: Vec<f64> = if opts.chordal {
+        polyline_sagitta(points)
+            .into_iter()
+            .map(|g| g.max(opts.tolerance))
+            .collect()
+    } else {
+        vec![opts.tolerance; m]
+    };
 
     // Scale λ so that it is dimensionless: data term ~ m, penalty term ~ n.
     let unit = m as f64 / n as f64;
-    let fit_at = |log_lambda: f64| -> Option<(BSplineCurve<D>, f64, f64)> {
+    let fit_at = |log_lambda: f64| -> Option<(BSplineCurve<D>, f64, f64, f64)> {
         let lambda = if log_lambda.is_finite() {
             unit * 10f64.powf(log_lambda)
         } else {
@@ -245,13 +295,13 @@ pub fn fit_smoothing<const D: usize>(
         };
         let control = solve_penalised(points, params, degree, &knots, n, lambda)?;
         let curve = BSplineCurve::try_new(degree, knots.clone(), control).ok()?;
-        let (rms, max) = residuals(&curve, points, params);
-        Some((curve, rms, max))
+        let (rms, max, ratio) = residuals(&curve, points, params, &allow);
+        Some((curve, rms, max, ratio))
     };
     let singular = || GeomError::InvalidFit("singular smoothing system".into());
 
-    let (lo_curve, lo_rms, lo_max) = fit_at(-8.0).ok_or_else(singular)?;
-    if lo_rms > opts.tolerance {
+    let (lo_curve, lo_rms, lo_max, lo_ratio) = fit_at(-8.0).ok_or_else(singular)?;
+    if lo_ratio > 1.0 {
         return Ok(SplineFit {
             curve: lo_curve,
             rms: lo_rms,
@@ -260,8 +310,8 @@ pub fn fit_smoothing<const D: usize>(
         });
     }
     let hi = 8.0;
-    if let Some((curve, rms, max)) = fit_at(hi) {
-        if rms <= opts.tolerance {
+    if let Some((curve, rms, max, ratio)) = fit_at(hi) {
+        if ratio <= 1.0 {
             return Ok(SplineFit {
                 curve,
                 rms,
@@ -275,7 +325,7 @@ pub fn fit_smoothing<const D: usize>(
     for _ in 0..40 {
         let mid = 0.5 * (lo + hi);
         match fit_at(mid) {
-            Some((c, rms, max)) if rms <= opts.tolerance => {
+            Some((c, rms, max, ratio)) if ratio <= 1.0 => {
                 best = (c, rms, max, mid);
                 lo = mid;
             }

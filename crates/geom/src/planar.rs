@@ -9,11 +9,17 @@
 //! # The false-inflection rule
 //! Between two consecutive inflections the curvature has one sign; call that stretch a
 //! *lobe* and its *turning* the change of the tangent angle across it (`∫κ ds`). Noise on a
-//! nearly straight stretch makes lobes that barely turn. The rule: while some lobe turns by
-//! less than `min_lobe_turning` radians, take the one that turns least; if it lies between
-//! two inflections, remove both (the lobe merges with its neighbours, like a pushed-out
-//! dent); if it touches an end of the curve, remove its one inflection. Every removal is
-//! counted in [`CurveAnalysis::suppressed_inflections`], so the report can say so.
+//! nearly straight stretch makes lobes that barely turn, each bounded by a *pair* of false
+//! inflections. The rule: while some interior lobe (one between two inflections) turns by
+//! less than `min_lobe_turning` radians, take the one that turns least and remove both its
+//! inflections, merging it with its neighbours (like pushing out a small dent, thesis
+//! §5.1.3). Lobes that touch an end of the curve are kept: their single inflection is real
+//! as far as the curve is concerned. Every removal is counted in
+//! [`CurveAnalysis::suppressed_inflections`], so the report can say so.
+//!
+//! On a curve fitted to a polyline, the curvature inside the first and last segment is set
+//! by the spline's end condition, not by data; sign changes there
+//! ([`CurveAnalysisParams::end_margins`]) are dropped and counted the same way.
 
 use nalgebra::Vector2;
 
@@ -203,6 +209,10 @@ pub struct CurveAnalysisParams {
     pub bisection_tolerance: f64,
     /// Lobes that turn less than this many radians are noise; see the module docs.
     pub min_lobe_turning: f64,
+    /// Parameter lengths at the start and the end of the curve in which curvature is not
+    /// determined by data (the first and last segment of a fitted polyline; 0 for exact
+    /// curves). Sign changes there are not reported as inflections.
+    pub end_margins: (f64, f64),
 }
 
 impl Default for CurveAnalysisParams {
@@ -211,6 +221,7 @@ impl Default for CurveAnalysisParams {
             samples: 2000,
             bisection_tolerance: 1e-9,
             min_lobe_turning: 1e-3,
+            end_margins: (0.0, 0.0),
         }
     }
 }
@@ -252,7 +263,7 @@ pub struct CurveAnalysis {
     pub max_abs_curvature: CurvePoint,
     /// Lobes between consecutive inflections, after the rule.
     pub lobes: Vec<Lobe>,
-    /// Inflections removed by the false-inflection rule.
+    /// Inflections removed by the false-inflection rule or found inside the end margins.
     pub suppressed_inflections: usize,
 }
 
@@ -414,6 +425,11 @@ pub fn analyze_curve(
         last = Some((i, s));
     }
 
+    // Sign changes inside the end margins carry no information from the data.
+    let before = raw.len();
+    raw.retain(|&t| t > a + params.end_margins.0 && t < b - params.end_margins.1);
+    let in_margins = before - raw.len();
+
     // Lobes between consecutive inflections, then the false-inflection rule.
     let mut bounds: Vec<f64> = std::iter::once(a)
         .chain(raw.iter().copied())
@@ -423,14 +439,14 @@ pub fn analyze_curve(
         .windows(2)
         .map(|w| turning(curve, w[0], w[1], &ts))
         .collect();
-    let mut suppressed = 0;
+    let mut suppressed = in_margins;
     loop {
-        if bounds.len() <= 2 {
-            break;
-        }
+        // interior lobes only: an end lobe has one inflection, not a pair
         let Some((i, &tmin)) = turns
             .iter()
             .enumerate()
+            .take(turns.len().saturating_sub(1))
+            .skip(1)
             .min_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
         else {
             break;
@@ -438,24 +454,10 @@ pub fn analyze_curve(
         if tmin.abs() >= params.min_lobe_turning {
             break;
         }
-        let n = turns.len();
-        if i == 0 {
-            // end lobe at the start: drop its inflection bounds[1]
-            bounds.remove(1);
-            let merged = turns[0] + turns[1];
-            turns.splice(0..2, [merged]);
-            suppressed += 1;
-        } else if i == n - 1 {
-            bounds.remove(n - 1);
-            let merged = turns[n - 2] + turns[n - 1];
-            turns.splice(n - 2..n, [merged]);
-            suppressed += 1;
-        } else {
-            bounds.drain(i..=i + 1);
-            let merged = turns[i - 1] + turns[i] + turns[i + 1];
-            turns.splice(i - 1..=i + 1, [merged]);
-            suppressed += 2;
-        }
+        bounds.drain(i..=i + 1);
+        let merged = turns[i - 1] + turns[i] + turns[i + 1];
+        turns.splice(i - 1..=i + 1, [merged]);
+        suppressed += 2;
     }
 
     let at = |t: f64| {

@@ -5,7 +5,8 @@
 //!
 //! Height fields are sectioned exactly ([`GraphCurve`]). Mesh sections are noisy polylines,
 //! so each is replaced by the smoothing spline of [`crate::fit::fit_smoothing`] with the
-//! caller's explicit tolerance before any curvature is taken. B-spline surfaces are sampled
+//! caller's explicit tolerance, widened where needed to the polyline's own chordal error
+//! (`chordal: true`), before any curvature is taken. B-spline surfaces are sampled
 //! on a parameter grid, sliced like a mesh, and every crossing is then moved onto the exact
 //! surface by bisection along its grid edge, so their section points are exact.
 
@@ -97,6 +98,9 @@ pub struct Section {
     pub points: Vec<Vector2<f64>>,
     /// RMS residual of the smoothing fit (0 for exact sections).
     pub fit_rms: f64,
+    /// Parameter length of the first and last polyline segment, where the fitted curve's
+    /// curvature is not determined by data (0 for exact sections).
+    pub end_margins: (f64, f64),
 }
 
 impl Surface {
@@ -169,13 +173,18 @@ impl Surface {
                             curve: SectionCurve::Graph(g),
                             points: Vec::new(),
                             fit_rms: 0.0,
+                            end_margins: (0.0, 0.0),
                         })
                         .into_iter()
                         .collect()),
                     Self::Mesh(m) => {
                         let chains = slice_mesh(m, &frame.normal, offset);
                         let polys = chains.iter().map(|c| (c.points(m), c.closed)).collect();
-                        fit_pieces(&frame, index, offset, polys, &params.smoothing)
+                        let chordal = SmoothingParams {
+                            chordal: true,
+                            ..params.smoothing.clone()
+                        };
+                        fit_pieces(&frame, index, offset, polys, &chordal)
                     }
                     Self::Spline(s) => {
                         let (mesh, uv) = spline_mesh
@@ -246,7 +255,13 @@ fn fit_pieces(
         .enumerate()
         .map(|(piece, (points, closed))| {
             let fit = fit_smoothing(&points, None, smoothing)?;
+            let n = points.len();
+            let end_margins = (
+                (points[1] - points[0]).norm(),
+                (points[n - 1] - points[n - 2]).norm(),
+            );
             Ok(Section {
+                end_margins,
                 index,
                 piece,
                 offset,

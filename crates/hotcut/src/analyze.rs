@@ -37,6 +37,7 @@ impl AnalyzeParams {
                     degree: 3,
                     tolerance: t.smoothing,
                     max_control: 400,
+                    chordal: false,
                 },
                 spline_grid: 200,
             },
@@ -44,6 +45,7 @@ impl AnalyzeParams {
                 samples: samples as usize,
                 bisection_tolerance: t.bisection,
                 min_lobe_turning: t.min_turning,
+                end_margins: (0.0, 0.0),
             },
         }
     }
@@ -98,7 +100,11 @@ pub fn analyze(
     let analysed: Vec<Result<(Section, CurveAnalysis)>> = sections
         .into_par_iter()
         .map(|s| {
-            let a = analyze_curve(&s.curve, &params.curve)
+            let curve_params = CurveAnalysisParams {
+                end_margins: s.end_margins,
+                ..params.curve.clone()
+            };
+            let a = analyze_curve(&s.curve, &curve_params)
                 .map_err(geom_err(format!("section {} piece {}", s.index, s.piece)));
             progress.tick();
             a.map(|a| (s, a))

@@ -187,8 +187,10 @@ pub struct ToleranceSpec {
     #[serde(default = "default_max")]
     #[schemars(extend("exclusiveMinimum" = 0))]
     pub max: f64,
-    /// RMS deviation allowed when a polyline section (mesh, spline surface) is replaced by
-    /// a smoothing spline before curvature is taken (≥ 0). Default: 0.05 mm.
+    /// Largest deviation allowed when a polyline section (mesh, spline surface) is replaced
+    /// by a smoothing spline before curvature is taken (≥ 0). For meshes, a point may also
+    /// deviate by its chordal sagitta (how far a facet can be from the true surface there).
+    /// Default: 0.05 mm.
     #[serde(default = "default_smoothing")]
     #[schemars(range(min = 0))]
     pub smoothing: f64,

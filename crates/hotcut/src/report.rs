@@ -133,7 +133,9 @@ pub struct SectionReport {
     pub curvature_maxima: Vec<SectionPoint>,
     /// Largest |curvature| on the section.
     pub max_abs_curvature: f64,
-    /// Inflections dropped as noise (stretches turning less than `tolerance.min_turning`).
+    /// Inflections dropped as noise: pairs around stretches turning less than
+    /// `tolerance.min_turning`, and sign changes inside the first or last segment of a
+    /// polyline section.
     pub suppressed_inflections: usize,
     /// Constraints this section breaks.
     pub violations: Vec<Violation>,

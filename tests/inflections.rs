@@ -1,0 +1,162 @@
+//! Acceptance: for analytic height fields the inflection count of each section equals the
+//! number of sign changes of ∂²z/∂y² along it; the same surfaces as fine OBJ meshes
+//! (vertex spacing ≤ 0.2 % of the extent) agree on at least 90 % of the sections.
+//!
+//! The reference counts come from hand-written Rust closures for z, evaluated with central
+//! second differences on a dense grid: independent of hotcut's expression parser, its
+//! exact derivatives and its curve analysis.
+
+use std::path::Path;
+
+use hotcut::analyze::{analyze, AnalyzeParams};
+use hotcut::load::load_job;
+use hotcut::NoProgress;
+
+struct Case {
+    name: &'static str,
+    expr: &'static str,
+    f: fn(f64, f64) -> f64,
+    x: (f64, f64),
+    y: (f64, f64),
+}
+
+const CASES: &[Case] = &[
+    Case {
+        name: "ripples",
+        expr: "40*sin(y/70)*(1 + x/2000)",
+        f: |x, y| 40.0 * (y / 70.0).sin() * (1.0 + x / 2000.0),
+        x: (0.0, 1000.0),
+        y: (0.0, 1500.0),
+    },
+    Case {
+        name: "oblique",
+        expr: "30*sin(x/150 + y/90) + 20*cos(y/60)",
+        f: |x, y| 30.0 * (x / 150.0 + y / 90.0).sin() + 20.0 * (y / 60.0).cos(),
+        x: (0.0, 1200.0),
+        y: (0.0, 1200.0),
+    },
+    Case {
+        name: "design-tool",
+        expr: "20*cos(2*(pi/2 - y/1000)^4)*sin(x/1000)*exp(-0.1*(x/1000)^2)",
+        f: |x, y| {
+            let (u, v) = (x / 1000.0, y / 1000.0);
+            20.0 * (2.0 * (std::f64::consts::FRAC_PI_2 - v).powi(4)).cos()
+                * u.sin()
+                * (-0.1 * u * u).exp()
+        },
+        x: (-1570.796327, 1570.796327),
+        y: (-750.0, 750.0),
+    },
+];
+
+/// Sign changes of ∂²z/∂y² along x = const, sampled densely (zeros skipped).
+fn reference_count(c: &Case, x: f64) -> usize {
+    let n = 60_000;
+    let h = 1e-2;
+    let mut last = 0i8;
+    let mut count = 0;
+    for i in 0..=n {
+        let y = c.y.0 + (c.y.1 - c.y.0) * i as f64 / n as f64;
+        let d2 = ((c.f)(x, y + h) - 2.0 * (c.f)(x, y) + (c.f)(x, y - h)) / (h * h);
+        let s = if d2 > 1e-12 {
+            1
+        } else if d2 < -1e-12 {
+            -1
+        } else {
+            0
+        };
+        if s != 0 {
+            if last != 0 && s != last {
+                count += 1;
+            }
+            last = s;
+        }
+    }
+    count
+}
+
+fn job_text(name: &str, surface: &str) -> String {
+    format!(
+        "Job(name: \"{name}\", surface: {surface}, cutting: Cutting(sections: 26), task: Analyze(samples: 6000), outputs: [Report])"
+    )
+}
+
+fn counts(path: &Path) -> Vec<(f64, usize)> {
+    let job = load_job(path).unwrap_or_else(|e| panic!("{e:?}"));
+    let a = analyze(&job, &AnalyzeParams::from_job(&job), &NoProgress).unwrap();
+    a.report
+        .sections
+        .iter()
+        .map(|s| (s.offset, s.inflections.len()))
+        .collect()
+}
+
+#[test]
+fn analytic_sections_count_sign_changes_of_fyy() {
+    let dir = tempfile::tempdir().unwrap();
+    for c in CASES {
+        let surface = format!(
+            "HeightField(z: \"{}\", x: ({}, {}), y: ({}, {}))",
+            c.expr, c.x.0, c.x.1, c.y.0, c.y.1
+        );
+        let path = dir.path().join(format!("{}.ron", c.name));
+        std::fs::write(&path, job_text(c.name, &surface)).unwrap();
+        let got = counts(&path);
+        assert_eq!(got.len(), 26, "{}", c.name);
+        let total: usize = got.iter().map(|g| g.1).sum();
+        assert!(
+            total >= 26 * 4,
+            "{}: want many inflections, got {total}",
+            c.name
+        );
+        for (x, n) in got {
+            assert_eq!(n, reference_count(c, x), "{} at x = {x}", c.name);
+        }
+    }
+}
+
+#[test]
+fn fine_meshes_agree_with_the_analytic_counts() {
+    let dir = tempfile::tempdir().unwrap();
+    for c in CASES {
+        // 500 × 500 cells: spacing ≤ extent / 500 = 0.2 % of the extent
+        let hf = geom::heightfield::HeightField::try_new(
+            geom::expr::Expr::parse(c.expr).unwrap(),
+            c.x,
+            c.y,
+        )
+        .unwrap();
+        let mesh = hf.to_mesh(500, 500).unwrap();
+        let spacing = ((c.x.1 - c.x.0) / 500.0).max((c.y.1 - c.y.0) / 500.0);
+        let extent = (c.x.1 - c.x.0).max(c.y.1 - c.y.0);
+        assert!(spacing <= 0.002 * extent + 1e-9);
+        let obj = dir.path().join(format!("{}.obj", c.name));
+        let mut f = std::io::BufWriter::new(std::fs::File::create(&obj).unwrap());
+        export::obj::write_mesh(&mut f, &mesh, 6).unwrap();
+        drop(f);
+        let path = dir.path().join(format!("{}-mesh.ron", c.name));
+        std::fs::write(
+            &path,
+            job_text(c.name, &format!("Mesh(path: \"{}.obj\")", c.name)),
+        )
+        .unwrap();
+        let got = counts(&path);
+        assert_eq!(got.len(), 26, "{}", c.name);
+        let agree = got
+            .iter()
+            .filter(|(x, n)| *n == reference_count(c, *x))
+            .count();
+        let misses: Vec<String> = got
+            .iter()
+            .filter(|(x, n)| *n != reference_count(c, *x))
+            .map(|(x, n)| format!("x={x:.1}: {n} vs {}", reference_count(c, *x)))
+            .collect();
+        assert!(
+            agree * 10 >= got.len() * 9,
+            "{}: {agree}/{} agree; {misses:?}",
+            c.name,
+            got.len()
+        );
+        eprintln!("{}: mesh agrees on {agree}/{} sections", c.name, got.len());
+    }
+}
