@@ -69,6 +69,7 @@ pub fn parse_job(path: &Path, text: &str) -> Result<Job, JobError> {
         Err(e) => {
             let spanned = de.span_error(e);
             let pointer = pointer_of(&track.path());
+            // well-formed RON of the wrong shape or type: report the field's pointer too
             let is_syntax = !matches!(
                 spanned.code,
                 ron::Error::NoSuchStructField { .. }
@@ -77,18 +78,24 @@ pub fn parse_job(path: &Path, text: &str) -> Result<Job, JobError> {
                     | ron::Error::DuplicateStructField { .. }
                     | ron::Error::InvalidValueForType { .. }
                     | ron::Error::ExpectedDifferentLength { .. }
+                    | ron::Error::ExpectedDifferentStructName { .. }
+                    | ron::Error::ExpectedBoolean
+                    | ron::Error::ExpectedFloat
+                    | ron::Error::ExpectedInteger
+                    | ron::Error::ExpectedString
+                    | ron::Error::ExpectedChar
+                    | ron::Error::ExpectedUnit
+                    | ron::Error::ExpectedOption
+                    | ron::Error::ExpectedArray
+                    | ron::Error::ExpectedMap
+                    | ron::Error::ExpectedStructLike
+                    | ron::Error::ExpectedNamedStructLike(_)
+                    | ron::Error::IntegerOutOfBounds
                     | ron::Error::Message(_)
             );
             if is_syntax {
                 return Err(syntax(spanned));
             }
-            let pointer = match &spanned.code {
-                // the path stops at the struct; name the unknown field itself
-                ron::Error::NoSuchStructField { found, .. } => {
-                    format!("{}/{}", pointer.trim_end_matches('/'), found)
-                }
-                _ => pointer,
-            };
             Err(JobError::Structure {
                 path: path.to_path_buf(),
                 line: spanned.span.start.line,
@@ -125,33 +132,77 @@ pub fn validate_schema(path: &Path, job: &Job) -> Result<(), Vec<JobError>> {
             message: format!("invalid job schema: {e}"),
         }]
     })?;
-    let errors: Vec<JobError> = validator
-        .iter_errors(&instance)
-        .map(|e| {
-            let pointer = e.instance_path().to_string();
-            let pointer = if pointer.is_empty() {
-                "/".to_string()
-            } else {
-                pointer
-            };
-            // serde_json turns NaN and infinities into null; say what really happened
-            let message = if e.instance().is_null() {
-                "must be a finite number (NaN or infinity given)".to_string()
-            } else {
-                e.to_string()
-            };
-            JobError::Schema {
-                path: path.to_path_buf(),
-                pointer,
-                message,
-            }
-        })
-        .collect();
+    let mut found = Vec::new();
+    for e in validator.iter_errors(&instance) {
+        leaf_errors(&e, &mut found);
+    }
+    let mut errors: Vec<JobError> = Vec::new();
+    for (pointer, message) in found {
+        let e = JobError::Schema {
+            path: path.to_path_buf(),
+            pointer,
+            message,
+        };
+        if !errors.contains(&e) {
+            errors.push(e);
+        }
+    }
     if errors.is_empty() {
         Ok(())
     } else {
         Err(errors)
     }
+}
+
+/// The most specific errors under a schema error: for `anyOf`/`oneOf` (optional fields,
+/// enum variants) the branch whose errors reach deepest into the instance is the one the
+/// user meant, so its errors are reported instead of "not valid under any of the schemas".
+fn leaf_errors(e: &jsonschema::ValidationError<'_>, out: &mut Vec<(String, String)>) {
+    if let Some(branches) = branches_of(e) {
+        if let Some(best) = branches
+            .iter()
+            .max_by_key(|b| b.iter().map(depth).max().unwrap_or(0))
+        {
+            if best.iter().map(depth).max().unwrap_or(0) > e.instance_path().to_string().len() {
+                for x in best {
+                    leaf_errors(x, out);
+                }
+                return;
+            }
+        }
+    }
+    let pointer = e.instance_path().to_string();
+    let pointer = if pointer.is_empty() {
+        "/".to_string()
+    } else {
+        pointer
+    };
+    // serde_json turns NaN and infinities into null; say what really happened
+    let message = if e.instance().is_null() {
+        "must be a finite number (NaN or infinity given)".to_string()
+    } else {
+        e.to_string()
+    };
+    out.push((pointer, message));
+}
+
+type Branches = Vec<Vec<jsonschema::ValidationError<'static>>>;
+
+fn branches_of<'e>(e: &'e jsonschema::ValidationError<'_>) -> Option<&'e Branches> {
+    use jsonschema::error::ValidationErrorKind as K;
+    match e.kind() {
+        K::AnyOf { context } | K::OneOfNotValid { context } => Some(context),
+        _ => None,
+    }
+}
+
+/// Length of the deepest instance path among an error and its branches.
+fn depth(e: &jsonschema::ValidationError<'_>) -> usize {
+    let own = e.instance_path().to_string().len();
+    branches_of(e)
+        .map(|bs| bs.iter().flatten().map(depth).max().unwrap_or(0))
+        .unwrap_or(0)
+        .max(own)
 }
 
 /// Blade constraints in job units.
@@ -222,6 +273,18 @@ pub fn resolve(path: &Path, job: Job) -> Result<ResolvedJob, Vec<JobError>> {
     } else {
         Vector3::x()
     };
+
+    if let Some(b) = &job.block {
+        for (i, v) in [b.size.0, b.size.1, b.size.2].into_iter().enumerate() {
+            if !(v > 0.0) {
+                errors.push(semantic(
+                    path,
+                    &format!("/block/size/{i}"),
+                    format!("block edge lengths must be > 0, got {v}"),
+                ));
+            }
+        }
+    }
 
     let surface = match &job.surface {
         None => None,

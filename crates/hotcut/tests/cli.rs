@@ -1,0 +1,323 @@
+//! End-to-end tests of the `hotcut` binary: exit codes, messages, atomic output, and
+//! negative tests for malformed jobs and meshes. No message may ever contain `panicked`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const VALID: &str = r#"Job(
+    name: "t",
+    surface: HeightField(z: "50*sin(y/100)", x: (0, 300), y: (0, 900)),
+    blade: Blade(length: 1000, max_curvature: 0.011),
+    cutting: Cutting(sections: 3),
+    task: Analyze(),
+)
+"#;
+
+fn hotcut(args: &[&str], cwd: &Path) -> Output {
+    let out = Command::new(env!("CARGO_BIN_EXE_hotcut"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "panic in stderr: {err}");
+    out
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Validates `text` as a job and expects exit 1 with every `needle` in stderr.
+fn expect_invalid(text: &str, needles: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "job.ron", text);
+    for cmd in ["validate", "run"] {
+        let o = hotcut(&[cmd, "job.ron"], dir.path());
+        assert_eq!(o.status.code(), Some(1), "{cmd}: {}", stderr(&o));
+        for n in needles {
+            assert!(
+                stderr(&o).contains(n),
+                "{cmd}: missing {n:?} in: {}",
+                stderr(&o)
+            );
+        }
+        assert!(
+            !dir.path().join("out").join("t").exists(),
+            "an invalid job wrote output"
+        );
+    }
+}
+
+#[test]
+fn valid_job_validates_and_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "job.ron", VALID);
+    let o = hotcut(&["validate", "job.ron"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let o = hotcut(&["run", "job.ron", "--out", "o"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("3 section(s)"), "{stdout}");
+    assert!(dir.path().join("o/t/report.json").is_file());
+    assert!(dir.path().join("o/t/sections.svg").is_file());
+    // nothing else is left in the output folder (no temporary folders)
+    let entries: Vec<_> = std::fs::read_dir(dir.path().join("o"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
+    assert_eq!(entries, vec![std::ffi::OsString::from("t")]);
+    // a second run gives the same bytes
+    let first = std::fs::read(dir.path().join("o/t/report.json")).unwrap();
+    let o = hotcut(&["run", "job.ron", "--out", "o"], dir.path());
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(
+        first,
+        std::fs::read(dir.path().join("o/t/report.json")).unwrap()
+    );
+}
+
+#[test]
+fn syntax_error_reports_file_line_and_column() {
+    let text = VALID.replace(
+        "cutting: Cutting(sections: 3),",
+        "cutting: Cutting(sections: 3,,",
+    );
+    expect_invalid(&text, &["job.ron:5:", "syntax error"]);
+    expect_invalid("Job(name: \"t\"", &["job.ron:1:"]);
+    expect_invalid("", &["job.ron:1:1"]);
+}
+
+#[test]
+fn unknown_field_reports_its_path() {
+    let text = VALID.replace("length: 1000", "lenght: 1000");
+    expect_invalid(&text, &["job.ron:4:", "/blade/lenght"]);
+    let text = VALID.replace("task: Analyze()", "task: Analyze(sample: 3)");
+    expect_invalid(&text, &["/task/Analyze/sample"]);
+    let text = VALID.replace("name: \"t\",", "name: \"t\", colour: \"red\",");
+    expect_invalid(&text, &["/colour"]);
+}
+
+#[test]
+fn wrong_types_and_unknown_variants_are_reported() {
+    expect_invalid(
+        &VALID.replace("sections: 3", "sections: \"three\""),
+        &["/cutting/sections"],
+    );
+    expect_invalid(
+        &VALID.replace("task: Analyze()", "task: Dance()"),
+        &["Dance"],
+    );
+    expect_invalid(&VALID.replace("task: Analyze(),", ""), &["task"]);
+}
+
+#[test]
+fn nan_and_negative_values_are_rejected_with_their_pointer() {
+    expect_invalid(
+        &VALID.replace("length: 1000", "length: NaN"),
+        &["/blade/length", "finite"],
+    );
+    expect_invalid(
+        &VALID.replace("length: 1000", "length: inf"),
+        &["/blade/length", "finite"],
+    );
+    expect_invalid(
+        &VALID.replace("length: 1000", "length: -1000"),
+        &["/blade/length"],
+    );
+    expect_invalid(
+        &VALID.replace("max_curvature: 0.011", "max_curvature: 0"),
+        &["/blade/max_curvature"],
+    );
+    expect_invalid(
+        &VALID.replace("sections: 3", "sections: 0"),
+        &["/cutting/sections"],
+    );
+    expect_invalid(
+        &VALID.replace(
+            "cutting:",
+            "block: Block(size: (600, -1, 600)),\n    cutting:",
+        ),
+        &["/block/size/1"],
+    );
+    expect_invalid(
+        &VALID.replace("x: (0, 300)", "x: (0, NaN)"),
+        &["/surface/HeightField/x/1", "finite"],
+    );
+    expect_invalid(
+        &VALID.replace("x: (0, 300)", "x: (300, 0)"),
+        &["/surface/HeightField/x", "min < max"],
+    );
+    expect_invalid(
+        &VALID.replace("sections: 3", "sections: 3, direction: (0, 0, 0)"),
+        &["/cutting/direction"],
+    );
+    expect_invalid(&VALID.replace("name: \"t\"", "name: \"../t\""), &["/name"]);
+}
+
+#[test]
+fn bad_expressions_are_rejected_with_a_column() {
+    expect_invalid(
+        &VALID.replace("50*sin(y/100)", "50*sin(q/100)"),
+        &["/surface/HeightField/z", "column 8", "unknown name 'q'"],
+    );
+    expect_invalid(
+        &VALID.replace("50*sin(y/100)", "sqrt(y - 450)"),
+        &["/surface/HeightField/z", "not finite"],
+    );
+}
+
+#[test]
+fn missing_empty_and_open_meshes_are_rejected() {
+    let mesh_job = |surface: &str| {
+        VALID.replace(
+            "HeightField(z: \"50*sin(y/100)\", x: (0, 300), y: (0, 900))",
+            surface,
+        )
+    };
+    expect_invalid(
+        &mesh_job("Mesh(path: \"models/nope.obj\")"),
+        &[
+            "/surface/Mesh/path",
+            "mesh file not found",
+            "models/nope.obj",
+        ],
+    );
+
+    let dir = tempfile::tempdir().unwrap();
+    let check = |obj: &str, surface: &str, needles: &[&str]| {
+        write(dir.path(), "m.obj", obj);
+        write(dir.path(), "job.ron", &mesh_job(surface));
+        let o = hotcut(&["validate", "job.ron"], dir.path());
+        assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+        for n in needles {
+            assert!(stderr(&o).contains(n), "missing {n:?}: {}", stderr(&o));
+        }
+    };
+    check("# nothing\n", "Mesh(path: \"m.obj\")", &["empty"]);
+    check(
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+        "Mesh(path: \"m.obj\", closed: true)",
+        &["open", "boundary"],
+    );
+    check(
+        "v 0 0 nan\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+        "Mesh(path: \"m.obj\")",
+        &["not finite"],
+    );
+    check(
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n",
+        "Mesh(path: \"m.obj\")",
+        &["m.obj"],
+    );
+    check(
+        "this is not an obj file\nf a b c\n",
+        "Mesh(path: \"m.obj\")",
+        &["m.obj"],
+    );
+    check(
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nf 1 2 3\nf 2 1 4\nf 1 2 5\n",
+        "Mesh(path: \"m.obj\")",
+        &["non-manifold"],
+    );
+}
+
+#[test]
+fn outputs_the_task_does_not_make_are_rejected() {
+    expect_invalid(
+        &VALID.replace(
+            "task: Analyze(),",
+            "task: Analyze(),\n    outputs: [Report, Rapid],",
+        ),
+        &["/outputs/1", "Rapid"],
+    );
+    expect_invalid(
+        &VALID.replace(
+            "surface: HeightField(z: \"50*sin(y/100)\", x: (0, 300), y: (0, 900)),",
+            "",
+        ),
+        &["/surface", "needs a surface"],
+    );
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    assert_eq!(hotcut(&[], dir.path()).status.code(), Some(2));
+    assert_eq!(hotcut(&["run"], dir.path()).status.code(), Some(2));
+    assert_eq!(hotcut(&["frobnicate"], dir.path()).status.code(), Some(2));
+    assert_eq!(hotcut(&["--help"], dir.path()).status.code(), Some(0));
+    let o = hotcut(&["validate", "missing.ron"], dir.path());
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("missing.ron: cannot read"));
+}
+
+#[test]
+fn one_invalid_job_stops_the_whole_run() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "good.ron", VALID);
+    write(
+        dir.path(),
+        "bad.ron",
+        &VALID
+            .replace("name: \"t\"", "name: \"u\"")
+            .replace("sections: 3", "sections: 0"),
+    );
+    let o = hotcut(&["run", "good.ron", "bad.ron"], dir.path());
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        !dir.path().join("out").exists(),
+        "nothing may be written when a job is invalid"
+    );
+}
+
+#[test]
+fn checked_in_schemas_are_current() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    for (file, text) in [
+        ("job.schema.json", hotcut::job_schema_json()),
+        ("report.schema.json", hotcut::report_schema_json()),
+    ] {
+        let path = root.join("schemas").join(file);
+        if std::env::var_os("HOTCUT_UPDATE_SCHEMAS").is_some() {
+            std::fs::write(&path, &text).unwrap();
+        }
+        let on_disk = std::fs::read_to_string(&path).unwrap_or_default();
+        assert!(
+            on_disk == text,
+            "schemas/{file} is stale: run `cargo run -p hotcut -- schema --write schemas` \
+             (or HOTCUT_UPDATE_SCHEMAS=1 cargo test) and commit the result"
+        );
+    }
+    // the CLI prints the same schema
+    let o = hotcut(&["schema"], &root);
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout),
+        hotcut::job_schema_json()
+    );
+}
+
+#[test]
+fn every_example_job_validates() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut jobs: Vec<String> = std::fs::read_dir(root.join("jobs"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
+        .map(|p| p.to_string_lossy().into_owned())
+        .collect();
+    jobs.sort();
+    assert!(jobs.len() >= 3);
+    let mut args = vec!["validate"];
+    args.extend(jobs.iter().map(String::as_str));
+    let o = hotcut(&args, &root);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}
