@@ -1,11 +1,11 @@
 //! Deterministic JSON: values are serialised through `serde_json::Value`, every float is
 //! rounded to `digits` significant digits (half away from zero) and values smaller in
-//! magnitude than [`ZERO_BELOW`] become `0` (so round-off noise around zero, e.g. the
+//! magnitude than [`ZERO_BELOW`](crate::json::ZERO_BELOW) become `0` (so round-off noise around zero, e.g. the
 //! curvature at an inflection, prints the same on every machine; `-0` becomes `0`),
 //! objects keep their field order, output is pretty-printed with two-space indentation and
 //! a final newline. Non-finite floats become `null` (as in `serde_json`).
 //!
-//! Entry points: [`to_json_string`], [`write_json`], [`round_value`].
+//! Entry points: [`to_json_string`](crate::json::to_json_string), [`write_json`](crate::json::write_json), [`round_value`](crate::json::round_value).
 
 use std::io::Write;
 
@@ -48,19 +48,17 @@ pub fn round_float(x: f64, digits: usize) -> f64 {
 /// Rounds every float inside a JSON value in place.
 pub fn round_value(v: &mut Value, digits: usize) {
     match v {
-        Value::Number(n) => {
-            if n.is_f64() {
-                if let Some(x) = n.as_f64() {
-                    let r = round_float(x, digits);
-                    *v = if r.fract() == 0.0 && r.abs() < 9.0e15 {
-                        // integral floats print without a fraction, as integers
-                        Value::Number(Number::from(r as i64))
-                    } else {
-                        Number::from_f64(r)
-                            .map(Value::Number)
-                            .unwrap_or(Value::Null)
-                    };
-                }
+        Value::Number(n) if n.is_f64() => {
+            if let Some(x) = n.as_f64() {
+                let r = round_float(x, digits);
+                *v = if r.fract() == 0.0 && r.abs() < 9.0e15 {
+                    // integral floats print without a fraction, as integers
+                    Value::Number(Number::from(r as i64))
+                } else {
+                    Number::from_f64(r)
+                        .map(Value::Number)
+                        .unwrap_or(Value::Null)
+                };
             }
         }
         Value::Array(a) => a.iter_mut().for_each(|x| round_value(x, digits)),

@@ -1,7 +1,7 @@
 //! Wavefront OBJ writer: triangle meshes and polylines, floats with a fixed number of
 //! decimals, 1-based indices, `o` groups in the order given.
 //!
-//! Entry points: [`ObjWriter`], [`write_mesh`].
+//! Entry points: [`ObjWriter`](crate::obj::ObjWriter), [`write_mesh`](crate::obj::write_mesh).
 
 use std::io::Write;
 

@@ -1,7 +1,7 @@
-//! A small SVG builder: a page of fixed size, a [`Viewport`] that maps a world rectangle
+//! A small SVG builder: a page of fixed size, a [`Viewport`](crate::svg::Viewport) that maps a world rectangle
 //! into a page rectangle (y up), and elements with coordinates printed to two decimals.
 //!
-//! Entry points: [`SvgDoc`], [`Viewport`].
+//! Entry points: [`SvgDoc`](crate::svg::SvgDoc), [`Viewport`](crate::svg::Viewport).
 
 use std::io::Write;
 

@@ -30,6 +30,8 @@ impl SymBand {
 
     /// Solves `A x = rhs` for several right-hand sides (columns of `rhs`, stored per row).
     /// Returns `None` when the matrix is not (numerically) positive definite.
+    // rows i and k of the same right-hand side are read and written together
+    #[allow(clippy::needless_range_loop)]
     pub fn solve<const D: usize>(&self, rhs: &[[f64; D]]) -> Option<Vec<[f64; D]>> {
         let n = self.rows.len();
         let b = self.band;

@@ -1,6 +1,6 @@
 //! Axis-aligned and oriented boxes.
 //!
-//! Entry points: [`Aabb`], [`Obb`]. A block in a job is an [`Obb`]: centre, rotation (unit
+//! Entry points: [`Aabb`](crate::bbox::Aabb), [`Obb`](crate::bbox::Obb). A block in a job is an [`Obb`](crate::bbox::Obb): centre, rotation (unit
 //! quaternion) and size.
 
 use nalgebra::{UnitQuaternion, Vector3};

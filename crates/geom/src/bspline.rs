@@ -1,8 +1,8 @@
 //! B-spline curves of any degree in any dimension (thesis eq. 1.1–1.3).
 //!
-//! Entry points: [`BSplineCurve::try_new`], [`BSplineCurve::eval`],
-//! [`BSplineCurve::derivative`], [`BSplineCurve::insert_knot`], and the basis functions
-//! [`basis_function`] (the Cox–de Boor recursion written out) and [`BSplineCurve::basis_at`]
+//! Entry points: [`BSplineCurve::try_new`](crate::bspline::BSplineCurve::try_new), [`BSplineCurve::eval`](crate::bspline::BSplineCurve::eval),
+//! [`BSplineCurve::derivative`](crate::bspline::BSplineCurve::derivative), [`BSplineCurve::insert_knot`](crate::bspline::BSplineCurve::insert_knot), and the basis functions
+//! [`basis_function`](crate::bspline::basis_function) (the Cox–de Boor recursion written out) and [`BSplineCurve::basis_at`](crate::bspline::BSplineCurve::basis_at)
 //! (the triangular scheme used for evaluation). Fits live in [`crate::fit`].
 
 use nalgebra::SVector;

@@ -15,7 +15,7 @@
 //! the section curve, i.e. second derivatives of `f` along the section, which the
 //! permissively licensed expression crates do not provide.
 //!
-//! Entry points: [`Expr::parse`], [`Expr::eval`], [`Expr::eval_along`].
+//! Entry points: [`Expr::parse`](crate::expr::Expr::parse), [`Expr::eval`](crate::expr::Expr::eval), [`Expr::eval_along`](crate::expr::Expr::eval_along).
 
 use crate::error::{GeomError, Result};
 

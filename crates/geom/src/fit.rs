@@ -1,8 +1,8 @@
 //! Fitting B-spline curves to points: plain least squares on given knots and a smoothing
 //! fit that meets an explicit tolerance.
 //!
-//! Entry points: [`fit_least_squares`], [`fit_smoothing`] with [`SmoothingParams`],
-//! [`chord_length_params`].
+//! Entry points: [`fit_least_squares`](crate::fit::fit_least_squares), [`fit_smoothing`](crate::fit::fit_smoothing) with [`SmoothingParams`](crate::fit::SmoothingParams),
+//! [`chord_length_params`](crate::fit::chord_length_params).
 //!
 //! The smoothing fit is a penalised spline (P-spline): many uniform knots and a penalty
 //! `λ Σ |c_{i+2} − 2c_{i+1} + c_i|²` on the control polygon's second differences. The

@@ -1,7 +1,7 @@
 //! Height fields `z = f(x, y)` over a rectangle, sectioned analytically.
 //!
-//! Entry points: [`HeightField::try_new`], [`HeightField::section`], [`HeightField::to_mesh`],
-//! and [`GraphCurve`], the exact section curve.
+//! Entry points: [`HeightField::try_new`](crate::heightfield::HeightField::try_new), [`HeightField::section`](crate::heightfield::HeightField::section), [`HeightField::to_mesh`](crate::heightfield::HeightField::to_mesh),
+//! and [`GraphCurve`](crate::heightfield::GraphCurve), the exact section curve.
 
 use std::sync::Arc;
 

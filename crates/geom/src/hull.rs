@@ -1,6 +1,6 @@
 //! 3D convex hull by the quickhull method.
 //!
-//! Entry point: [`convex_hull`]. Written here because no well-kept pure-Rust crate offers a
+//! Entry point: [`convex_hull`](crate::hull::convex_hull). Written here because no well-kept pure-Rust crate offers a
 //! 3D hull without pulling in a physics engine; the algorithm is short and the block
 //! segmentation needs it on every block.
 

@@ -1,8 +1,8 @@
 //! A spatial index over a mesh's triangles (an R*-tree from `rstar`) for point and box
 //! queries.
 //!
-//! Entry points: [`TriangleIndex::new`], [`TriangleIndex::closest_point`],
-//! [`TriangleIndex::triangles_in`].
+//! Entry points: [`TriangleIndex::new`](crate::index::TriangleIndex::new), [`TriangleIndex::closest_point`](crate::index::TriangleIndex::closest_point),
+//! [`TriangleIndex::triangles_in`](crate::index::TriangleIndex::triangles_in).
 
 use nalgebra::Vector3;
 use rstar::{primitives::GeomWithData, primitives::Rectangle, RTree, AABB};

@@ -1,7 +1,7 @@
 //! Triangle meshes: loading from OBJ (via `tobj`), validation, topology, area and volume.
 //!
-//! Entry points: [`TriMesh::load_obj`], [`TriMesh::try_new`], [`TriMesh::topology`],
-//! [`TriMesh::validate`], [`TriMesh::area`], [`TriMesh::volume`].
+//! Entry points: [`TriMesh::load_obj`](crate::mesh::TriMesh::load_obj), [`TriMesh::try_new`](crate::mesh::TriMesh::try_new), [`TriMesh::topology`](crate::mesh::TriMesh::topology),
+//! [`TriMesh::validate`](crate::mesh::TriMesh::validate), [`TriMesh::area`](crate::mesh::TriMesh::area), [`TriMesh::volume`](crate::mesh::TriMesh::volume).
 
 use std::collections::HashMap;
 use std::path::Path;

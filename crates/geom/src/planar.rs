@@ -2,9 +2,9 @@
 //! reparameterisation, inflection points (sign change, then the bisection of eq. 5.3) and
 //! curvature maxima between inflections.
 //!
-//! Entry points: the [`PlanarCurve`] capability trait (implemented by [`SplineCurve2`] and
-//! by height-field sections), [`signed_curvature`], [`ArcLength`], [`analyze_curve`] with
-//! [`CurveAnalysisParams`].
+//! Entry points: the [`PlanarCurve`](crate::planar::PlanarCurve) capability trait (implemented by [`SplineCurve2`](crate::planar::SplineCurve2) and
+//! by height-field sections), [`signed_curvature`](crate::planar::signed_curvature), [`ArcLength`](crate::planar::ArcLength), [`analyze_curve`](crate::planar::analyze_curve) with
+//! [`CurveAnalysisParams`](crate::planar::CurveAnalysisParams).
 //!
 //! # The false-inflection rule
 //! Between two consecutive inflections the curvature has one sign; call that stretch a
@@ -15,11 +15,11 @@
 //! inflections, merging it with its neighbours (like pushing out a small dent, thesis
 //! §5.1.3). Lobes that touch an end of the curve are kept: their single inflection is real
 //! as far as the curve is concerned. Every removal is counted in
-//! [`CurveAnalysis::suppressed_inflections`], so the report can say so.
+//! [`CurveAnalysis::suppressed_inflections`](crate::planar::CurveAnalysis::suppressed_inflections), so the report can say so.
 //!
 //! On a curve fitted to a polyline, the curvature inside the first and last segment is set
 //! by the spline's end condition, not by data; sign changes there
-//! ([`CurveAnalysisParams::end_margins`]) are dropped and counted the same way.
+//! ([`CurveAnalysisParams::end_margins`](crate::planar::CurveAnalysisParams::end_margins)) are dropped and counted the same way.
 
 use nalgebra::Vector2;
 
@@ -440,17 +440,14 @@ pub fn analyze_curve(
         .map(|w| turning(curve, w[0], w[1], &ts))
         .collect();
     let mut suppressed = in_margins;
-    loop {
-        // interior lobes only: an end lobe has one inflection, not a pair
-        let Some((i, &tmin)) = turns
-            .iter()
-            .enumerate()
-            .take(turns.len().saturating_sub(1))
-            .skip(1)
-            .min_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
-        else {
-            break;
-        };
+    // interior lobes only: an end lobe has one inflection, not a pair
+    while let Some((i, &tmin)) = turns
+        .iter()
+        .enumerate()
+        .take(turns.len().saturating_sub(1))
+        .skip(1)
+        .min_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
+    {
         if tmin.abs() >= params.min_lobe_turning {
             break;
         }

@@ -1,7 +1,7 @@
 //! Sectioning by a family of parallel planes: the plane frame, slab-centre offsets, and
 //! slicing a triangle mesh into ordered polylines.
 //!
-//! Entry points: [`PlaneFrame::from_direction`], [`slab_centres`], [`slice_mesh`].
+//! Entry points: [`PlaneFrame::from_direction`](crate::slice::PlaneFrame::from_direction), [`slab_centres`](crate::slice::slab_centres), [`slice_mesh`](crate::slice::slice_mesh).
 //!
 //! Plane coordinates: a section plane has normal `d` (the cutting direction); its in-plane
 //! axes are `u = normalize(ẑ × d)` (horizontal) and `v = d × u` (up when `d` is horizontal),

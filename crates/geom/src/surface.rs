@@ -1,9 +1,9 @@
 //! The surfaces hotcut works on, behind one interface: triangle meshes, height fields and
 //! B-spline surfaces; and their sections by a family of parallel planes.
 //!
-//! Entry points: [`Surface`], [`Surface::sections`] with [`SectionParams`], [`Section`].
+//! Entry points: [`Surface`](crate::surface::Surface), [`Surface::sections`](crate::surface::Surface::sections) with [`SectionParams`](crate::surface::SectionParams), [`Section`](crate::surface::Section).
 //!
-//! Height fields are sectioned exactly ([`GraphCurve`]). Mesh sections are noisy polylines,
+//! Height fields are sectioned exactly ([`GraphCurve`](crate::heightfield::GraphCurve)). Mesh sections are noisy polylines,
 //! so each is replaced by the smoothing spline of [`crate::fit::fit_smoothing`] with the
 //! caller's explicit tolerance, widened where needed to the polyline's own chordal error
 //! (`chordal: true`), before any curvature is taken. B-spline surfaces are sampled

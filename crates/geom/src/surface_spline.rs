@@ -1,8 +1,8 @@
 //! Tensor-product B-spline surfaces (thesis eq. 1.4) and ruled / piecewise-ruled surfaces
 //! (eq. 1.5–1.7), which are tensor-product surfaces of degree 1 in `v`.
 //!
-//! Entry points: [`BSplineSurface::try_new`], [`BSplineSurface::eval`],
-//! [`BSplineSurface::partials`], [`BSplineSurface::ruled`], [`BSplineSurface::piecewise_ruled`].
+//! Entry points: [`BSplineSurface::try_new`](crate::surface_spline::BSplineSurface::try_new), [`BSplineSurface::eval`](crate::surface_spline::BSplineSurface::eval),
+//! [`BSplineSurface::partials`](crate::surface_spline::BSplineSurface::partials), [`BSplineSurface::ruled`](crate::surface_spline::BSplineSurface::ruled), [`BSplineSurface::piecewise_ruled`](crate::surface_spline::BSplineSurface::piecewise_ruled).
 
 use nalgebra::Vector3;
 

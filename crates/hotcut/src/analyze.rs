@@ -1,8 +1,8 @@
 //! The `Analyze` task (thesis §5.1): section the surface and, for every section, report
 //! its length, inflections, curvature maxima and the production constraints it breaks.
 //!
-//! Entry point: [`analyze`] with [`AnalyzeParams`]; the result keeps the geometry
-//! ([`Analysis`]) for drawing, and [`Analysis::report`] is what `report.json` holds.
+//! Entry point: [`analyze`](crate::analyze::analyze) with [`AnalyzeParams`](crate::analyze::AnalyzeParams); the result keeps the geometry
+//! ([`Analysis`](crate::analyze::Analysis)) for drawing, and [`Analysis::report`](crate::analyze::Analysis::report) is what `report.json` holds.
 
 use geom::fit::SmoothingParams;
 use geom::planar::{analyze_curve, CurveAnalysis, CurveAnalysisParams, CurvePoint, PlanarCurve};

@@ -2,7 +2,7 @@
 //! Their doc comments become the descriptions in `schemas/job.schema.json`.
 //!
 //! Every omitted field has the default documented on it. Lengths are in the job's
-//! [`Units`]; curvatures in 1/length; angles in radians.
+//! [`Units`](crate::job::Units); curvatures in 1/length; angles in radians.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};

@@ -10,7 +10,7 @@
 //!    expression parses and is finite, the direction is non-zero, the task has what it
 //!    needs, the outputs exist for the task).
 //!
-//! Entry points: [`parse_job`], [`validate_schema`], [`load_job`], [`ResolvedJob`].
+//! Entry points: [`parse_job`](crate::load::parse_job), [`validate_schema`](crate::load::validate_schema), [`load_job`](crate::load::load_job), [`ResolvedJob`](crate::load::ResolvedJob).
 
 use std::path::{Path, PathBuf};
 

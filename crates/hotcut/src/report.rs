@@ -1,7 +1,7 @@
 //! The report an `Analyze` run writes as `report.json`; its JSON Schema is
 //! `schemas/report.schema.json`. Lengths are in the job's units, curvatures in 1/unit,
 //! positions in the job's frame; floats are rounded to
-//! [`export::json::REPORT_DIGITS`] significant digits when written.
+//! [`export::json::REPORT_DIGITS`](export::json::REPORT_DIGITS) significant digits when written.
 
 use schemars::JsonSchema;
 use serde::Serialize;

@@ -4,7 +4,7 @@
 //! `<out>/<job name>/` only when everything succeeded, so a failed run leaves no partial
 //! output folder.
 //!
-//! Entry point: [`run_job`].
+//! Entry point: [`run_job`](crate::run::run_job).
 
 use std::path::{Path, PathBuf};
 
