@@ -7,7 +7,7 @@
 //!
 //! ```
 //! use geom::{expr::Expr, heightfield::HeightField, surface::{Surface, SectionParams}};
-//! use geom::planar::{analyze_curve, CurveAnalysisParams};
+//! use geom::analysis::{analyze_curve, CurveAnalysisParams};
 //! let hf = HeightField::try_new(Expr::parse("100*sin(y/200)").unwrap(), (0.0, 1000.0), (0.0, 2000.0)).unwrap();
 //! let (_frame, sections) = Surface::HeightField(hf)
 //!     .sections(&SectionParams { count: 4, ..Default::default() }, &|| {})
@@ -17,6 +17,8 @@
 //! assert_eq!(a.inflections.len(), 3);
 //! ```
 
+/// Curve analysis: inflections, lobes, curvature maxima.
+pub mod analysis;
 /// Symmetric banded Cholesky solver for the spline fits.
 mod banded;
 /// Axis-aligned and oriented boxes.
@@ -37,7 +39,7 @@ pub mod hull;
 pub mod index;
 /// Triangle meshes: OBJ loading, validation, area, volume.
 pub mod mesh;
-/// Planar curves: curvature, arc length, inflections, curvature maxima.
+/// Planar curves: the `PlanarCurve` trait, curvature, arc length.
 pub mod planar;
 /// Plane frames, slab offsets and mesh slicing.
 pub mod slice;

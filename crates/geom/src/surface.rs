@@ -342,7 +342,7 @@ fn refine_on_spline(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::planar::{analyze_curve, CurveAnalysisParams};
+    use crate::analysis::{analyze_curve, CurveAnalysisParams};
 
     #[test]
     fn spline_surface_sections_are_on_the_surface() {

@@ -2,13 +2,12 @@
 
 use std::f64::consts::PI;
 
+use geom::analysis::{analyze_curve, CurveAnalysisParams};
 use geom::bspline::{basis_function, clamped_uniform_knots, BSplineCurve};
 use geom::expr::Expr;
 use geom::heightfield::HeightField;
 use geom::mesh::TriMesh;
-use geom::planar::{
-    analyze_curve, signed_curvature, CurveAnalysisParams, Jet2, PlanarCurve, SplineCurve2,
-};
+use geom::planar::{signed_curvature, Jet2, PlanarCurve, SplineCurve2};
 use geom::slice::{slice_mesh, PlaneFrame};
 use geom::surface::{SectionParams, Surface};
 use nalgebra::{Vector2, Vector3};

@@ -4,8 +4,9 @@
 //! Entry point: [`analyze`](crate::analyze::analyze) with [`AnalyzeParams`](crate::analyze::AnalyzeParams); the result keeps the geometry
 //! ([`Analysis`](crate::analyze::Analysis)) for drawing, and [`Analysis::report`](crate::analyze::Analysis::report) is what `report.json` holds.
 
+use geom::analysis::{analyze_curve, CurveAnalysis, CurveAnalysisParams, CurvePoint};
 use geom::fit::SmoothingParams;
-use geom::planar::{analyze_curve, CurveAnalysis, CurveAnalysisParams, CurvePoint, PlanarCurve};
+use geom::planar::PlanarCurve;
 use geom::slice::PlaneFrame;
 use geom::surface::{Section, SectionParams, Surface};
 use rayon::prelude::*;

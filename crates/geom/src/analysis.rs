@@ -1,0 +1,438 @@
+//! Curve analysis: inflection points (sign change of the curvature, then the bisection of
+//! eq. 5.3), the lobes between them, and the curvature maximum of each lobe.
+//!
+//! Entry point: [`analyze_curve`](crate::analysis::analyze_curve) with
+//! [`CurveAnalysisParams`](crate::analysis::CurveAnalysisParams).
+//!
+//! # The false-inflection rule
+//! Between two consecutive inflections the curvature has one sign; call that stretch a
+//! *lobe* and its *turning* the change of the tangent angle across it (`∫κ ds`). Noise on a
+//! nearly straight stretch makes lobes that barely turn, each bounded by a *pair* of false
+//! inflections. The rule: while some interior lobe (one between two inflections) turns by
+//! less than `min_lobe_turning` radians, take the one that turns least and remove both its
+//! inflections, merging it with its neighbours (like pushing out a small dent, thesis
+//! §5.1.3). Lobes that touch an end of the curve are kept: their single inflection is real
+//! as far as the curve is concerned. Every removal is counted in
+//! [`CurveAnalysis::suppressed_inflections`](crate::analysis::CurveAnalysis::suppressed_inflections), so the report can say so.
+//!
+//! On a curve fitted to a polyline, the curvature inside the first and last segment is set
+//! by the spline's end condition, not by data; sign changes there
+//! ([`CurveAnalysisParams::end_margins`](crate::analysis::CurveAnalysisParams::end_margins)) are dropped and counted the same way.
+
+use nalgebra::Vector2;
+
+use crate::error::{GeomError, Result};
+use crate::planar::{signed_curvature, ArcLength, Jet2, PlanarCurve};
+
+/// Parameters of [`analyze_curve`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurveAnalysisParams {
+    /// Number of equally spaced parameter samples at which the curvature sign is read
+    /// (the `M` of eq. 5.2). At least 8.
+    pub samples: usize,
+    /// Bisection (eq. 5.3) stops when the bracket is shorter than this, in parameter units.
+    pub bisection_tolerance: f64,
+    /// Lobes that turn less than this many radians are noise; see the module docs.
+    pub min_lobe_turning: f64,
+    /// Parameter lengths at the start and the end of the curve in which curvature is not
+    /// determined by data (the first and last segment of a fitted polyline; 0 for exact
+    /// curves). Sign changes there are not reported as inflections.
+    pub end_margins: (f64, f64),
+}
+
+impl Default for CurveAnalysisParams {
+    fn default() -> Self {
+        Self {
+            samples: 2000,
+            bisection_tolerance: 1e-9,
+            min_lobe_turning: 1e-3,
+            end_margins: (0.0, 0.0),
+        }
+    }
+}
+
+/// A point of interest on a curve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurvePoint {
+    /// Curve parameter.
+    pub t: f64,
+    /// Arc length from the start of the curve.
+    pub s: f64,
+    /// The point.
+    pub point: Vector2<f64>,
+    /// Signed curvature there.
+    pub curvature: f64,
+}
+
+/// A stretch of one curvature sign between inflections (or curve ends).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lobe {
+    /// Start parameter.
+    pub t0: f64,
+    /// End parameter.
+    pub t1: f64,
+    /// Change of tangent angle across the lobe, radians (signed).
+    pub turning: f64,
+}
+
+/// What [`analyze_curve`] finds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurveAnalysis {
+    /// Arc length of the curve.
+    pub length: f64,
+    /// Inflection points in curve order, after the false-inflection rule.
+    pub inflections: Vec<CurvePoint>,
+    /// One curvature maximum (largest |κ|) per lobe, in curve order.
+    pub curvature_maxima: Vec<CurvePoint>,
+    /// The point of largest |κ| on the whole curve.
+    pub max_abs_curvature: CurvePoint,
+    /// Lobes between consecutive inflections, after the rule.
+    pub lobes: Vec<Lobe>,
+    /// Inflections removed by the false-inflection rule or found inside the end margins.
+    pub suppressed_inflections: usize,
+}
+
+fn sign(k: f64) -> i8 {
+    if k > 0.0 {
+        1
+    } else if k < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+/// Bisection of eq. (5.3) on a bracket `[t, t + dt]` whose ends have opposite curvature sign.
+fn bisect_inflection(curve: &dyn PlanarCurve, mut t: f64, mut dt: f64, tol: f64) -> f64 {
+    let s_end = sign(signed_curvature(&curve.jet(t + dt)));
+    while dt > tol {
+        let half = 0.5 * dt;
+        let mid = sign(signed_curvature(&curve.jet(t + half)));
+        if mid == s_end {
+            dt = half;
+        } else {
+            t += half;
+            dt = half;
+        }
+        if half == 0.0 {
+            break;
+        }
+    }
+    t + 0.5 * dt
+}
+
+fn wrap_angle(a: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let mut a = a % tau;
+    if a > std::f64::consts::PI {
+        a -= tau;
+    } else if a < -std::f64::consts::PI {
+        a += tau;
+    }
+    a
+}
+
+fn tangent_angle(j: &Jet2) -> f64 {
+    j.d1.y.atan2(j.d1.x)
+}
+
+/// Turning of the curve over `[t0, t1]`, summing wrapped angle steps at the given samples.
+fn turning(curve: &dyn PlanarCurve, t0: f64, t1: f64, ts: &[f64]) -> f64 {
+    let mut prev = tangent_angle(&curve.jet(t0));
+    let mut sum = 0.0;
+    for &t in ts
+        .iter()
+        .filter(|&&t| t > t0 && t < t1)
+        .chain(std::iter::once(&t1))
+    {
+        let a = tangent_angle(&curve.jet(t));
+        sum += wrap_angle(a - prev);
+        prev = a;
+    }
+    sum
+}
+
+/// Golden-section search for the largest |κ| on `[a, b]`.
+fn refine_max(curve: &dyn PlanarCurve, mut a: f64, mut b: f64, tol: f64) -> f64 {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let f = |t: f64| signed_curvature(&curve.jet(t)).abs();
+    let mut c = b - g * (b - a);
+    let mut d = a + g * (b - a);
+    let (mut fc, mut fd) = (f(c), f(d));
+    for _ in 0..100 {
+        if (b - a).abs() <= tol {
+            break;
+        }
+        if fc >= fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - g * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + g * (b - a);
+            fd = f(d);
+        }
+    }
+    0.5 * (a + b)
+}
+
+/// Analyses a planar curve: length, inflections, lobes, curvature maxima, max |κ|.
+///
+/// # Errors
+/// [`GeomError::InvalidDomain`] for an empty domain or a curve of zero length,
+/// [`GeomError::NonFinite`] when the curve evaluates to NaN.
+///
+/// # Example
+/// ```
+/// use geom::analysis::{analyze_curve, CurveAnalysisParams};
+/// use geom::planar::{Jet2, PlanarCurve};
+/// use nalgebra::Vector2;
+/// // y = sin(x) on [0.5, 7]: inflections at π and 2π.
+/// struct Sine;
+/// impl PlanarCurve for Sine {
+///     fn domain(&self) -> (f64, f64) { (0.5, 7.0) }
+///     fn jet(&self, t: f64) -> Jet2 {
+///         Jet2 { p: Vector2::new(t, t.sin()), d1: Vector2::new(1.0, t.cos()), d2: Vector2::new(0.0, -t.sin()) }
+///     }
+/// }
+/// let a = analyze_curve(&Sine, &CurveAnalysisParams::default()).unwrap();
+/// assert_eq!(a.inflections.len(), 2);
+/// assert!((a.inflections[0].t - std::f64::consts::PI).abs() < 1e-8);
+/// ```
+pub fn analyze_curve(
+    curve: &dyn PlanarCurve,
+    params: &CurveAnalysisParams,
+) -> Result<CurveAnalysis> {
+    let (a, b) = curve.domain();
+    if !(b > a) || !a.is_finite() || !b.is_finite() {
+        return Err(GeomError::InvalidDomain(format!(
+            "curve domain [{a}, {b}] is empty"
+        )));
+    }
+    let m = params.samples.max(8);
+    let ts: Vec<f64> = (0..=m).map(|i| a + (b - a) * i as f64 / m as f64).collect();
+    let jets: Vec<Jet2> = ts.iter().map(|&t| curve.jet(t)).collect();
+    if jets.iter().any(|j| {
+        !(j.p
+            .iter()
+            .chain(j.d1.iter())
+            .chain(j.d2.iter())
+            .all(|v| v.is_finite()))
+    }) {
+        return Err(GeomError::NonFinite {
+            what: "the curve (or its derivatives) at some parameter".into(),
+        });
+    }
+    let arc = ArcLength::new(curve, m.min(4000));
+    let length = arc.length();
+    if !(length > 0.0) {
+        return Err(GeomError::InvalidDomain("the curve has zero length".into()));
+    }
+    let ks: Vec<f64> = jets.iter().map(signed_curvature).collect();
+
+    // Sign changes, skipping exact zeros (carry the last non-zero sign).
+    let mut raw = Vec::new();
+    let mut last: Option<(usize, i8)> = None;
+    for (i, &k) in ks.iter().enumerate() {
+        let s = sign(k);
+        if s == 0 {
+            continue;
+        }
+        if let Some((j, ls)) = last {
+            if ls != s {
+                let t = bisect_inflection(curve, ts[j], ts[i] - ts[j], params.bisection_tolerance);
+                raw.push(t);
+            }
+        }
+        last = Some((i, s));
+    }
+
+    // Sign changes inside the end margins carry no information from the data.
+    let before = raw.len();
+    raw.retain(|&t| t > a + params.end_margins.0 && t < b - params.end_margins.1);
+    let in_margins = before - raw.len();
+
+    // Lobes between consecutive inflections, then the false-inflection rule.
+    let mut bounds: Vec<f64> = std::iter::once(a)
+        .chain(raw.iter().copied())
+        .chain(std::iter::once(b))
+        .collect();
+    let mut turns: Vec<f64> = bounds
+        .windows(2)
+        .map(|w| turning(curve, w[0], w[1], &ts))
+        .collect();
+    let mut suppressed = in_margins;
+    // interior lobes only: an end lobe has one inflection, not a pair
+    while let Some((i, &tmin)) = turns
+        .iter()
+        .enumerate()
+        .take(turns.len().saturating_sub(1))
+        .skip(1)
+        .min_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
+    {
+        if tmin.abs() >= params.min_lobe_turning {
+            break;
+        }
+        bounds.drain(i..=i + 1);
+        let merged = turns[i - 1] + turns[i] + turns[i + 1];
+        turns.splice(i - 1..=i + 1, [merged]);
+        suppressed += 2;
+    }
+
+    let at = |t: f64| {
+        let j = curve.jet(t);
+        CurvePoint {
+            t,
+            s: arc.s_at(curve, t),
+            point: j.p,
+            curvature: signed_curvature(&j),
+        }
+    };
+    let inflections: Vec<CurvePoint> = bounds[1..bounds.len() - 1].iter().map(|&t| at(t)).collect();
+    let lobes: Vec<Lobe> = bounds
+        .windows(2)
+        .zip(&turns)
+        .map(|(w, &turning)| Lobe {
+            t0: w[0],
+            t1: w[1],
+            turning,
+        })
+        .collect();
+
+    // One maximum of |κ| per lobe: best sample, then golden-section refinement.
+    let dt = (b - a) / m as f64;
+    let mut maxima = Vec::with_capacity(lobes.len());
+    for lobe in &lobes {
+        let mut best: Option<(f64, f64)> = None;
+        for (&t, &k) in ts.iter().zip(&ks) {
+            if t < lobe.t0 || t > lobe.t1 {
+                continue;
+            }
+            if best.is_none_or(|(_, bk)| k.abs() > bk) {
+                best = Some((t, k.abs()));
+            }
+        }
+        let t = match best {
+            Some((t, _)) => refine_max(
+                curve,
+                (t - dt).max(lobe.t0),
+                (t + dt).min(lobe.t1),
+                params.bisection_tolerance.max(1e-12),
+            ),
+            None => 0.5 * (lobe.t0 + lobe.t1),
+        };
+        maxima.push(at(t));
+    }
+    let mut max_point = at(a);
+    for (&t, &k) in ts.iter().zip(&ks) {
+        if k.abs() > max_point.curvature.abs() {
+            max_point = at(t);
+        }
+    }
+    for p in &maxima {
+        if p.curvature.abs() > max_point.curvature.abs() {
+            max_point = *p;
+        }
+    }
+    Ok(CurveAnalysis {
+        length,
+        inflections,
+        curvature_maxima: maxima,
+        max_abs_curvature: max_point,
+        lobes,
+        suppressed_inflections: suppressed,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    struct Circle(f64);
+    impl PlanarCurve for Circle {
+        fn domain(&self) -> (f64, f64) {
+            (0.0, 5.0)
+        }
+        fn jet(&self, t: f64) -> Jet2 {
+            let r = self.0;
+            Jet2 {
+                p: Vector2::new(r * t.cos(), r * t.sin()),
+                d1: Vector2::new(-r * t.sin(), r * t.cos()),
+                d2: Vector2::new(-r * t.cos(), -r * t.sin()),
+            }
+        }
+    }
+
+    #[test]
+    fn circle_has_curvature_one_over_r_and_no_inflections() {
+        let c = Circle(2.5);
+        let a = analyze_curve(&c, &CurveAnalysisParams::default()).unwrap();
+        assert!(a.inflections.is_empty());
+        assert!((a.max_abs_curvature.curvature - 0.4).abs() < 1e-12);
+        assert!((a.length - 12.5).abs() < 1e-9);
+        let arc = ArcLength::new(&c, 50);
+        let t = arc.t_at(&c, 5.0);
+        assert!((t - 2.0).abs() < 1e-10);
+    }
+
+    struct Wiggle;
+    impl PlanarCurve for Wiggle {
+        fn domain(&self) -> (f64, f64) {
+            (0.0, 10.0)
+        }
+        fn jet(&self, t: f64) -> Jet2 {
+            // a gentle arc plus a tiny dent near t = 5 that makes two false inflections
+            let x = t - 5.0;
+            let dent = 3e-5 * (-50.0 * x * x).exp();
+            Jet2 {
+                p: Vector2::new(t, 0.001 * t * t + dent),
+                d1: Vector2::new(1.0, 0.002 * t - 100.0 * x * dent),
+                d2: Vector2::new(0.0, 0.002 + dent * (1e4 * x * x - 100.0)),
+            }
+        }
+    }
+
+    #[test]
+    fn tiny_dent_inflections_are_suppressed() {
+        let raw = analyze_curve(
+            &Wiggle,
+            &CurveAnalysisParams {
+                min_lobe_turning: 0.0,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(raw.inflections.len(), 2, "the dent makes two inflections");
+        let a = analyze_curve(&Wiggle, &CurveAnalysisParams::default()).unwrap();
+        assert!(a.inflections.is_empty());
+        assert_eq!(a.suppressed_inflections, 2);
+        assert_eq!(a.curvature_maxima.len(), 1);
+    }
+
+    #[test]
+    fn line_has_zero_curvature() {
+        struct Line;
+        impl PlanarCurve for Line {
+            fn domain(&self) -> (f64, f64) {
+                (0.0, 1.0)
+            }
+            fn jet(&self, t: f64) -> Jet2 {
+                Jet2 {
+                    p: Vector2::new(3.0 * t, 4.0 * t),
+                    d1: Vector2::new(3.0, 4.0),
+                    d2: Vector2::zeros(),
+                }
+            }
+        }
+        let a = analyze_curve(&Line, &CurveAnalysisParams::default()).unwrap();
+        assert_eq!(a.max_abs_curvature.curvature, 0.0);
+        assert!(a.inflections.is_empty());
+        assert!((a.length - 5.0).abs() < 1e-12);
+        let _ = PI;
+    }
+}
