@@ -163,14 +163,31 @@ pub fn analyze(
     let size = bbox.size();
     let mut surface_violations = Vec::new();
     if let Some(b) = &job.job.block {
+        let block = [b.size.0, b.size.1, b.size.2];
         for (i, axis) in ["x", "y", "z"].iter().enumerate() {
-            let limit = [b.size.0, b.size.1, b.size.2][i];
-            if size[i] > limit {
+            if size[i] > block[i] {
                 surface_violations.push(Violation::Dimension {
                     what: format!("surface_larger_than_block_{axis}"),
                     value: size[i],
-                    limit,
+                    limit: block[i],
                 });
+            } else if let Some(o) = b.origin {
+                // a placed block must also contain the surface
+                let lo = [o.0, o.1, o.2][i];
+                if bbox.min[i] < lo {
+                    surface_violations.push(Violation::Dimension {
+                        what: format!("surface_below_block_{axis}"),
+                        value: bbox.min[i],
+                        limit: lo,
+                    });
+                }
+                if bbox.max[i] > lo + block[i] {
+                    surface_violations.push(Violation::Dimension {
+                        what: format!("surface_above_block_{axis}"),
+                        value: bbox.max[i],
+                        limit: lo + block[i],
+                    });
+                }
             }
         }
     }

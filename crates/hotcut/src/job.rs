@@ -119,7 +119,8 @@ pub enum SurfaceSpec {
 pub struct BlockSpec {
     /// Edge lengths `(x, y, z)`, each > 0.
     pub size: (f64, f64, f64),
-    /// Minimum corner `(x, y, z)`. Default: not placed (only the size is checked).
+    /// Minimum corner `(x, y, z)`; when given, the surface must also lie inside the placed
+    /// block. Default: not placed (only the size is checked).
     #[serde(default)]
     pub origin: Option<(f64, f64, f64)>,
 }

@@ -76,7 +76,9 @@ pub struct ConstraintsInfo {
 pub enum Violation {
     /// Dimension (§5.1.1): the section is longer than the blade.
     Dimension {
-        /// What exceeds: `section_longer_than_blade` or `surface_larger_than_block_<axis>`.
+        /// What exceeds: `section_longer_than_blade`, `surface_larger_than_block_<axis>`, or for
+        /// a block with an `origin`, `surface_below_block_<axis>` / `surface_above_block_<axis>`
+        /// (the surface sticks out of the placed block).
         what: String,
         /// The measured size.
         value: f64,

@@ -321,3 +321,28 @@ fn every_example_job_validates() {
     let o = hotcut(&args, &root);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }
+
+#[test]
+fn a_placed_block_must_contain_the_surface() {
+    let dir = tempfile::tempdir().unwrap();
+    // surface spans x 0..300, y 0..900, z -50..50; the block is big enough but placed too high
+    let text = VALID.replace(
+        "cutting:",
+        "block: Block(size: (400, 1000, 200), origin: (0, 0, 0)),\n    cutting:",
+    );
+    write(dir.path(), "job.ron", &text);
+    let o = hotcut(&["run", "job.ron"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let report = std::fs::read_to_string(dir.path().join("out/t/report.json")).unwrap();
+    assert!(report.contains("surface_below_block_z"), "{report}");
+    assert!(!report.contains("surface_larger_than_block"));
+    let text = VALID.replace(
+        "cutting:",
+        "block: Block(size: (400, 1000, 200), origin: (-10, -10, -100)),\n    cutting:",
+    );
+    write(dir.path(), "job.ron", &text);
+    let o = hotcut(&["run", "job.ron"], dir.path());
+    assert_eq!(o.status.code(), Some(0));
+    let report = std::fs::read_to_string(dir.path().join("out/t/report.json")).unwrap();
+    assert!(report.contains("\"surface_violations\": []"), "{report}");
+}
