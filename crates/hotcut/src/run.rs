@@ -53,36 +53,29 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
         .tempdir_in(out)
         .map_err(io(out))?;
     let mut files = Vec::new();
+    // renders one output into memory, then writes it into the temporary folder
+    let mut emit =
+        |name: &str, render: &dyn Fn(&mut Vec<u8>) -> export::Result<()>| -> Result<()> {
+            let p = tmp.path().join(name);
+            let mut buf = Vec::new();
+            render(&mut buf).map_err(|source| HotcutError::Export {
+                path: p.clone(),
+                source,
+            })?;
+            std::fs::write(&p, buf).map_err(io(&p))?;
+            files.push(name.to_string());
+            Ok(())
+        };
     for o in &job.job.outputs {
         match o {
-            OutputSpec::Report => {
-                let name = "report.json";
-                let p = tmp.path().join(name);
-                let text = to_json_string(&analysis.report, REPORT_DIGITS).map_err(|source| {
-                    HotcutError::Export {
-                        path: p.clone(),
-                        source,
-                    }
-                })?;
-                std::fs::write(&p, text).map_err(io(&p))?;
-                files.push(name.to_string());
-            }
-            OutputSpec::Svg => {
-                let name = "sections.svg";
-                let p = tmp.path().join(name);
-                let mut buf = Vec::new();
-                sections_svg(&analysis, units)
-                    .write(&mut buf)
-                    .map_err(|source| HotcutError::Export {
-                        path: p.clone(),
-                        source,
-                    })?;
-                std::fs::write(&p, buf).map_err(io(&p))?;
-                files.push(name.to_string());
-            }
-            OutputSpec::Obj => {
-                let name = "sections.obj";
-                let p = tmp.path().join(name);
+            OutputSpec::Report => emit("report.json", &|buf| {
+                buf.extend(to_json_string(&analysis.report, REPORT_DIGITS)?.into_bytes());
+                Ok(())
+            })?,
+            OutputSpec::Svg => emit("sections.svg", &|buf| {
+                sections_svg(&analysis, units).write(buf)
+            })?,
+            OutputSpec::Obj => emit("sections.obj", &|buf| {
                 let mut w = ObjWriter::new(REPORT_DIGITS);
                 for (s, _) in &analysis.sections {
                     w.polyline(
@@ -90,14 +83,8 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
                         &sample_world(&analysis.frame, s, 400),
                     );
                 }
-                let mut buf = Vec::new();
-                w.write(&mut buf).map_err(|source| HotcutError::Export {
-                    path: p.clone(),
-                    source,
-                })?;
-                std::fs::write(&p, buf).map_err(io(&p))?;
-                files.push(name.to_string());
-            }
+                w.write(buf)
+            })?,
             // rejected by validation for Analyze
             _ => {}
         }
