@@ -346,3 +346,28 @@ fn a_placed_block_must_contain_the_surface() {
     let report = std::fs::read_to_string(dir.path().join("out/t/report.json")).unwrap();
     assert!(report.contains("\"surface_violations\": []"), "{report}");
 }
+
+#[test]
+fn default_blade_is_converted_for_metre_jobs() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = r#"Job(name: "t", units: Metre, surface: HeightField(z: "0.05*sin(y/0.1)", x: (0, 0.3), y: (0, 0.9)), cutting: Cutting(sections: 2), task: Analyze(), outputs: [Report])"#;
+    write(dir.path(), "job.ron", text);
+    let o = hotcut(&["run", "job.ron"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("/m"));
+    let report: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.path().join("out/t/report.json")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(report["constraints"]["blade_length"], serde_json::json!(1));
+    assert_eq!(
+        report["constraints"]["max_curvature"],
+        serde_json::json!(11)
+    );
+    // the section is 0.9 m long: shorter than the 1 m blade; z'' reaches 0.05/0.01 = 5 /m < 11 /m
+    assert_eq!(report["summary"]["sections_too_long"], serde_json::json!(0));
+    assert_eq!(
+        report["summary"]["sections_too_curved"],
+        serde_json::json!(0)
+    );
+}
