@@ -76,6 +76,15 @@ impl SvgDoc {
         d
     }
 
+    /// Ends an open element `tag`, with an optional tooltip.
+    fn close(&mut self, tag: &str, title: Option<&str>) -> &mut Self {
+        if let Some(t) = title {
+            self.body.push_str(&format!("<title>{}</title>", esc(t)));
+        }
+        self.body.push_str(&format!("</{tag}>\n"));
+        self
+    }
+
     /// A polyline through page points.
     pub fn polyline(
         &mut self,
@@ -97,11 +106,7 @@ impl SvgDoc {
             esc(stroke),
             n(width)
         ));
-        if let Some(t) = title {
-            self.body.push_str(&format!("<title>{}</title>", esc(t)));
-        }
-        self.body.push_str("</polyline>\n");
-        self
+        self.close("polyline", title)
     }
 
     /// A filled circle at a page point.
@@ -119,11 +124,7 @@ impl SvgDoc {
             n(r),
             esc(fill)
         ));
-        if let Some(t) = title {
-            self.body.push_str(&format!("<title>{}</title>", esc(t)));
-        }
-        self.body.push_str("</circle>\n");
-        self
+        self.close("circle", title)
     }
 
     /// A rectangle outline (page coordinates).
