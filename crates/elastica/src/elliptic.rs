@@ -1,0 +1,356 @@
+//! Jacobi elliptic functions sn, cn, dn, am, the Jacobi epsilon function E(u|m) and the
+//! complete integrals K(m), E(m), for the parameter m = k² ∈ [0, 1].
+//!
+//! # Algorithm
+//!
+//! 1. **Argument reduction.** `u = 2jK + r` with `|r| ≤ K`, then `sn(u) = (−1)^j sn(r)`,
+//!    `cn(u) = (−1)^j cn(r)`, `dn(u) = dn(r)`, `am(u) = jπ + am(r)` and
+//!    `E(u) = 2jE(m) + E(r)` (DLMF 22.4, 22.16.27). K is computed by the arithmetic–geometric
+//!    mean in double-double arithmetic and `r = (u − 2jK_hi) − 2jK_lo` with a fused
+//!    multiply-add, so `r` carries no error from K even for |u| = 10³.
+//! 2. **Half-period reflection.** For `|r| > K/2` the functions are evaluated at
+//!    `v = K − |r|` and mapped back with `sn(K−v) = cn v/dn v`, `cn(K−v) = k′ sn v/dn v`,
+//!    `dn(K−v) = k′/dn v` (DLMF 22.4.3) and the addition formula
+//!    `E(K−v) = E(m) − E(v) + m sn v sn(K−v)` (DLMF 22.16.27). Near the quarter period with
+//!    m → 1 this keeps cn and dn *relatively* accurate, which is where the textbook
+//!    descending-Landen / AGM recurrence (A&S 16.4) loses half its digits through
+//!    `asin(x ≈ 1)`.
+//! 3. **Descending Landen transformation** (DLMF 22.7.1–3) in its rational form,
+//!    `k₁ = k²/(1+k′)²`, `sn(z|k) = (1+k₁) s/(1+k₁s²)`, `cn = c d/(1+k₁s²)`,
+//!    `dn = ((1−k₁) + k₁c²)/(1+k₁s²)` with `s, c, d` at `z/(1+k₁)` and modulus `k₁`; the
+//!    moduli fall quadratically (at most 9 steps for m = 1 − 2⁻⁵³), and at the bottom
+//!    (m < 3·10⁻⁹) the first-order series of A&S 16.13 is exact to rounding. The chain of
+//!    moduli depends on m only and is computed once per [`Elliptic`].
+//! 4. **Epsilon function.** `E(v) = v − m·D(v)` with `D(v) = (v − E(v))/m = ∫₀^v sn² =
+//!    sn³ R_D(cn², dn², 1)/3` (DLMF 19.25.? with `F(am v) = v`), Carlson's symmetric
+//!    integral by duplication ([`crate::carlson`]). Writing E through D avoids the
+//!    cancellation in `v − E(v)` for small m that the non-inflectional elastica needs.
+//! 5. **Complete integrals.** `K = π / (2 AGM(1, k′))` (double-double), and
+//!    `E(m) = K − m R_D(0, 1−m, 1)/3` (DLMF 19.25.1).
+//!
+//! m = 1 is handled in closed form (sn = tanh, cn = dn = sech, am = gd, E(u) = tanh u,
+//! K = ∞) and never overflows for large u. Accuracy against 50-digit references
+//! (`tests/elliptic_reference.rs`, generated with mpmath): see the crate's
+//! `BENCHMARKS.md`/README for the measured maxima.
+
+use crate::carlson::carlson_rd;
+use crate::dd::{Dd, PI};
+use serde::Serialize;
+use std::f64::consts::FRAC_PI_2;
+
+/// Errors of the elliptic-function layer.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum EllipticError {
+    /// The parameter m = k² must be finite and in [0, 1].
+    #[error("elliptic parameter m = {0} is outside [0, 1]")]
+    Parameter(f64),
+}
+
+/// Landen steps at most; m = 1 − 2⁻⁵³ needs 9.
+const MAX_LANDEN: usize = 12;
+/// Below this parameter the first-order series in m is exact to rounding on |w| ≤ π/4.
+const SERIES_M: f64 = 3e-9;
+
+/// Values of the Jacobi functions at one argument.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct JacobiValues {
+    /// sn(u|m).
+    pub sn: f64,
+    /// cn(u|m).
+    pub cn: f64,
+    /// dn(u|m).
+    pub dn: f64,
+    /// The amplitude am(u|m), continuous and increasing in u.
+    pub am: f64,
+    /// The Jacobi epsilon function E(u|m) = ∫₀ᵘ dn²(t|m) dt.
+    pub eps: f64,
+    /// D(u|m) = ∫₀ᵘ sn²(t|m) dt = (u − E(u|m))/m, without the cancellation for small m.
+    pub d: f64,
+}
+
+/// Partial derivatives of the Jacobi functions with respect to the parameter m at fixed u.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct JacobiDm {
+    /// ∂sn/∂m.
+    pub sn: f64,
+    /// ∂cn/∂m.
+    pub cn: f64,
+    /// ∂dn/∂m.
+    pub dn: f64,
+    /// ∂am/∂m.
+    pub am: f64,
+    /// ∂E(u|m)/∂m.
+    pub eps: f64,
+}
+
+/// The elliptic parameter m with everything that depends on it alone precomputed: the
+/// quarter period K (double-double), E(m), and the chain of Landen moduli. Evaluate many
+/// arguments with one `Elliptic`.
+///
+/// ```
+/// use elastica::elliptic::Elliptic;
+/// let e = Elliptic::new(0.5).unwrap();
+/// let v = e.eval(1.0);
+/// assert!((v.sn * v.sn + v.cn * v.cn - 1.0).abs() < 1e-15);
+/// assert!((e.k() - 1.854_074_677_301_372).abs() < 1e-14); // K(1/2)
+/// // quarter period: sn(K) = 1, cn(K) = 0, dn(K) = k′
+/// let q = e.eval(e.k());
+/// assert!((q.sn - 1.0).abs() < 1e-15 && q.cn.abs() < 1e-15);
+/// assert!((q.dn - 0.5f64.sqrt()).abs() < 1e-15);
+/// ```
+#[derive(Clone, Debug)]
+pub struct Elliptic {
+    m: f64,
+    m1: f64,
+    kp: f64,
+    k: Dd,
+    e: f64,
+    /// (K − E)/m = R_D(0, 1 − m, 1)/3, finite at m = 0.
+    dk: f64,
+    /// Landen moduli k₁, k₂, … and 1 − kₙ.
+    chain: [(f64, f64); MAX_LANDEN],
+    levels: usize,
+    /// Π 1/(1 + kₙ): the argument scale at the bottom of the chain.
+    bottom_scale: f64,
+    /// Parameter at the bottom of the chain.
+    bottom_m: f64,
+}
+
+impl Elliptic {
+    /// Precompute for parameter `m ∈ [0, 1]`.
+    pub fn new(m: f64) -> Result<Self, EllipticError> {
+        if !(0.0..=1.0).contains(&m) {
+            return Err(EllipticError::Parameter(m));
+        }
+        let m1 = 1.0 - m;
+        let mut s = Elliptic {
+            m,
+            m1,
+            kp: m1.sqrt(),
+            k: Dd::from_f64(f64::INFINITY),
+            e: 1.0,
+            dk: f64::INFINITY,
+            chain: [(0.0, 1.0); MAX_LANDEN],
+            levels: 0,
+            bottom_scale: 1.0,
+            bottom_m: m,
+        };
+        if m == 1.0 {
+            return Ok(s);
+        }
+        // K by the AGM in double-double; 1 − m is exact in f64 for m ≥ 1/2 and the
+        // error-free sum covers m < 1/2.
+        let one_minus_m = Dd::from_f64(1.0).add(Dd::from_f64(-m));
+        let (mut a, mut b) = (Dd::from_f64(1.0), one_minus_m.sqrt());
+        for _ in 0..40 {
+            if (a.hi - b.hi).abs() <= 1e-17 * a.hi && (a.add(b.scale(-1.0))).hi.abs() < 1e-32 {
+                break;
+            }
+            let an = a.add(b).scale(0.5);
+            b = a.mul(b).sqrt();
+            a = an;
+        }
+        s.k = PI.div(a.scale(2.0));
+        s.dk = carlson_rd(0.0, m1, 1.0) / 3.0;
+        s.e = s.k.hi - m * s.dk;
+        // Landen chain
+        let (mut k, mut kp) = (m.sqrt(), s.kp);
+        let mut mm = m;
+        while mm >= SERIES_M && s.levels < MAX_LANDEN {
+            let k1 = (k / (1.0 + kp)).powi(2);
+            let one_minus_k1 = 2.0 * kp / (1.0 + kp);
+            let kp1 = 2.0 * kp.sqrt() / (1.0 + kp);
+            s.chain[s.levels] = (k1, one_minus_k1);
+            s.levels += 1;
+            s.bottom_scale /= 1.0 + k1;
+            k = k1;
+            kp = kp1;
+            mm = k1 * k1;
+        }
+        s.bottom_m = mm;
+        Ok(s)
+    }
+
+    /// The parameter m.
+    pub fn m(&self) -> f64 {
+        self.m
+    }
+
+    /// The complementary modulus k′ = √(1 − m).
+    pub fn kprime(&self) -> f64 {
+        self.kp
+    }
+
+    /// The quarter period K(m) (∞ at m = 1).
+    pub fn k(&self) -> f64 {
+        self.k.hi
+    }
+
+    /// The complete integral of the second kind E(m).
+    pub fn e(&self) -> f64 {
+        self.e
+    }
+
+    /// (K(m) − E(m))/m, finite at m = 0 (π/4) and ∞ at m = 1.
+    pub fn k_minus_e_over_m(&self) -> f64 {
+        self.dk
+    }
+
+    /// sn, cn, dn at `w` with |w| ≤ K/2 scaled down to the bottom of the Landen chain,
+    /// climbed back up; returns relatively accurate (s, c, d).
+    fn scd_small(&self, v: f64) -> (f64, f64, f64) {
+        let w = v * self.bottom_scale;
+        let (sw, cw) = w.sin_cos();
+        let mb = self.bottom_m;
+        let corr = 0.25 * mb * (w - sw * cw);
+        let mut s = sw - corr * cw;
+        let mut c = cw + corr * sw;
+        let mut d = 1.0 - 0.5 * mb * sw * sw;
+        for &(k1, one_minus_k1) in self.chain[..self.levels].iter().rev() {
+            let den = 1.0 + k1 * s * s;
+            let s_up = (1.0 + k1) * s / den;
+            let c_up = c * d / den;
+            let d_up = (one_minus_k1 + k1 * c * c) / den;
+            s = s_up;
+            c = c_up;
+            d = d_up;
+        }
+        (s, c, d)
+    }
+
+    /// Evaluate sn, cn, dn, am, E(u|m) and D(u|m) at `u`. Non-finite `u` gives NaN.
+    pub fn eval(&self, u: f64) -> JacobiValues {
+        if !u.is_finite() {
+            return JacobiValues {
+                sn: f64::NAN,
+                cn: f64::NAN,
+                dn: f64::NAN,
+                am: f64::NAN,
+                eps: f64::NAN,
+                d: f64::NAN,
+            };
+        }
+        if self.m == 1.0 {
+            let t = u.tanh();
+            let sech = 1.0 / u.cosh();
+            return JacobiValues {
+                sn: t,
+                cn: sech,
+                dn: sech,
+                am: u.sinh().atan(),
+                eps: t,
+                d: u - t,
+            };
+        }
+        let kk = self.k.hi;
+        let j = (u / (2.0 * kk)).round();
+        let r = (-j).mul_add(2.0 * kk, u) - j * (2.0 * self.k.lo);
+        let sign = if r < 0.0 { -1.0 } else { 1.0 };
+        let a = r.abs().min(kk);
+        let (mut sn, mut cn, mut dn, mut am, mut eps, mut d);
+        if a <= 0.5 * kk {
+            let (s, c, dd) = self.scd_small(a);
+            let dv = s * s * s * carlson_rd(c * c, dd * dd, 1.0) / 3.0;
+            sn = s;
+            cn = c;
+            dn = dd;
+            am = s.atan2(c);
+            d = dv;
+            eps = a - self.m * dv;
+        } else {
+            let v = ((kk - a) + self.k.lo).max(0.0);
+            let (s, c, dd) = self.scd_small(v);
+            let dv = s * s * s * carlson_rd(c * c, dd * dd, 1.0) / 3.0;
+            let ev = v - self.m * dv;
+            sn = c / dd;
+            cn = self.kp * s / dd;
+            dn = self.kp / dd;
+            am = sn.atan2(cn);
+            eps = self.e - ev + self.m * s * sn;
+            d = self.dk - dv - s * sn;
+        }
+        sn *= sign;
+        am *= sign;
+        eps *= sign;
+        d *= sign;
+        if j != 0.0 {
+            if (j as i64) % 2 != 0 {
+                sn = -sn;
+                cn = -cn;
+            }
+            am += j * std::f64::consts::PI;
+            eps += 2.0 * j * self.e;
+            d += 2.0 * j * self.dk;
+        }
+        JacobiValues {
+            sn,
+            cn,
+            dn,
+            am,
+            eps,
+            d,
+        }
+    }
+
+    /// Derivatives of sn, cn, dn, am and E(u|m) with respect to m at fixed u, from the
+    /// values `v = self.eval(u)` (closed form: ∂am/∂m = (sn cn − dn (u − D))/(2(1−m)), from
+    /// ∂F(φ|m)/∂m, DLMF 19.4.1; at m = 1 its limit −¼(sinh u − u sech u)). Loses digits
+    /// like ε/(1 − m) as m → 1, where the functions themselves become that sensitive.
+    pub fn dm(&self, u: f64, v: &JacobiValues) -> JacobiDm {
+        let am = if self.m == 1.0 {
+            -0.25 * (u.sinh() - u / u.cosh())
+        } else {
+            (v.sn * v.cn - v.dn * (u - v.d)) / (2.0 * self.m1)
+        };
+        let dn = if v.dn > 0.0 {
+            -(v.sn * v.sn + 2.0 * self.m * v.sn * v.cn * am) / (2.0 * v.dn)
+        } else {
+            0.0
+        };
+        JacobiDm {
+            sn: v.cn * am,
+            cn: -v.sn * am,
+            dn,
+            am,
+            eps: -0.5 * v.d + v.dn * am,
+        }
+    }
+
+    /// The incomplete integral of the first kind F(φ|m) = ∫₀^φ dθ/√(1 − m sin²θ) for any
+    /// real φ (quasi-periodic: F(φ + jπ) = F(φ) + 2jK). Infinite at m = 1, |φ| ≥ π/2.
+    pub fn f(&self, phi: f64) -> f64 {
+        let j = (phi / std::f64::consts::PI).round();
+        let psi = phi - j * std::f64::consts::PI;
+        let (s, c) = psi.sin_cos();
+        let base = s * crate::carlson::carlson_rf(c * c, 1.0 - self.m * s * s, 1.0);
+        if j == 0.0 {
+            base
+        } else {
+            base + 2.0 * j * self.k.hi
+        }
+    }
+}
+
+/// The complete elliptic integral of the first kind K(m).
+pub fn ellip_k(m: f64) -> Result<f64, EllipticError> {
+    Ok(Elliptic::new(m)?.k())
+}
+
+/// The complete elliptic integral of the second kind E(m).
+pub fn ellip_e(m: f64) -> Result<f64, EllipticError> {
+    Ok(Elliptic::new(m)?.e())
+}
+
+/// sn, cn, dn, am and E(u|m) at one point (precompute an [`Elliptic`] for many points).
+///
+/// ```
+/// let v = elastica::elliptic::jacobi(0.3, 0.0).unwrap();
+/// assert!((v.sn - 0.3f64.sin()).abs() < 1e-16 && (v.eps - 0.3).abs() < 1e-16);
+/// ```
+pub fn jacobi(u: f64, m: f64) -> Result<JacobiValues, EllipticError> {
+    Ok(Elliptic::new(m)?.eval(u))
+}
+
+/// ½π, re-exported for the segment code.
+pub(crate) const HALF_PI: f64 = FRAC_PI_2;

@@ -1,0 +1,13 @@
+//! # elastica — the mathematical heart of hot-blade cutting
+//!
+//! A hot blade held by two robots takes the shape of a planar Euler elastica. This crate
+//! evaluates elastica exactly (Jacobi elliptic functions), fits them to section curves,
+//! computes discrete elastica from boundary data, and extends a fitted segment to the
+//! blade's length to give the robots their targets.
+
+/// Carlson's symmetric elliptic integrals R_F, R_D.
+pub mod carlson;
+/// Double-double arithmetic for the quarter period.
+mod dd;
+/// Jacobi elliptic functions, epsilon function, complete integrals.
+pub mod elliptic;
