@@ -36,7 +36,6 @@
 use crate::carlson::carlson_rd;
 use crate::dd::{Dd, PI};
 use serde::Serialize;
-use std::f64::consts::FRAC_PI_2;
 
 /// Errors of the elliptic-function layer.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -248,7 +247,7 @@ impl Elliptic {
         let r = (-j).mul_add(2.0 * kk, u) - j * (2.0 * self.k.lo);
         let sign = if r < 0.0 { -1.0 } else { 1.0 };
         let a = r.abs().min(kk);
-        let (mut sn, mut cn, mut dn, mut am, mut eps, mut d);
+        let (mut sn, mut cn, dn, mut am, mut eps, mut d);
         if a <= 0.5 * kk {
             let (s, c, dd) = self.scd_small(a);
             let dv = s * s * s * carlson_rd(c * c, dd * dd, 1.0) / 3.0;
@@ -351,6 +350,3 @@ pub fn ellip_e(m: f64) -> Result<f64, EllipticError> {
 pub fn jacobi(u: f64, m: f64) -> Result<JacobiValues, EllipticError> {
     Ok(Elliptic::new(m)?.eval(u))
 }
-
-/// ½π, re-exported for the segment code.
-pub(crate) const HALF_PI: f64 = FRAC_PI_2;
