@@ -210,7 +210,12 @@ impl Elliptic {
             let den = 1.0 + k1 * s * s;
             let s_up = (1.0 + k1) * s / den;
             let c_up = c * d / den;
-            let d_up = (one_minus_k1 + k1 * c * c) / den;
+            // 1 − k₁s² written without cancellation on either side of s² = ½
+            let d_up = if s * s < 0.5 {
+                (1.0 - k1 * s * s) / den
+            } else {
+                (one_minus_k1 + k1 * c * c) / den
+            };
             s = s_up;
             c = c_up;
             d = d_up;

@@ -11,3 +11,7 @@ pub mod carlson;
 mod dd;
 /// Jacobi elliptic functions, epsilon function, complete integrals.
 pub mod elliptic;
+/// Elastica segments (closed form, line, arc): evaluation, derivatives, inflections.
+pub mod segment;
+/// The normalized inflectional and non-inflectional elastica.
+pub mod unit;

@@ -1,0 +1,347 @@
+//! Elastica segments in the plane: the closed-form families in the papers' standard
+//! parameters `(k, s₀, ℓ, S, φ, x₀, y₀)`,
+//! `p(t) = S·R(φ)·f(s₀ + ℓt) + (x₀, y₀)`, t ∈ [0, 1], f = ζ or γ ([`crate::unit`]),
+//! plus explicit straight lines and circular arcs (the λ = 0 elastica, common in facades and
+//! badly conditioned as limits k → 0, S → ∞). Arc length is `S·|ℓ|·t`; ℓ < 0 traverses f
+//! backwards, which mirrors the turning direction.
+
+use crate::elliptic::EllipticError;
+use crate::unit::{Family, UnitElastica};
+use serde::{Deserialize, Serialize};
+
+/// The standard parameters of a closed-form elastica segment.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ElasticaParams {
+    /// Inflectional or non-inflectional.
+    pub family: Family,
+    /// Modulus k (m = k²).
+    pub k: f64,
+    /// Start on the normalized curve.
+    pub s0: f64,
+    /// Length on the normalized curve, signed (ℓ < 0 runs backwards).
+    pub l: f64,
+    /// Scale S > 0.
+    #[serde(rename = "S")]
+    pub scale: f64,
+    /// Rotation φ (radians).
+    pub phi: f64,
+    /// Translation x₀.
+    pub x0: f64,
+    /// Translation y₀.
+    pub y0: f64,
+}
+
+/// Names of the seven parameters in the order of [`ElasticaSegment::point_gradient`].
+pub const PARAM_NAMES: [&str; 7] = ["k", "s0", "l", "S", "phi", "x0", "y0"];
+
+/// A planar segment a hot blade can take: a closed-form elastica, a line or a circular arc.
+/// All are parameterized by t ∈ [0, 1] at constant speed (t outside [0, 1] extends the same
+/// curve).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase")]
+pub enum Segment {
+    /// A closed-form elastica segment.
+    Elastica(ElasticaParams),
+    /// A straight segment from (x₀, y₀) in direction φ.
+    Line {
+        /// Start x.
+        x0: f64,
+        /// Start y.
+        y0: f64,
+        /// Direction angle (radians).
+        phi: f64,
+        /// Length ≥ 0.
+        length: f64,
+    },
+    /// A circular arc from (x₀, y₀) with start tangent angle φ and signed curvature
+    /// (positive turns left).
+    Arc {
+        /// Start x.
+        x0: f64,
+        /// Start y.
+        y0: f64,
+        /// Start tangent angle (radians).
+        phi: f64,
+        /// Signed curvature (1/length).
+        curvature: f64,
+        /// Length ≥ 0.
+        length: f64,
+    },
+}
+
+/// Point, unit tangent, tangent angle and signed curvature of a segment at one parameter.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SegmentPoint {
+    /// Position.
+    pub p: [f64; 2],
+    /// Unit tangent in the direction of increasing t.
+    pub tangent: [f64; 2],
+    /// Tangent angle (radians), continuous in t.
+    pub angle: f64,
+    /// Signed curvature with respect to arc length (left turn positive).
+    pub curvature: f64,
+}
+
+/// sin(x)/x without the 0/0.
+pub(crate) fn sinc(x: f64) -> f64 {
+    if x.abs() < 1e-4 {
+        1.0 - x * x / 6.0
+    } else {
+        x.sin() / x
+    }
+}
+
+/// (1 − cos x)/x without cancellation.
+pub(crate) fn cosc(x: f64) -> f64 {
+    let h = 0.5 * x;
+    h.sin() * sinc(h)
+}
+
+fn rot(phi: f64, v: [f64; 2]) -> [f64; 2] {
+    let (s, c) = phi.sin_cos();
+    [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+}
+
+/// An elastica segment with its normalized curve prepared for repeated evaluation.
+#[derive(Clone, Debug)]
+pub struct ElasticaSegment {
+    /// The parameters.
+    pub params: ElasticaParams,
+    unit: UnitElastica,
+}
+
+impl ElasticaSegment {
+    /// Prepare `params` (checks k's range and S > 0).
+    pub fn new(params: ElasticaParams) -> Result<Self, EllipticError> {
+        if !(params.scale > 0.0) || !params.scale.is_finite() {
+            return Err(EllipticError::Parameter(f64::NAN));
+        }
+        Ok(ElasticaSegment {
+            unit: UnitElastica::new(params.family, params.k)?,
+            params,
+        })
+    }
+
+    /// The normalized curve.
+    pub fn unit(&self) -> &UnitElastica {
+        &self.unit
+    }
+
+    /// Point, tangent, angle and curvature at t.
+    pub fn eval(&self, t: f64) -> SegmentPoint {
+        let p = &self.params;
+        let u = self.unit.eval(p.s0 + p.l * t);
+        let f = rot(p.phi, u.p);
+        let dir = if p.l < 0.0 { -1.0 } else { 1.0 };
+        let tan = rot(p.phi, u.t);
+        SegmentPoint {
+            p: [p.scale * f[0] + p.x0, p.scale * f[1] + p.y0],
+            tangent: [dir * tan[0], dir * tan[1]],
+            angle: p.phi + u.theta + if p.l < 0.0 { std::f64::consts::PI } else { 0.0 },
+            curvature: dir * u.kappa / p.scale,
+        }
+    }
+
+    /// The point at t and its derivatives with respect to `(k, s₀, ℓ, S, φ, x₀, y₀)`.
+    pub fn point_gradient(&self, t: f64) -> ([f64; 2], [[f64; 2]; 7]) {
+        let p = &self.params;
+        let (u, dk) = self.unit.eval_dk(p.s0 + p.l * t);
+        let f = rot(p.phi, u.p);
+        let tan = rot(p.phi, u.t);
+        let s = p.scale;
+        let point = [s * f[0] + p.x0, s * f[1] + p.y0];
+        let dk = rot(p.phi, dk);
+        let grad = [
+            [s * dk[0], s * dk[1]],
+            [s * tan[0], s * tan[1]],
+            [t * s * tan[0], t * s * tan[1]],
+            f,
+            [-s * f[1], s * f[0]],
+            [1.0, 0.0],
+            [0.0, 1.0],
+        ];
+        (point, grad)
+    }
+}
+
+impl Segment {
+    /// Arc length of the segment (t from 0 to 1).
+    pub fn length(&self) -> f64 {
+        match *self {
+            Segment::Elastica(p) => p.scale * p.l.abs(),
+            Segment::Line { length, .. } | Segment::Arc { length, .. } => length,
+        }
+    }
+
+    /// A short name of the kind: `inflectional`, `noninflectional`, `line` or `arc`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Segment::Elastica(p) => match p.family {
+                Family::Inflectional => "inflectional",
+                Family::NonInflectional => "noninflectional",
+            },
+            Segment::Line { .. } => "line",
+            Segment::Arc { .. } => "arc",
+        }
+    }
+
+    /// Prepare for evaluation (validates the parameters).
+    pub fn evaluator(&self) -> Result<SegmentEval, EllipticError> {
+        Ok(match *self {
+            Segment::Elastica(p) => SegmentEval::Elastica(ElasticaSegment::new(p)?),
+            other => SegmentEval::Simple(other),
+        })
+    }
+
+    /// Evaluate at one t (convenience; prefer [`Segment::evaluator`] in loops).
+    pub fn eval(&self, t: f64) -> Result<SegmentPoint, EllipticError> {
+        Ok(self.evaluator()?.eval(t))
+    }
+
+    /// `n ≥ 2` points at equal arc-length spacing from t = 0 to t = 1.
+    pub fn sample(&self, n: usize) -> Result<Vec<[f64; 2]>, EllipticError> {
+        let e = self.evaluator()?;
+        let n = n.max(2);
+        Ok((0..n)
+            .map(|i| e.eval(i as f64 / (n - 1) as f64).p)
+            .collect())
+    }
+
+    /// Parameters t ∈ (0, 1) of the inflection points (none for lines, arcs and
+    /// non-inflectional elastica).
+    pub fn inflections(&self) -> Result<Vec<f64>, EllipticError> {
+        match *self {
+            Segment::Elastica(p) => {
+                let u = UnitElastica::new(p.family, p.k)?;
+                let mut ts: Vec<f64> = u
+                    .inflections_between(p.s0, p.s0 + p.l)
+                    .into_iter()
+                    .map(|s| (s - p.s0) / p.l)
+                    .filter(|t| *t > 0.0 && *t < 1.0)
+                    .collect();
+                ts.sort_by(f64::total_cmp);
+                Ok(ts)
+            }
+            _ => Ok(Vec::new()),
+        }
+    }
+
+    /// The largest |curvature| on the segment.
+    pub fn max_abs_curvature(&self) -> Result<f64, EllipticError> {
+        Ok(match *self {
+            Segment::Elastica(p) => {
+                let u = UnitElastica::new(p.family, p.k)?;
+                u.max_abs_curvature_between(p.s0, p.s0 + p.l) / p.scale
+            }
+            Segment::Line { .. } => 0.0,
+            Segment::Arc { curvature, .. } => curvature.abs(),
+        })
+    }
+
+    /// The same curve continued by `before` length units before t = 0 and `after` beyond
+    /// t = 1 (negative values shorten it); the result is again parameterized on [0, 1].
+    pub fn extended(&self, before: f64, after: f64) -> Segment {
+        let len = self.length();
+        match *self {
+            Segment::Elastica(mut p) => {
+                if len > 0.0 {
+                    let per_len = p.l / len;
+                    p.s0 -= per_len * before;
+                    p.l = per_len * (len + before + after);
+                }
+                Segment::Elastica(p)
+            }
+            Segment::Line {
+                x0,
+                y0,
+                phi,
+                length,
+            } => Segment::Line {
+                x0: x0 - before * phi.cos(),
+                y0: y0 - before * phi.sin(),
+                phi,
+                length: length + before + after,
+            },
+            Segment::Arc {
+                x0,
+                y0,
+                phi,
+                curvature,
+                length,
+            } => {
+                let [dx, dy] = arc_offset(phi, curvature, -before);
+                Segment::Arc {
+                    x0: x0 + dx,
+                    y0: y0 + dy,
+                    phi: phi - curvature * before,
+                    curvature,
+                    length: length + before + after,
+                }
+            }
+        }
+    }
+}
+
+/// Displacement along a circle of signed curvature κ after arc length s from tangent angle
+/// φ: e^{iφ}·(e^{iκs} − 1)/(iκ), exact as κ → 0.
+pub(crate) fn arc_offset(phi: f64, kappa: f64, s: f64) -> [f64; 2] {
+    let th = kappa * s;
+    rot(phi, [s * sinc(th), s * cosc(th)])
+}
+
+/// A segment prepared for evaluation.
+#[derive(Clone, Debug)]
+pub enum SegmentEval {
+    /// Closed-form elastica with its elliptic data.
+    Elastica(ElasticaSegment),
+    /// Line or arc.
+    Simple(Segment),
+}
+
+impl SegmentEval {
+    /// Point, tangent, angle and curvature at t.
+    pub fn eval(&self, t: f64) -> SegmentPoint {
+        match self {
+            SegmentEval::Elastica(e) => e.eval(t),
+            SegmentEval::Simple(Segment::Line {
+                x0,
+                y0,
+                phi,
+                length,
+            }) => {
+                let (s, c) = phi.sin_cos();
+                SegmentPoint {
+                    p: [x0 + length * t * c, y0 + length * t * s],
+                    tangent: [c, s],
+                    angle: *phi,
+                    curvature: 0.0,
+                }
+            }
+            SegmentEval::Simple(Segment::Arc {
+                x0,
+                y0,
+                phi,
+                curvature,
+                length,
+            }) => {
+                let s = length * t;
+                let [dx, dy] = arc_offset(*phi, *curvature, s);
+                let a = phi + curvature * s;
+                SegmentPoint {
+                    p: [x0 + dx, y0 + dy],
+                    tangent: [a.cos(), a.sin()],
+                    angle: a,
+                    curvature: *curvature,
+                }
+            }
+            // `Segment::evaluator` never wraps an elastica in `Simple`.
+            SegmentEval::Simple(Segment::Elastica(_)) => SegmentPoint {
+                p: [f64::NAN; 2],
+                tangent: [f64::NAN; 2],
+                angle: f64::NAN,
+                curvature: f64::NAN,
+            },
+        }
+    }
+}

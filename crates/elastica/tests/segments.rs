@@ -1,0 +1,218 @@
+//! Elastica segments: identities of the closed forms, derivatives against finite
+//! differences, and agreement with the independent generator of `../shared/data/curves`.
+
+use elastica::segment::{ElasticaParams, ElasticaSegment, Segment};
+use elastica::unit::{Family, UnitElastica};
+use proptest::prelude::*;
+
+fn family() -> impl Strategy<Value = Family> {
+    prop_oneof![Just(Family::Inflectional), Just(Family::NonInflectional)]
+}
+
+fn params() -> impl Strategy<Value = ElasticaParams> {
+    (
+        family(),
+        0.05f64..0.98,
+        -8.0f64..8.0,
+        prop_oneof![-6.0f64..-0.2, 0.2f64..6.0],
+        0.2f64..3.0,
+        -3.0f64..3.0,
+        -2.0f64..2.0,
+        -2.0f64..2.0,
+    )
+        .prop_map(|(family, k, s0, l, scale, phi, x0, y0)| ElasticaParams {
+            family,
+            k,
+            s0,
+            l,
+            scale,
+            phi,
+            x0,
+            y0,
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// |γ'| = 1 in arc length: the derivative of the normalized curve is its unit tangent,
+    /// and the curvature is the derivative of the tangent angle.
+    #[test]
+    fn unit_speed_and_curvature(fam in family(), k in 0.05f64..0.99, s in -20.0f64..20.0) {
+        let u = UnitElastica::new(fam, k).unwrap();
+        // curvature up to 2/k: scale the step so that h·κ stays small
+        let h = match fam { Family::Inflectional => 1e-5, Family::NonInflectional => 1e-5 * k };
+        let a = u.eval(s - h);
+        let b = u.eval(s + h);
+        let c = u.eval(s);
+        let d = [(b.p[0] - a.p[0]) / (2.0 * h), (b.p[1] - a.p[1]) / (2.0 * h)];
+        prop_assert!((d[0] - c.t[0]).abs() < 1e-8 && (d[1] - c.t[1]).abs() < 1e-8, "{d:?} vs {:?}", c.t);
+        prop_assert!(((c.t[0].hypot(c.t[1])) - 1.0).abs() < 1e-14);
+        prop_assert!((c.t[0] - c.theta.cos()).abs() < 1e-13 && (c.t[1] - c.theta.sin()).abs() < 1e-13);
+        let dtheta = (b.theta - a.theta) / (2.0 * h);
+        prop_assert!((dtheta - c.kappa).abs() < 1e-7 * (1.0 + c.kappa.abs()), "{dtheta} vs {}", c.kappa);
+        // both families solve the normalized pendulum equation θ'' = −sin θ
+        let ddtheta = (b.kappa - a.kappa) / (2.0 * h);
+        let expect = -c.theta.sin();
+        prop_assert!((ddtheta - expect).abs() < 1e-6 * (1.0 + expect.abs()) / (k * k), "{ddtheta} vs {expect}");
+    }
+
+    /// The derivative with respect to every standard parameter matches central differences.
+    #[test]
+    fn gradient_matches_finite_differences(p in params(), t in 0.0f64..1.0) {
+        let seg = ElasticaSegment::new(p).unwrap();
+        let (x, g) = seg.point_gradient(t);
+        let e = seg.eval(t).p;
+        prop_assert!((x[0] - e[0]).abs() < 1e-14 * (1.0 + e[0].abs()));
+        for i in 0..7 {
+            let h = 1e-6;
+            let bump = |d: f64| {
+                let mut q = p;
+                match i { 0 => q.k += d, 1 => q.s0 += d, 2 => q.l += d, 3 => q.scale += d,
+                          4 => q.phi += d, 5 => q.x0 += d, _ => q.y0 += d }
+                ElasticaSegment::new(q).unwrap().eval(t).p
+            };
+            let (a, b) = (bump(-h), bump(h));
+            for c in 0..2 {
+                let fd = (b[c] - a[c]) / (2.0 * h);
+                let tol = 1e-5 * (1.0 + fd.abs().max(g[i][c].abs()));
+                prop_assert!((fd - g[i][c]).abs() < tol, "param {i} coord {c}: fd {fd} analytic {}", g[i][c]);
+            }
+        }
+    }
+
+    /// Extending a segment keeps the curve: the original points sit at the mapped parameters.
+    #[test]
+    fn extension_keeps_the_curve(p in params(), before in 0.0f64..1.0, after in 0.0f64..1.0, t in 0.0f64..1.0) {
+        let s = Segment::Elastica(p);
+        let e = s.extended(before, after);
+        let len = s.length();
+        prop_assert!((e.length() - (len + before + after)).abs() < 1e-12 * (1.0 + len));
+        let te = (before + t * len) / (len + before + after);
+        let a = s.eval(t).unwrap();
+        let b = e.eval(te).unwrap();
+        prop_assert!((a.p[0] - b.p[0]).abs() < 1e-11 && (a.p[1] - b.p[1]).abs() < 1e-11);
+        prop_assert!((a.curvature - b.curvature).abs() < 1e-9 * (1.0 + a.curvature.abs()));
+    }
+}
+
+#[test]
+fn backwards_traversal_mirrors_the_turning_direction() {
+    let p = ElasticaParams {
+        family: Family::NonInflectional,
+        k: 0.8,
+        s0: 0.3,
+        l: 1.0,
+        scale: 1.0,
+        phi: 0.0,
+        x0: 0.0,
+        y0: 0.0,
+    };
+    let fwd = Segment::Elastica(p);
+    let bwd = Segment::Elastica(ElasticaParams {
+        s0: p.s0 + p.l,
+        l: -p.l,
+        ..p
+    });
+    let a = fwd.eval(0.25).unwrap();
+    let b = bwd.eval(0.75).unwrap();
+    assert!((a.p[0] - b.p[0]).abs() < 1e-15 && (a.p[1] - b.p[1]).abs() < 1e-15);
+    assert!(a.curvature > 0.0 && (a.curvature + b.curvature).abs() < 1e-14);
+    assert!((a.tangent[0] + b.tangent[0]).abs() < 1e-15);
+}
+
+#[test]
+fn lines_and_arcs_evaluate_in_closed_form() {
+    let arc = Segment::Arc {
+        x0: 1.0,
+        y0: 0.0,
+        phi: std::f64::consts::FRAC_PI_2,
+        curvature: 1.0,
+        length: std::f64::consts::PI,
+    };
+    let end = arc.eval(1.0).unwrap();
+    assert!((end.p[0] + 1.0).abs() < 1e-15 && end.p[1].abs() < 1e-15);
+    assert_eq!(arc.max_abs_curvature().unwrap(), 1.0);
+    assert!(arc.inflections().unwrap().is_empty());
+    let line = Segment::Line {
+        x0: 0.0,
+        y0: 0.0,
+        phi: 0.0,
+        length: 2.0,
+    };
+    assert_eq!(line.eval(0.5).unwrap().p, [1.0, 0.0]);
+    let flat = Segment::Arc {
+        x0: 0.0,
+        y0: 0.0,
+        phi: 0.0,
+        curvature: 1e-12,
+        length: 2.0,
+    };
+    assert!((flat.eval(1.0).unwrap().p[0] - 2.0).abs() < 1e-15);
+}
+
+/// The curves in `../shared/data/curves/curves.json` were generated by an independent
+/// implementation (`elastica_ref.py`); evaluating their true parameters here must reproduce
+/// the stored points to float precision, and the stated inflections and max |κ|.
+#[test]
+fn reproduces_the_shared_exact_curves() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/data/curves/curves.json"
+    );
+    let text = std::fs::read_to_string(path).expect("../shared/data/curves/curves.json");
+    let data: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let mut checked = 0;
+    for c in data["curves"].as_array().unwrap() {
+        if c["class"] != "elastica_exact" {
+            continue;
+        }
+        let t = &c["truth"];
+        let pr = &t["params"];
+        let f = |n: &str| pr[n].as_f64().unwrap();
+        let family = match t["family"].as_str().unwrap() {
+            "inflectional" => Family::Inflectional,
+            _ => Family::NonInflectional,
+        };
+        let seg = Segment::Elastica(ElasticaParams {
+            family,
+            k: f("k"),
+            s0: f("s0"),
+            l: f("l"),
+            scale: f("S"),
+            phi: f("phi"),
+            x0: f("x0"),
+            y0: f("y0"),
+        });
+        let pts = c["points"].as_array().unwrap();
+        let n = pts.len();
+        let ev = seg.evaluator().unwrap();
+        let mut worst: f64 = 0.0;
+        for (i, q) in pts.iter().enumerate() {
+            let p = ev.eval(i as f64 / (n - 1) as f64).p;
+            let dx = p[0] - q[0].as_f64().unwrap();
+            let dy = p[1] - q[1].as_f64().unwrap();
+            worst = worst.max(dx.hypot(dy));
+        }
+        assert!(worst < 1e-12, "{}: {worst:e}", c["id"]);
+        let infl = seg.inflections().unwrap();
+        assert_eq!(
+            infl.len() as u64,
+            t["n_inflections"].as_u64().unwrap(),
+            "{}",
+            c["id"]
+        );
+        for (a, b) in infl.iter().zip(t["inflection_t"].as_array().unwrap()) {
+            assert!((a - b.as_f64().unwrap()).abs() < 1e-10, "{}", c["id"]);
+        }
+        let kmax = seg.max_abs_curvature().unwrap();
+        let kref = t["max_abs_curvature"].as_f64().unwrap();
+        assert!(
+            (kmax - kref).abs() < 1e-6 * kref,
+            "{}: {kmax} vs {kref}",
+            c["id"]
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 24);
+}
