@@ -189,7 +189,7 @@ impl Segment {
     /// Prepare for evaluation (validates the parameters).
     pub fn evaluator(&self) -> Result<SegmentEval, EllipticError> {
         Ok(match *self {
-            Segment::Elastica(p) => SegmentEval::Elastica(ElasticaSegment::new(p)?),
+            Segment::Elastica(p) => SegmentEval::Elastica(Box::new(ElasticaSegment::new(p)?)),
             other => SegmentEval::Simple(other),
         })
     }
@@ -294,7 +294,7 @@ pub(crate) fn arc_offset(phi: f64, kappa: f64, s: f64) -> [f64; 2] {
 #[derive(Clone, Debug)]
 pub enum SegmentEval {
     /// Closed-form elastica with its elliptic data.
-    Elastica(ElasticaSegment),
+    Elastica(Box<ElasticaSegment>),
     /// Line or arc.
     Simple(Segment),
 }
