@@ -11,6 +11,8 @@ pub mod carlson;
 mod dd;
 /// Jacobi elliptic functions, epsilon function, complete integrals.
 pub mod elliptic;
+/// Fitting curves by elastica segments (variable projection + Levenberg–Marquardt).
+pub mod fit;
 /// Elastica segments (closed form, line, arc): evaluation, derivatives, inflections.
 pub mod segment;
 /// The normalized inflectional and non-inflectional elastica.

@@ -1,0 +1,74 @@
+//! Benchmarks: one Jacobi evaluation (sn, cn, dn, am, E together) and fitting one
+//! 200-point curve of `../shared/data/curves` with each constraint option.
+//! Run: `cargo bench -p elastica`.
+
+use elastica::elliptic::Elliptic;
+use elastica::fit::{fit_points, FitConstraint, FitParams};
+use std::sync::OnceLock;
+
+fn main() {
+    divan::main();
+}
+
+#[divan::bench(args = [0.1, 0.5, 0.9, 0.999_999])]
+fn jacobi_eval(bencher: divan::Bencher, m: f64) {
+    let e = Elliptic::new(m).unwrap();
+    let mut u = 0.1;
+    bencher.bench_local(|| {
+        u = if u > 50.0 { 0.1 } else { u + 0.37 };
+        divan::black_box(e.eval(divan::black_box(u)))
+    });
+}
+
+#[divan::bench]
+fn elliptic_new(bencher: divan::Bencher) {
+    bencher.bench_local(|| Elliptic::new(divan::black_box(0.7)).unwrap().k());
+}
+
+fn curves() -> &'static Vec<(String, Vec<[f64; 2]>)> {
+    static C: OnceLock<Vec<(String, Vec<[f64; 2]>)>> = OnceLock::new();
+    C.get_or_init(|| {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../../shared/data/curves/curves.json"
+        );
+        let text = std::fs::read_to_string(path).expect("../shared/data/curves/curves.json");
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        v["curves"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| {
+                let pts = c["points"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|p| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()])
+                    .collect();
+                (c["class"].as_str().unwrap().to_string(), pts)
+            })
+            .collect()
+    })
+}
+
+const OPTIONS: [FitConstraint; 3] = [
+    FitConstraint::Free,
+    FitConstraint::EndPoints,
+    FitConstraint::EndPointsAndLength,
+];
+
+/// One fit per iteration, cycling through all 72 curves; divan's median is then the median
+/// over curves and repetitions.
+#[divan::bench(args = OPTIONS)]
+fn fit_200_points(bencher: divan::Bencher, constraint: FitConstraint) {
+    let cs = curves();
+    let params = FitParams {
+        constraint,
+        ..Default::default()
+    };
+    let mut i = 0;
+    bencher.bench_local(|| {
+        i = (i + 1) % cs.len();
+        divan::black_box(fit_points(&cs[i].1, &params).ok())
+    });
+}

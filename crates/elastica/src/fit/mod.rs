@@ -1,0 +1,476 @@
+//! Fitting a planar curve by an elastica segment ("Hot Blade Cuttings for the Building
+//! Industries" §5.1): minimise the squared L2 distance of eq. (9) between the curve and
+//! the segment with points matched by arc length.
+//!
+//! The method:
+//! 1. **Data.** Points with arc-length parameters (given, or the polyline's chord lengths),
+//!    t = s/L, trapezoid weights in t so that the sum is the integral of eq. (9).
+//! 2. **Variable projection.** A segment is `a·z(t; θ) + b` with complex a = S·e^{iφ} and
+//!    b = x₀ + i y₀ ([`model`]); for fixed θ = (k, s₀, ℓ) the optimal a, b are a
+//!    weighted Procrustes solve (free) or fixed by the end points, so Levenberg–Marquardt
+//!    ([`lm`]) iterates on three parameters (two with a fixed length: ℓ is then solved from
+//!    the length equation and eliminated by the implicit function theorem).
+//! 3. **Initial guess** of §5.1 ([`guess`]), or a warm start from a previous segment.
+//! 4. **Lines and arcs** (λ = 0) are fitted as their own shapes (zero and one nonlinear
+//!    parameter) and win when they fit as well, so they never appear as k → 0, S → ∞.
+//! 5. **Self-consistent matching.** Chord lengths of sampled or noisy points are not the
+//!    curve's arc length (noise of σ at spacing h inflates them by ~σ²/h²). After the
+//!    arc-length-matched solve, [`odr`] moves each point's parameter to its foot on the
+//!    segment while refining the segment (Gauss–Newton on normal distances), so a point is
+//!    finally matched with the arc length of its foot. This recovers exact elastica to
+//!    rounding and removes the noise bias. Under end-point constraints the first and last
+//!    point keep t = 0 and t = 1.
+
+// The solvers walk several parallel arrays (points, weights, parameters, Jacobian rows) by
+// index; iterator zips of four slices read worse.
+#![allow(clippy::needless_range_loop)]
+
+mod guess;
+mod lm;
+mod model;
+mod odr;
+
+use crate::segment::Segment;
+use crate::unit::Family;
+use model::{Data, Placement, Shape, C};
+use serde::{Deserialize, Serialize};
+
+/// Which boundary data the fitted segment must reproduce exactly.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum FitConstraint {
+    /// Nothing: the best segment in the L2 sense.
+    #[default]
+    Free,
+    /// The first and last points are interpolated.
+    EndPoints,
+    /// End points interpolated and the length equal to the curve's (the skater-ramp
+    /// setting of the hot-blade paper §7).
+    EndPointsAndLength,
+}
+
+/// Options of [`fit_points`].
+#[derive(Clone, Debug)]
+pub struct FitParams {
+    /// Boundary constraints.
+    pub constraint: FitConstraint,
+    /// Levenberg–Marquardt iterations per solve.
+    pub max_iterations: usize,
+    /// Iterations of the orthogonal refinement that makes the arc-length matching
+    /// self-consistent (0 keeps the input's chord-length matching).
+    pub refine_iterations: usize,
+    /// Start from this segment (e.g. the fit of the neighbouring section) instead of the
+    /// §5.1 guess; the guess is still tried when the warm start fails.
+    pub warm_start: Option<Segment>,
+    /// Consider straight lines and circular arcs.
+    pub lines_and_arcs: bool,
+}
+
+impl Default for FitParams {
+    fn default() -> Self {
+        FitParams {
+            constraint: FitConstraint::Free,
+            max_iterations: 100,
+            refine_iterations: 50,
+            warm_start: None,
+            lines_and_arcs: true,
+        }
+    }
+}
+
+/// A fitted segment and how well it fits.
+#[derive(Clone, Debug, Serialize)]
+pub struct FitResult {
+    /// The segment; t = 0 and t = 1 are the feet of the first and last point.
+    pub segment: Segment,
+    /// Root-mean-square distance over arc length: √(∫|x − γ|² ds / L).
+    pub rms: f64,
+    /// Largest distance between a point and its matched point on the segment.
+    pub max: f64,
+    /// The L2 distance of eq. (9): √(∫|x − γ|² ds).
+    pub l2: f64,
+    /// Length of the input curve.
+    pub input_length: f64,
+    /// Levenberg–Marquardt iterations over all solves.
+    pub iterations: usize,
+    /// Whether the last solve met its convergence test.
+    pub converged: bool,
+    /// The parameter t of every input point on the segment.
+    pub t: Vec<f64>,
+}
+
+/// Why a fit could not be made.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum FitError {
+    /// Fewer than 3 points.
+    #[error("a curve needs at least 3 points to fit, got {0}")]
+    TooFewPoints(usize),
+    /// A coordinate or arc length is NaN or infinite.
+    #[error("point {0} is not finite")]
+    NonFinite(usize),
+    /// Arc-length parameters must increase strictly.
+    #[error("arc length does not increase at point {0} (repeated or reversed points)")]
+    NotIncreasing(usize),
+    /// The arc-length list does not match the points.
+    #[error("{points} points but {lengths} arc-length values")]
+    LengthMismatch {
+        /// Number of points.
+        points: usize,
+        /// Number of arc-length values.
+        lengths: usize,
+    },
+    /// With a fixed length the curve must be longer than its chord.
+    #[error("the requested length {length} is shorter than the chord {chord}")]
+    LengthBelowChord {
+        /// Requested length.
+        length: f64,
+        /// Distance between the end points.
+        chord: f64,
+    },
+    /// The end points coincide, so end-point constraints cannot place a segment.
+    #[error("the end points coincide (closed curve); end-point constraints need distinct ends")]
+    ClosedCurve,
+    /// No candidate produced a finite fit.
+    #[error("no elastica, arc or line could be fitted: {0}")]
+    Failed(String),
+}
+
+/// Fit points whose arc-length parameters are the chord lengths of the polyline.
+///
+/// ```
+/// use elastica::fit::{fit_points, FitParams};
+/// use elastica::segment::Segment;
+/// // a quarter circle of radius 2
+/// let pts: Vec<[f64; 2]> = (0..50)
+///     .map(|i| {
+///         let a = std::f64::consts::FRAC_PI_2 * i as f64 / 49.0;
+///         [2.0 * a.cos(), 2.0 * a.sin()]
+///     })
+///     .collect();
+/// let fit = fit_points(&pts, &FitParams::default()).unwrap();
+/// assert!(fit.rms < 1e-12);
+/// assert!(matches!(fit.segment, Segment::Arc { .. }));
+/// ```
+pub fn fit_points(points: &[[f64; 2]], params: &FitParams) -> Result<FitResult, FitError> {
+    let mut s = Vec::with_capacity(points.len());
+    let mut acc = 0.0;
+    for (i, p) in points.iter().enumerate() {
+        if !(p[0].is_finite() && p[1].is_finite()) {
+            return Err(FitError::NonFinite(i));
+        }
+        if i > 0 {
+            acc += (p[0] - points[i - 1][0]).hypot(p[1] - points[i - 1][1]);
+        }
+        s.push(acc);
+    }
+    fit_points_with_arclength(points, &s, params)
+}
+
+/// Fit points with given arc-length parameters `s` (increasing; the length is
+/// `s[last] − s[0]`, which is also the target length of
+/// [`FitConstraint::EndPointsAndLength`]).
+pub fn fit_points_with_arclength(
+    points: &[[f64; 2]],
+    s: &[f64],
+    params: &FitParams,
+) -> Result<FitResult, FitError> {
+    let n = points.len();
+    if n < 3 {
+        return Err(FitError::TooFewPoints(n));
+    }
+    if s.len() != n {
+        return Err(FitError::LengthMismatch {
+            points: n,
+            lengths: s.len(),
+        });
+    }
+    for i in 0..n {
+        if !(points[i][0].is_finite() && points[i][1].is_finite() && s[i].is_finite()) {
+            return Err(FitError::NonFinite(i));
+        }
+        if i > 0 && !(s[i] > s[i - 1]) {
+            return Err(FitError::NotIncreasing(i));
+        }
+    }
+    let length = s[n - 1] - s[0];
+    let t: Vec<f64> = s.iter().map(|v| (v - s[0]) / length).collect();
+    let data = Data {
+        p: points.iter().map(|p| C::new(p[0], p[1])).collect(),
+        w: weights(&t),
+        t,
+        length,
+    };
+    let chord = (data.p[n - 1] - data.p[0]).norm();
+    let placement = match params.constraint {
+        FitConstraint::Free => Placement::Free,
+        _ => {
+            if chord <= 1e-12 * length {
+                return Err(FitError::ClosedCurve);
+            }
+            Placement::EndPoints
+        }
+    };
+    let fixed_length = params.constraint == FitConstraint::EndPointsAndLength;
+    if fixed_length && chord > length * (1.0 + 1e-12) {
+        return Err(FitError::LengthBelowChord { length, chord });
+    }
+    fit_data(data, placement, fixed_length, params)
+}
+
+/// Fit a planar curve (e.g. a `geom` B-spline section) sampled at `samples` points of equal
+/// arc length.
+pub fn fit_curve(
+    curve: &dyn geom::planar::PlanarCurve,
+    samples: usize,
+    params: &FitParams,
+) -> Result<FitResult, FitError> {
+    let samples = samples.max(3);
+    let arc = geom::planar::ArcLength::new(curve, 4 * samples);
+    let total = arc.length();
+    let mut pts = Vec::with_capacity(samples);
+    let mut s = Vec::with_capacity(samples);
+    for i in 0..samples {
+        let si = total * i as f64 / (samples - 1) as f64;
+        let p = curve.point(arc.t_at(curve, si));
+        pts.push([p[0], p[1]]);
+        s.push(si);
+    }
+    fit_points_with_arclength(&pts, &s, params)
+}
+
+fn weights(t: &[f64]) -> Vec<f64> {
+    let n = t.len();
+    (0..n)
+        .map(|i| {
+            let lo = if i == 0 { t[0] } else { t[i - 1] };
+            let hi = if i + 1 == n { t[n - 1] } else { t[i + 1] };
+            0.5 * (hi - lo)
+        })
+        .collect()
+}
+
+/// A candidate shape with its start.
+struct Candidate {
+    shape: Shape,
+    theta: [f64; 3],
+}
+
+/// One fitted candidate.
+struct Fitted {
+    segment: Segment,
+    cost: f64,
+    data: Data,
+    iterations: usize,
+    converged: bool,
+}
+
+fn theta_of(seg: &Segment, fixed_length: bool) -> Option<Candidate> {
+    match *seg {
+        Segment::Elastica(p) => Some(Candidate {
+            shape: Shape::Elastica {
+                family: p.family,
+                fixed_length,
+            },
+            theta: [p.k, p.s0, p.l],
+        }),
+        _ => None,
+    }
+}
+
+fn fit_data(
+    data: Data,
+    placement: Placement,
+    fixed_length: bool,
+    params: &FitParams,
+) -> Result<FitResult, FitError> {
+    let input_length = data.length;
+    let local = guess::local_geometry(&data);
+    let mut candidates = Vec::new();
+    if params.lines_and_arcs {
+        if !fixed_length || model::chord_ratio(&data) >= 1.0 - 1e-12 {
+            candidates.push(Candidate {
+                shape: Shape::Line,
+                theta: [0.0; 3],
+            });
+        }
+        if !fixed_length {
+            candidates.push(Candidate {
+                shape: Shape::Circle { fixed: false },
+                theta: [guess::mean_curvature(&data, &local), 0.0, 0.0],
+            });
+        } else if let Some(kappa) = arc_curvature_for_length(&data, &local) {
+            candidates.push(Candidate {
+                shape: Shape::Circle { fixed: true },
+                theta: [kappa, 0.0, 0.0],
+            });
+        }
+    }
+    let mut elastica_starts: Vec<Candidate> = Vec::new();
+    if let Some(c) = params
+        .warm_start
+        .as_ref()
+        .and_then(|s| theta_of(s, fixed_length))
+    {
+        elastica_starts.push(c);
+    }
+    if placement != Placement::Free && params.warm_start.is_none() {
+        // constrained fits start from the free fit, which is close and robust to find
+        let free = FitParams {
+            constraint: FitConstraint::Free,
+            lines_and_arcs: false,
+            ..params.clone()
+        };
+        if let Ok(f) = fit_data(data.clone(), Placement::Free, false, &free) {
+            if let Some(c) = theta_of(&f.segment, fixed_length) {
+                elastica_starts.push(c);
+            }
+        }
+    }
+    if let Some((family, theta)) = guess::elastica_guess(&data, &local) {
+        elastica_starts.push(Candidate {
+            shape: Shape::Elastica {
+                family,
+                fixed_length,
+            },
+            theta,
+        });
+    }
+
+    let mut best: Option<Fitted> = None;
+    let mut iterations = 0;
+    let consider = |f: Fitted, best: &mut Option<Fitted>, simple: bool| {
+        let better = match best {
+            None => true,
+            Some(b) => {
+                if simple {
+                    f.cost < b.cost
+                } else {
+                    // an elastica must beat a line or arc clearly to replace it
+                    f.cost < b.cost * (1.0 - 1e-6) - (1e-13 * f.data.length).powi(2)
+                }
+            }
+        };
+        if better {
+            *best = Some(f);
+        }
+    };
+    for c in &candidates {
+        if let Some(f) = run(c, &data, placement, params) {
+            iterations += f.iterations;
+            consider(f, &mut best, true);
+        }
+    }
+    for c in &elastica_starts {
+        if let Some(f) = run(c, &data, placement, params) {
+            iterations += f.iterations;
+            consider(f, &mut best, false);
+        }
+    }
+    let best = best.ok_or_else(|| FitError::Failed("every candidate diverged".into()))?;
+    finish(best, iterations, input_length)
+}
+
+/// Curvature of the arc with the data's end points and length (sign from the data).
+fn arc_curvature_for_length(data: &Data, local: &guess::Local) -> Option<f64> {
+    let rho = model::chord_ratio(data);
+    if rho >= 1.0 {
+        return Some(0.0);
+    }
+    // sinc(x) = ρ with x = κL/2 ∈ (0, π): bisection (sinc decreases on (0, π))
+    let (mut lo, mut hi) = (0.0f64, std::f64::consts::PI);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if crate::segment::sinc(mid) > rho {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let sign = if guess::mean_curvature(data, local) < 0.0 {
+        -1.0
+    } else {
+        1.0
+    };
+    Some(sign * 2.0 * lo / data.length)
+}
+
+/// Solve one candidate by arc-length matching, then refine orthogonally and map the feet of
+/// the first and last point to t = 0 and t = 1.
+fn run(c: &Candidate, data: &Data, placement: Placement, params: &FitParams) -> Option<Fitted> {
+    let mut data = data.clone();
+    let solved = lm::solve(&c.shape, c.theta, &data, placement, params.max_iterations)?;
+    let mut iterations = solved.iterations;
+    let solved = if params.refine_iterations > 0 {
+        let before = solved.iterations;
+        let r = odr::refine(
+            &c.shape,
+            solved,
+            &mut data,
+            placement,
+            params.refine_iterations,
+        );
+        iterations += r.iterations - before;
+        r
+    } else {
+        solved
+    };
+    let seg = c
+        .shape
+        .segment(&solved.theta, solved.l, solved.a, solved.b, data.length);
+    let n = data.t.len();
+    let (t0, t1) = (data.t[0], data.t[n - 1]);
+    let span = t1 - t0;
+    if !(span > 0.0) {
+        return None;
+    }
+    let len = seg.length();
+    let segment = if (t0 != 0.0 || t1 != 1.0) && len > 0.0 {
+        seg.extended(-t0 * len, (t1 - 1.0) * len)
+    } else {
+        seg
+    };
+    for t in data.t.iter_mut() {
+        *t = (*t - t0) / span;
+    }
+    Some(Fitted {
+        segment,
+        cost: solved.cost,
+        data,
+        iterations,
+        converged: solved.converged,
+    })
+}
+
+fn finish(best: Fitted, iterations: usize, input_length: f64) -> Result<FitResult, FitError> {
+    let data = &best.data;
+    let eval = best
+        .segment
+        .evaluator()
+        .map_err(|e| FitError::Failed(e.to_string()))?;
+    let mut max: f64 = 0.0;
+    let mut sum = 0.0;
+    for i in 0..data.t.len() {
+        let q = eval.eval(data.t[i]).p;
+        let d = (q[0] - data.p[i].re).hypot(q[1] - data.p[i].im);
+        max = max.max(d);
+        sum += data.w[i] * d * d;
+    }
+    Ok(FitResult {
+        segment: best.segment,
+        rms: sum.sqrt(),
+        max,
+        l2: (sum * input_length).sqrt(),
+        input_length,
+        iterations,
+        converged: best.converged,
+        t: data.t.clone(),
+    })
+}
+
+/// Family and modulus of a fitted elastica, for reports.
+pub fn family_of(seg: &Segment) -> Option<Family> {
+    match seg {
+        Segment::Elastica(p) => Some(p.family),
+        _ => None,
+    }
+}
