@@ -5,10 +5,14 @@
 //! computes discrete elastica from boundary data, and extends a fitted segment to the
 //! blade's length to give the robots their targets.
 
+/// Extension of a fitted segment to the blade length; robot end data and blade checks.
+pub mod blade;
 /// Carlson's symmetric elliptic integrals R_F, R_D.
 pub mod carlson;
 /// Double-double arithmetic for the quarter period.
 mod dd;
+/// Discrete elastica from boundary data (turning-angle energy, Newton–KKT).
+pub mod discrete;
 /// Jacobi elliptic functions, epsilon function, complete integrals.
 pub mod elliptic;
 /// Fitting curves by elastica segments (variable projection + Levenberg–Marquardt).

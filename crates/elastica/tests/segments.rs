@@ -216,3 +216,97 @@ fn reproduces_the_shared_exact_curves() {
     }
     assert_eq!(checked, 24);
 }
+
+#[test]
+fn blade_extends_along_the_elastica_and_counts_inflections() {
+    use elastica::blade::{extend_to_blade, BladeError, BladeParams};
+    // one full inflection inside the section, another one in the lead-out
+    let p = ElasticaParams {
+        family: Family::Inflectional,
+        k: 0.7,
+        s0: 0.2,
+        l: 2.5,
+        scale: 0.4,
+        phi: 0.3,
+        x0: 1.0,
+        y0: -1.0,
+    };
+    let section = Segment::Elastica(p);
+    assert_eq!(section.inflections().unwrap().len(), 1);
+    let params = BladeParams {
+        length: 3.0,
+        lead_in_share: 0.25,
+        max_curvature: Some(2.0),
+        max_inflections: Some(1),
+    };
+    let blade = extend_to_blade(&section, &params).unwrap();
+    assert!((blade.segment.length() - 3.0).abs() < 1e-12);
+    assert!((blade.lead_in - 0.25 * (3.0 - 1.0)).abs() < 1e-12);
+    // the section's own points lie on the blade
+    let mid = section.eval(0.5).unwrap().p;
+    let tb = (blade.lead_in + 0.5 * section.length()) / 3.0;
+    let on = blade.segment.eval(tb).unwrap().p;
+    assert!((mid[0] - on[0]).abs() < 1e-12 && (mid[1] - on[1]).abs() < 1e-12);
+    assert!(blade.inflections >= 2 && !blade.inflections_ok);
+    // max |κ| = 2k/S = 3.5 is reached on the blade
+    assert!((blade.max_abs_curvature - 3.5).abs() < 1e-12 && !blade.curvature_ok);
+    let start = blade.segment.eval(0.0).unwrap();
+    assert_eq!(blade.ends[0].position, start.p);
+    assert!(matches!(
+        extend_to_blade(&section, &BladeParams::new(0.5)),
+        Err(BladeError::TooShort { .. })
+    ));
+    assert!(extend_to_blade(&section, &BladeParams::new(f64::NAN)).is_err());
+}
+
+/// The discrete elastica with the boundary data of a closed-form segment converges to it at
+/// second order in the segment length (the error drops ~4× when n doubles).
+#[test]
+fn discrete_elastica_converges_to_the_closed_form() {
+    use elastica::discrete::{discrete_elastica, DiscreteParams};
+    for (family, k, s0, l) in [
+        (Family::Inflectional, 0.6, -0.4, 2.4),
+        (Family::NonInflectional, 0.9, 0.2, 1.5),
+    ] {
+        let seg = Segment::Elastica(ElasticaParams {
+            family,
+            k,
+            s0,
+            l,
+            scale: 0.8,
+            phi: 0.4,
+            x0: 0.5,
+            y0: 0.1,
+        });
+        let (a, b) = (seg.eval(0.0).unwrap(), seg.eval(1.0).unwrap());
+        let mut errors = Vec::new();
+        for n in [16usize, 32, 64, 128] {
+            let d = discrete_elastica(&DiscreteParams {
+                segments: n,
+                start: a.p,
+                start_angle: a.angle,
+                end: b.p,
+                end_angle: b.angle,
+                length: seg.length(),
+                max_iterations: 100,
+            })
+            .unwrap();
+            let err = d
+                .points
+                .iter()
+                .enumerate()
+                .map(|(j, v)| {
+                    let q = seg.eval(j as f64 / n as f64).unwrap().p;
+                    (v[0] - q[0]).hypot(v[1] - q[1])
+                })
+                .fold(0.0, f64::max);
+            errors.push(err);
+        }
+        println!("{family:?}: {errors:?}");
+        for w in errors.windows(2) {
+            let rate = (w[0] / w[1]).log2();
+            assert!(rate > 1.8, "{family:?}: order {rate} ({errors:?})");
+        }
+        assert!(errors[3] < 1e-4 * seg.length());
+    }
+}
