@@ -27,7 +27,11 @@ fn eval(v: &Value) -> Result<Value, String> {
     let family = match v.get("family").and_then(Value::as_str) {
         Some("inflectional") => Family::Inflectional,
         Some("noninflectional") => Family::NonInflectional,
-        other => return Err(format!("family must be inflectional or noninflectional, got {other:?}")),
+        other => {
+            return Err(format!(
+                "family must be inflectional or noninflectional, got {other:?}"
+            ))
+        }
     };
     let params = ElasticaParams {
         family,
@@ -41,7 +45,9 @@ fn eval(v: &Value) -> Result<Value, String> {
     };
     let seg = ElasticaSegment::new(params).map_err(|e| e.to_string())?;
     let p = seg.eval(f("t")?);
-    Ok(json!({"x": num(p.p[0]), "y": num(p.p[1]), "theta": num(p.angle), "kappa": num(p.curvature)}))
+    Ok(
+        json!({"x": num(p.p[0]), "y": num(p.p[1]), "theta": num(p.angle), "kappa": num(p.curvature)}),
+    )
 }
 
 fn main() {

@@ -20,18 +20,18 @@
 //!    `dn = ((1−k₁) + k₁c²)/(1+k₁s²)` with `s, c, d` at `z/(1+k₁)` and modulus `k₁`; the
 //!    moduli fall quadratically (at most 9 steps for m = 1 − 2⁻⁵³), and at the bottom
 //!    (m < 3·10⁻⁹) the first-order series of A&S 16.13 is exact to rounding. The chain of
-//!    moduli depends on m only and is computed once per [`Elliptic`].
+//!    moduli depends on m only and is computed once per [`Elliptic`](crate::elliptic::Elliptic).
 //! 4. **Epsilon function.** `E(v) = v − m·D(v)` with `D(v) = (v − E(v))/m = ∫₀^v sn² =
-//!    sn³ R_D(cn², dn², 1)/3` (DLMF 19.25.? with `F(am v) = v`), Carlson's symmetric
+//!    sn³ R_D(cn², dn², 1)/3` (from DLMF 19.25.9 with `F(am v) = v`), Carlson's symmetric
 //!    integral by duplication ([`crate::carlson`]). Writing E through D avoids the
 //!    cancellation in `v − E(v)` for small m that the non-inflectional elastica needs.
 //! 5. **Complete integrals.** `K = π / (2 AGM(1, k′))` (double-double), and
 //!    `E(m) = K − m R_D(0, 1−m, 1)/3` (DLMF 19.25.1).
 //!
 //! m = 1 is handled in closed form (sn = tanh, cn = dn = sech, am = gd, E(u) = tanh u,
-//! K = ∞) and never overflows for large u. Accuracy against 50-digit references
-//! (`tests/elliptic_reference.rs`, generated with mpmath): see the crate's
-//! `BENCHMARKS.md`/README for the measured maxima.
+//! K = ∞) and never overflows for large u. Accuracy against 60-digit references
+//! (`tests/elliptic_reference.rs`, generated with mpmath): see
+//! `BENCHMARKS.md` (repository root) for the measured maxima.
 
 use crate::carlson::carlson_rd;
 use crate::dd::{Dd, PI};

@@ -6,16 +6,16 @@
 //! 1. **Data.** Points with arc-length parameters (given, or the polyline's chord lengths),
 //!    t = s/L, trapezoid weights in t so that the sum is the integral of eq. (9).
 //! 2. **Variable projection.** A segment is `a·z(t; θ) + b` with complex a = S·e^{iφ} and
-//!    b = x₀ + i y₀ ([`model`]); for fixed θ = (k, s₀, ℓ) the optimal a, b are a
+//!    b = x₀ + i y₀ (module `model`); for fixed θ = (k, s₀, ℓ) the optimal a, b are a
 //!    weighted Procrustes solve (free) or fixed by the end points, so Levenberg–Marquardt
-//!    ([`lm`]) iterates on three parameters (two with a fixed length: ℓ is then solved from
+//!    (module `lm`) iterates on three parameters (two with a fixed length: ℓ is then solved from
 //!    the length equation and eliminated by the implicit function theorem).
-//! 3. **Initial guess** of §5.1 ([`guess`]), or a warm start from a previous segment.
+//! 3. **Initial guess** of §5.1 (module `guess`), or a warm start from a previous segment.
 //! 4. **Lines and arcs** (λ = 0) are fitted as their own shapes (zero and one nonlinear
 //!    parameter) and win when they fit as well, so they never appear as k → 0, S → ∞.
 //! 5. **Self-consistent matching.** Chord lengths of sampled or noisy points are not the
 //!    curve's arc length (noise of σ at spacing h inflates them by ~σ²/h²). After the
-//!    arc-length-matched solve, [`odr`] moves each point's parameter to its foot on the
+//!    arc-length-matched solve, module `odr` moves each point's parameter to its foot on the
 //!    segment while refining the segment (Gauss–Newton on normal distances), so a point is
 //!    finally matched with the arc length of its foot. This recovers exact elastica to
 //!    rounding and removes the noise bias. Under end-point constraints the first and last
