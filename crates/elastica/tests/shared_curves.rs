@@ -143,3 +143,76 @@ fn end_point_fits_of_the_shared_curves() {
 fn end_point_and_length_fits_of_the_shared_curves() {
     run(FitConstraint::EndPointsAndLength);
 }
+
+/// Points sampled from exact segments (both families; 0, 1 and 2 inflections; both turning
+/// directions) are recovered to RMS ≤ 1e-7 × length; lines and arcs fit exactly as lines
+/// and arcs (no failure, no huge S).
+#[test]
+fn sampled_segments_lines_and_arcs_are_recovered() {
+    use elastica::segment::{ElasticaParams, Segment};
+    use elastica::unit::Family;
+    let e = |family, k, s0, l| {
+        Segment::Elastica(ElasticaParams {
+            family,
+            k,
+            s0,
+            l,
+            scale: 0.7,
+            phi: -0.6,
+            x0: 0.3,
+            y0: 2.0,
+        })
+    };
+    let cases = [
+        (e(Family::Inflectional, 0.5, 0.3, 1.2), 0),
+        (e(Family::Inflectional, 0.7, 0.5, 2.5), 1),
+        (e(Family::Inflectional, 0.6, 0.5, 5.5), 2),
+        (e(Family::NonInflectional, 0.8, 0.1, 2.0), 0),
+        (e(Family::NonInflectional, 0.8, 2.1, -2.0), 0),
+        (
+            Segment::Line {
+                x0: 1.0,
+                y0: -2.0,
+                phi: 0.3,
+                length: 2.5,
+            },
+            0,
+        ),
+        (
+            Segment::Arc {
+                x0: 0.0,
+                y0: 0.0,
+                phi: 1.0,
+                curvature: -0.8,
+                length: 3.0,
+            },
+            0,
+        ),
+    ];
+    for (seg, infl) in cases {
+        assert_eq!(seg.inflections().unwrap().len(), infl, "{seg:?}");
+        let pts = seg.sample(150).unwrap();
+        for constraint in [FitConstraint::Free, FitConstraint::EndPoints] {
+            let fit = fit_points(
+                &pts,
+                &FitParams {
+                    constraint,
+                    ..Default::default()
+                },
+            )
+            .unwrap_or_else(|err| panic!("{seg:?}: {err}"));
+            assert!(
+                fit.rms <= 1e-7 * seg.length(),
+                "{seg:?} {constraint:?}: {:e}",
+                fit.rms
+            );
+            assert_eq!(fit.segment.inflections().unwrap().len(), infl);
+            match (&seg, &fit.segment) {
+                (Segment::Line { .. }, got) => assert_eq!(got.kind(), "line", "{got:?}"),
+                (Segment::Arc { .. }, got) => assert_eq!(got.kind(), "arc", "{got:?}"),
+                (_, Segment::Elastica(p)) => assert!(p.scale < 1e3, "{p:?}"),
+                _ => {}
+            }
+        }
+    }
+}

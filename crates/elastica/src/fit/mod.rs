@@ -338,17 +338,12 @@ fn fit_data(
 
     let mut best: Option<Fitted> = None;
     let mut iterations = 0;
-    let consider = |f: Fitted, best: &mut Option<Fitted>, simple: bool| {
+    // candidates come simplest first (line, arc, elastica starts); a later one must beat
+    // the best so far clearly, so a straight section stays a line and a circular one an arc
+    let consider = |f: Fitted, best: &mut Option<Fitted>, _simple: bool| {
         let better = match best {
             None => true,
-            Some(b) => {
-                if simple {
-                    f.cost < b.cost
-                } else {
-                    // an elastica must beat a line or arc clearly to replace it
-                    f.cost < b.cost * (1.0 - 1e-6) - (1e-13 * f.data.length).powi(2)
-                }
-            }
+            Some(b) => f.cost < b.cost * (1.0 - 1e-6) - (1e-13 * f.data.length).powi(2),
         };
         if better {
             *best = Some(f);
