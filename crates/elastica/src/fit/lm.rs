@@ -6,7 +6,7 @@
 //! the residual evaluation that a generic problem trait hides.
 
 use super::model::{cost, jacobian, place, plausible, Data, Placement, Shape, C};
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 /// Outcome of one solve.
 #[derive(Clone, Debug)]
@@ -67,21 +67,10 @@ pub(crate) fn solve(
                 }
             }
         }
-        for j in 0..3 {
-            for k in 0..j {
-                h[(j, k)] = h[(k, j)];
-            }
-            if j >= dims {
-                h[(j, j)] = 1.0;
-            }
-        }
+        symmetrize_and_pad(&mut h, dims);
         let mut accepted = false;
         for _ in 0..30 {
-            let mut damped = h;
-            for j in 0..dims {
-                damped[(j, j)] += mu * h[(j, j)].max(1e-30);
-            }
-            let Some(step) = damped.cholesky().map(|c| c.solve(&(-g))) else {
+            let Some(step) = damped_step(&h, &g, dims, mu) else {
                 mu *= 10.0;
                 continue;
             };
@@ -134,4 +123,31 @@ pub(crate) fn solve(
         }
     }
     Some(out)
+}
+
+/// Fill the lower triangle of a normal matrix built upper-only and put 1 on the diagonal of
+/// the unused trailing parameters, so a fixed-size solve works for any `dims ≤ N`.
+pub(crate) fn symmetrize_and_pad<const N: usize>(h: &mut SMatrix<f64, N, N>, dims: usize) {
+    for j in 0..N {
+        for k in 0..j {
+            h[(j, k)] = h[(k, j)];
+        }
+        if j >= dims {
+            h[(j, j)] = 1.0;
+        }
+    }
+}
+
+/// The Levenberg–Marquardt step (H + μ diag H) δ = −g, or `None` when not positive definite.
+pub(crate) fn damped_step<const N: usize>(
+    h: &SMatrix<f64, N, N>,
+    g: &SVector<f64, N>,
+    dims: usize,
+    mu: f64,
+) -> Option<SVector<f64, N>> {
+    let mut damped = *h;
+    for j in 0..dims {
+        damped[(j, j)] += mu * h[(j, j)].max(1e-300);
+    }
+    damped.cholesky().map(|c| c.solve(&(-g)))
 }

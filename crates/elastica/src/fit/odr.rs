@@ -7,7 +7,7 @@
 //! chord lengths on noisy points. Converges quadratically for small residuals, where
 //! alternating "fit, then re-foot" converges only linearly.
 
-use super::lm::Solved;
+use super::lm::{damped_step, symmetrize_and_pad, Solved};
 use super::model::{jacobian, place, plausible, Data, Placement, Shape, ShapeEval, C};
 use nalgebra::{SMatrix, SVector};
 
@@ -120,23 +120,12 @@ pub(crate) fn refine(
                 }
             }
         }
-        for j in 0..7 {
-            for k in 0..j {
-                h[(j, k)] = h[(k, j)];
-            }
-            if j >= nparams {
-                h[(j, j)] = 1.0;
-            }
-        }
+        symmetrize_and_pad(&mut h, nparams);
         // the feet move with the current segment before the step is tried
         move_feet(data, &shift);
         let mut accepted = false;
         for _ in 0..25 {
-            let mut damped = h;
-            for j in 0..nparams {
-                damped[(j, j)] += mu * h[(j, j)].max(1e-300);
-            }
-            let Some(step) = damped.cholesky().map(|c| c.solve(&(-g))) else {
+            let Some(step) = damped_step(&h, &g, nparams, mu) else {
                 mu *= 10.0;
                 continue;
             };
