@@ -4,50 +4,25 @@
 //!
 //! `cargo run --release -p elastica --example elliptic < cases.jsonl`
 
+mod common;
+
+use common::num;
 use elastica::elliptic::Elliptic;
 use serde_json::{json, Value};
-use std::io::{BufRead, Write};
-
-fn num(x: f64) -> Value {
-    if x.is_finite() {
-        // 17 significant digits round-trip every f64
-        let s = format!("{x:.16e}");
-        serde_json::from_str(&s).unwrap_or(Value::Null)
-    } else {
-        Value::String(format!("{x}"))
-    }
-}
 
 fn main() {
-    let stdin = std::io::stdin();
-    let stdout = std::io::stdout();
-    let mut out = stdout.lock();
-    for (lineno, line) in stdin.lock().lines().enumerate() {
-        let Ok(line) = line else { break };
-        if line.trim().is_empty() {
-            continue;
-        }
-        let reply = match serde_json::from_str::<Value>(&line) {
-            Ok(v) => {
-                let id = v.get("id").cloned().unwrap_or(Value::Null);
-                let u = v.get("u").and_then(Value::as_f64);
-                let m = v.get("m").and_then(Value::as_f64);
-                match (u, m) {
-                    (Some(u), Some(m)) => match Elliptic::new(m) {
-                        Ok(e) => {
-                            let r = e.eval(u);
-                            json!({"id": id, "sn": num(r.sn), "cn": num(r.cn), "dn": num(r.dn),
-                                   "am": num(r.am), "eps": num(r.eps), "K": num(e.k()), "E": num(e.e())})
-                        }
-                        Err(err) => json!({"id": id, "error": err.to_string()}),
-                    },
-                    _ => json!({"id": id, "error": "need numbers u and m"}),
-                }
-            }
-            Err(err) => json!({"error": format!("line {}: {err}", lineno + 1)}),
+    common::serve(|v| {
+        let get = |k: &str| {
+            v.get(k)
+                .and_then(Value::as_f64)
+                .ok_or(format!("missing number {k}"))
         };
-        if writeln!(out, "{reply}").is_err() {
-            break;
-        }
-    }
+        let (u, m) = (get("u")?, get("m")?);
+        let e = Elliptic::new(m).map_err(|e| e.to_string())?;
+        let r = e.eval(u);
+        Ok(
+            json!({"sn": num(r.sn), "cn": num(r.cn), "dn": num(r.dn), "am": num(r.am),
+                  "eps": num(r.eps), "K": num(e.k()), "E": num(e.e())}),
+        )
+    });
 }

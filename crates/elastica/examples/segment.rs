@@ -5,18 +5,12 @@
 //!
 //! `cargo run --release -p elastica --example segment < points.jsonl`
 
+mod common;
+
+use common::num;
 use elastica::segment::{ElasticaParams, ElasticaSegment};
 use elastica::unit::Family;
 use serde_json::{json, Value};
-use std::io::{BufRead, Write};
-
-fn num(x: f64) -> Value {
-    if x.is_finite() {
-        serde_json::from_str(&format!("{x:.16e}")).unwrap_or(Value::Null)
-    } else {
-        Value::String(format!("{x}"))
-    }
-}
 
 fn eval(v: &Value) -> Result<Value, String> {
     let f = |k: &str| {
@@ -51,29 +45,5 @@ fn eval(v: &Value) -> Result<Value, String> {
 }
 
 fn main() {
-    let stdin = std::io::stdin();
-    let stdout = std::io::stdout();
-    let mut out = stdout.lock();
-    for line in stdin.lock().lines() {
-        let Ok(line) = line else { break };
-        if line.trim().is_empty() {
-            continue;
-        }
-        let reply = match serde_json::from_str::<Value>(&line) {
-            Ok(v) => {
-                let id = v.get("id").cloned().unwrap_or(Value::Null);
-                match eval(&v) {
-                    Ok(mut r) => {
-                        r["id"] = id;
-                        r
-                    }
-                    Err(e) => json!({"id": id, "error": e}),
-                }
-            }
-            Err(e) => json!({"error": e.to_string()}),
-        };
-        if writeln!(out, "{reply}").is_err() {
-            break;
-        }
-    }
+    common::serve(eval);
 }
