@@ -21,10 +21,14 @@
 //!    moduli fall quadratically (at most 9 steps for m = 1 − 2⁻⁵³), and at the bottom
 //!    (m < 3·10⁻⁹) the first-order series of A&S 16.13 is exact to rounding. The chain of
 //!    moduli depends on m only and is computed once per [`Elliptic`](crate::elliptic::Elliptic).
-//! 4. **Epsilon function.** `E(v) = v − m·D(v)` with `D(v) = (v − E(v))/m = ∫₀^v sn² =
-//!    sn³ R_D(cn², dn², 1)/3` (from DLMF 19.25.9 with `F(am v) = v`), Carlson's symmetric
-//!    integral by duplication ([`crate::carlson`]). Writing E through D avoids the
-//!    cancellation in `v − E(v)` for small m that the non-inflectional elastica needs.
+//! 4. **Epsilon function.** `E(v) = v − m·D(v)` with `D(v) = (v − E(v))/m = ∫₀^v sn²`,
+//!    climbed up the same Landen chain as sn, cn, dn: at the bottom D is the integral of
+//!    the first-order series, and each level applies
+//!    `D(u|k) = (1+k₁)/2 · (u₁ − s c d/(1 + k₁s²) + k₁ D(u₁|k₁))` (derived in
+//!    `scd_small`). Writing E through D avoids the cancellation in `v − E(v)` for small m
+//!    that the non-inflectional elastica needs, and costs a few multiplications per level
+//!    (Carlson's R_D, `D = sn³ R_D(cn², dn², 1)/3` by DLMF 19.25.9, gives the same values
+//!    at about twice the price of the whole evaluation).
 //! 5. **Complete integrals.** `K = π / (2 AGM(1, k′))` (double-double), and
 //!    `E(m) = K − m R_D(0, 1−m, 1)/3` (DLMF 19.25.1).
 //!
@@ -196,9 +200,16 @@ impl Elliptic {
         self.dk
     }
 
-    /// sn, cn, dn at `w` with |w| ≤ K/2 scaled down to the bottom of the Landen chain,
-    /// climbed back up; returns relatively accurate (s, c, d).
-    fn scd_small(&self, v: f64) -> (f64, f64, f64) {
+    /// sn, cn, dn and D = ∫₀^v sn² at `v` with |v| ≤ K/2: scaled down to the bottom of the
+    /// Landen chain, evaluated by the first-order series in m there, climbed back up;
+    /// returns relatively accurate (s, c, d) and D to absolute accuracy.
+    ///
+    /// D climbs with the Landen transformation of ∫ sn² (derived for this crate from
+    /// `m sn²(u|k) = 4y s²/(1 + y s²)²` and `d/du [s c d/(1 + y s²)]`, with s, c, d at
+    /// `u/(1+y)` and modulus y = k₁): `D(u|k) = (1+y)/2 · (u₁ − s c d/(1 + y s²) + y D(u₁|y))`.
+    /// It costs a few multiplications per level, against the ~5 duplication steps (15 square
+    /// roots) of Carlson's R_D.
+    fn scd_small(&self, v: f64) -> (f64, f64, f64, f64) {
         let w = v * self.bottom_scale;
         let (sw, cw) = w.sin_cos();
         let mb = self.bottom_m;
@@ -206,25 +217,44 @@ impl Elliptic {
         let mut s = sw - corr * cw;
         let mut c = cw + corr * sw;
         let mut d = 1.0 - 0.5 * mb * sw * sw;
+        // ∫₀^w sn²(t|m_b) to first order in m_b (A&S 16.13 integrated)
+        let (s2w, c2w) = (2.0 * sw * cw, (cw - sw) * (cw + sw));
+        let mut dint = 0.5 * (w - sw * cw)
+            - 0.5 * mb * (-0.25 * w * c2w + 0.125 * s2w - 0.125 * w + 0.0625 * s2w * c2w);
+        let mut u = w;
         for &(k1, one_minus_k1) in self.chain[..self.levels].iter().rev() {
             let den = 1.0 + k1 * s * s;
-            let s_up = (1.0 + k1) * s / den;
-            let c_up = c * d / den;
+            let inv = 1.0 / den;
+            dint = 0.5 * (1.0 + k1) * (u - s * c * d * inv + k1 * dint);
+            u *= 1.0 + k1;
+            let s_up = (1.0 + k1) * s * inv;
+            let c_up = c * d * inv;
             // 1 − k₁s² written without cancellation on either side of s² = ½
             let d_up = if s * s < 0.5 {
-                (1.0 - k1 * s * s) / den
+                (1.0 - k1 * s * s) * inv
             } else {
-                (one_minus_k1 + k1 * c * c) / den
+                (one_minus_k1 + k1 * c * c) * inv
             };
             s = s_up;
             c = c_up;
             d = d_up;
         }
-        (s, c, d)
+        (s, c, d, dint)
     }
 
     /// Evaluate sn, cn, dn, am, E(u|m) and D(u|m) at `u`. Non-finite `u` gives NaN.
     pub fn eval(&self, u: f64) -> JacobiValues {
+        self.eval_inner(u, true)
+    }
+
+    /// [`Elliptic::eval`] without the amplitude (`am` is NaN): saves an `atan2` where only
+    /// sn, cn, dn, E and D are needed (the fitting loops).
+    pub(crate) fn eval_no_am(&self, u: f64) -> JacobiValues {
+        self.eval_inner(u, false)
+    }
+
+    #[inline(always)]
+    fn eval_inner(&self, u: f64, want_am: bool) -> JacobiValues {
         if !u.is_finite() {
             return JacobiValues {
                 sn: f64::NAN,
@@ -242,7 +272,7 @@ impl Elliptic {
                 sn: t,
                 cn: sech,
                 dn: sech,
-                am: u.sinh().atan(),
+                am: if want_am { u.sinh().atan() } else { f64::NAN },
                 eps: t,
                 d: u - t,
             };
@@ -254,23 +284,21 @@ impl Elliptic {
         let a = r.abs().min(kk);
         let (mut sn, mut cn, dn, mut am, mut eps, mut d);
         if a <= 0.5 * kk {
-            let (s, c, dd) = self.scd_small(a);
-            let dv = s * s * s * carlson_rd(c * c, dd * dd, 1.0) / 3.0;
+            let (s, c, dd, dv) = self.scd_small(a);
             sn = s;
             cn = c;
             dn = dd;
-            am = s.atan2(c);
+            am = if want_am { s.atan2(c) } else { f64::NAN };
             d = dv;
             eps = a - self.m * dv;
         } else {
             let v = ((kk - a) + self.k.lo).max(0.0);
-            let (s, c, dd) = self.scd_small(v);
-            let dv = s * s * s * carlson_rd(c * c, dd * dd, 1.0) / 3.0;
+            let (s, c, dd, dv) = self.scd_small(v);
             let ev = v - self.m * dv;
             sn = c / dd;
             cn = self.kp * s / dd;
             dn = self.kp / dd;
-            am = sn.atan2(cn);
+            am = if want_am { sn.atan2(cn) } else { f64::NAN };
             eps = self.e - ev + self.m * s * sn;
             d = self.dk - dv - s * sn;
         }

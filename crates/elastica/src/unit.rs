@@ -80,20 +80,35 @@ impl UnitElastica {
 
     /// Position, tangent, angle and curvature at arc length σ.
     pub fn eval(&self, sigma: f64) -> UnitPoint {
-        self.eval_impl(sigma, false).0
+        self.eval_impl(sigma, false, true).0
     }
 
     /// [`UnitElastica::eval`] plus the derivative of the position with respect to k.
     pub fn eval_dk(&self, sigma: f64) -> (UnitPoint, [f64; 2]) {
-        self.eval_impl(sigma, true)
+        self.eval_impl(sigma, true, true)
     }
 
-    fn eval_impl(&self, sigma: f64, want_dk: bool) -> (UnitPoint, [f64; 2]) {
+    /// Position, unit tangent and ∂position/∂k without the tangent angle (which costs
+    /// `atan2`s the fitting loops do not need).
+    pub(crate) fn eval_fit(&self, sigma: f64) -> ([f64; 2], [f64; 2], [f64; 2]) {
+        let (u, dk) = self.eval_impl(sigma, true, false);
+        (u.p, u.t, dk)
+    }
+
+    #[inline(always)]
+    fn eval_impl(&self, sigma: f64, want_dk: bool, want_theta: bool) -> (UnitPoint, [f64; 2]) {
         let k = self.k;
         let m = k * k;
+        let jacobi = |u: f64| {
+            if want_theta {
+                self.ell.eval(u)
+            } else {
+                self.ell.eval_no_am(u)
+            }
+        };
         match self.family {
             Family::Inflectional => {
-                let v = self.ell.eval(sigma);
+                let v = jacobi(sigma);
                 let one_minus_cn = if v.cn > 0.0 {
                     v.sn * v.sn / (1.0 + v.cn)
                 } else {
@@ -101,7 +116,11 @@ impl UnitElastica {
                 };
                 let p = [2.0 * v.eps - sigma, 2.0 * k * one_minus_cn];
                 let t = [1.0 - 2.0 * m * v.sn * v.sn, 2.0 * k * v.sn * v.dn];
-                let theta = 2.0 * (k * v.sn).atan2(v.dn);
+                let theta = if want_theta {
+                    2.0 * (k * v.sn).atan2(v.dn)
+                } else {
+                    f64::NAN
+                };
                 let up = UnitPoint {
                     p,
                     t,
@@ -118,7 +137,7 @@ impl UnitElastica {
             }
             Family::NonInflectional => {
                 let u = sigma / k;
-                let v = self.ell.eval(u);
+                let v = jacobi(u);
                 let s2 = v.sn * v.sn;
                 let p = [sigma - 2.0 * k * v.d, 2.0 * k * s2 / (1.0 + v.dn)];
                 let t = [v.cn * v.cn - s2, 2.0 * v.sn * v.cn];

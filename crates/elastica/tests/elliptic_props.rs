@@ -39,6 +39,16 @@ proptest! {
         prop_assert!((fd(a.dn, b.dn) + m * c.sn * c.cn).abs() < 1e-9);
         prop_assert!((fd(a.am, b.am) - c.dn).abs() < 1e-9);
         prop_assert!((fd(a.eps, b.eps) - c.dn * c.dn).abs() < 1e-9);
+        // D = ∫ sn² is computed on its own (Landen recursion), not as (u − E)/m
+        prop_assert!((fd(a.d, b.d) - c.sn * c.sn).abs() < 1e-9);
+    }
+
+    /// D(u|m) = ∫₀ᵘ sn² matches its m = 0 limit (u − sin u cos u)/2 to first order in m.
+    #[test]
+    fn d_small_parameter(m in 0.0f64..1e-6, u in -20.0f64..20.0) {
+        let v = Elliptic::new(m).unwrap().eval(u);
+        let d0 = 0.5 * (u - u.sin() * u.cos());
+        prop_assert!((v.d - d0).abs() < 1e-13 + m * u.abs().powi(2));
     }
 
     /// Addition formulas (DLMF 22.8.1–3 and 22.16.27 for E).

@@ -37,18 +37,30 @@ pub(crate) fn local_geometry(data: &Data) -> Local {
             (lo, hi)
         };
         let si = data.t[i] * data.length;
-        let mut m = Matrix3::<f64>::zeros();
-        let mut bx = Vector3::<f64>::zeros();
-        let mut by = Vector3::<f64>::zeros();
+        // moments Σ dsᵏ (k ≤ 4) and Σ dsᵏ x, Σ dsᵏ y (k ≤ 2) of the window, in scalars
+        let mut mo = [0.0f64; 5];
+        let (mut bx, mut by) = ([0.0f64; 3], [0.0f64; 3]);
         for j in lo..=hi {
             let ds = data.t[j] * data.length - si;
-            let v = Vector3::new(1.0, ds, ds * ds);
-            m += v * v.transpose();
-            bx += v * data.p[j].re;
-            by += v * data.p[j].im;
+            let ds2 = ds * ds;
+            mo[0] += 1.0;
+            mo[1] += ds;
+            mo[2] += ds2;
+            mo[3] += ds2 * ds;
+            mo[4] += ds2 * ds2;
+            let (x, y) = (data.p[j].re, data.p[j].im);
+            bx[0] += x;
+            bx[1] += ds * x;
+            bx[2] += ds2 * x;
+            by[0] += y;
+            by[1] += ds * y;
+            by[2] += ds2 * y;
         }
-        let (cx, cy) = match m.try_inverse() {
-            Some(inv) => (inv * bx, inv * by),
+        let m = Matrix3::new(
+            mo[0], mo[1], mo[2], mo[1], mo[2], mo[3], mo[2], mo[3], mo[4],
+        );
+        let (cx, cy) = match m.cholesky() {
+            Some(ch) => (ch.solve(&Vector3::from(bx)), ch.solve(&Vector3::from(by))),
             None => (Vector3::zeros(), Vector3::zeros()),
         };
         let (x1, y1, x2, y2) = (cx[1], cy[1], 2.0 * cx[2], 2.0 * cy[2]);

@@ -20,6 +20,13 @@
 //!    finally matched with the arc length of its foot. This recovers exact elastica to
 //!    rounding and removes the noise bias. Under end-point constraints the first and last
 //!    point keep t = 0 and t = 1.
+//! 6. **Two phases for speed.** Every candidate (line, arc, warm start, §5.1 guess, and for
+//!    constrained fits the free fit's parameters) is first solved by arc-length matching on
+//!    a 64-point subsample to a relative cost decrease of 1e-7; only the candidates within
+//!    a factor 4 of the best (and one of several that met at the same minimum) are then
+//!    refined orthogonally on all points. A constrained fit that stays poor (RMS above 3 %
+//!    of the length) also starts from the refined free fit. Solves stop when the
+//!    Gauss–Newton model predicts no worthwhile gain, or when they creep (see `lm::CREEP`).
 
 // The solvers walk several parallel arrays (points, weights, parameters, Jacobian rows) by
 // index; iterator zips of four slices read worse.
@@ -196,7 +203,7 @@ pub fn fit_points_with_arclength(
     let t: Vec<f64> = s.iter().map(|v| (v - s[0]) / length).collect();
     let data = Data {
         p: points.iter().map(|p| C::new(p[0], p[1])).collect(),
-        w: weights(&t),
+        w: model::trapezoid_weights(&t),
         t,
         length,
     };
@@ -238,16 +245,17 @@ pub fn fit_curve(
     fit_points_with_arclength(&pts, &s, params)
 }
 
-fn weights(t: &[f64]) -> Vec<f64> {
-    let n = t.len();
-    (0..n)
-        .map(|i| {
-            let lo = if i == 0 { t[0] } else { t[i - 1] };
-            let hi = if i + 1 == n { t[n - 1] } else { t[i + 1] };
-            0.5 * (hi - lo)
-        })
-        .collect()
-}
+/// Relative cost decrease below which Levenberg–Marquardt has converged.
+const LM_TOL: f64 = 1e-12;
+/// The same before the orthogonal refinement, which finishes the job.
+const LM_TOL_BEFORE_REFINE: f64 = 1e-7;
+/// Points of the subsample the candidates are first solved on.
+const LM_POINTS: usize = 64;
+/// Candidates whose first solve costs more than this multiple of the best are not refined.
+const REFINE_WITHIN: f64 = 4.0;
+/// RMS distance, relative to the length, above which a constrained fit also tries the
+/// refined free fit as its start.
+const POOR_FIT: f64 = 3e-2;
 
 /// A candidate shape with its start.
 struct Candidate {
@@ -284,6 +292,10 @@ fn fit_data(
     params: &FitParams,
 ) -> Result<FitResult, FitError> {
     let input_length = data.length;
+    // the arc-length-matched solves of all candidates run on a subsample; only the
+    // promising candidates are then refined on all points. The guesses use all points:
+    // their local curvature estimates average the noise over more neighbours.
+    let sub = data.subsample(LM_POINTS);
     let local = guess::local_geometry(&data);
     let mut candidates = Vec::new();
     if params.lines_and_arcs {
@@ -305,29 +317,39 @@ fn fit_data(
             });
         }
     }
-    let mut elastica_starts: Vec<Candidate> = Vec::new();
     if let Some(c) = params
         .warm_start
         .as_ref()
         .and_then(|s| theta_of(s, fixed_length))
     {
-        elastica_starts.push(c);
+        candidates.push(c);
     }
-    if placement != Placement::Free && params.warm_start.is_none() {
-        // constrained fits start from the free fit, which is close and robust to find
-        let free = FitParams {
-            constraint: FitConstraint::Free,
-            lines_and_arcs: false,
-            ..params.clone()
-        };
-        if let Ok(f) = fit_data(data.clone(), Placement::Free, false, &free) {
-            if let Some(c) = theta_of(&f.segment, fixed_length) {
-                elastica_starts.push(c);
+    let guess = guess::elastica_guess(&data, &local);
+    if let Some((family, theta)) = guess {
+        if placement != Placement::Free && params.warm_start.is_none() {
+            // constrained fits also start from the free fit, which is close and robust
+            let free = Shape::Elastica {
+                family,
+                fixed_length: false,
+            };
+            if let Some(f) = lm::solve(
+                &free,
+                theta,
+                &sub,
+                Placement::Free,
+                params.max_iterations,
+                LM_TOL_BEFORE_REFINE,
+            ) {
+                candidates.push(Candidate {
+                    shape: Shape::Elastica {
+                        family,
+                        fixed_length,
+                    },
+                    theta: f.theta,
+                });
             }
         }
-    }
-    if let Some((family, theta)) = guess::elastica_guess(&data, &local) {
-        elastica_starts.push(Candidate {
+        candidates.push(Candidate {
             shape: Shape::Elastica {
                 family,
                 fixed_length,
@@ -336,33 +358,106 @@ fn fit_data(
         });
     }
 
-    let mut best: Option<Fitted> = None;
+    // phase 1: every candidate solved by arc-length matching on the subsample
     let mut iterations = 0;
-    // candidates come simplest first (line, arc, elastica starts); a later one must beat
-    // the best so far clearly, so a straight section stays a line and a circular one an arc
-    let consider = |f: Fitted, best: &mut Option<Fitted>, _simple: bool| {
-        let better = match best {
-            None => true,
-            Some(b) => f.cost < b.cost * (1.0 - 1e-6) - (1e-13 * f.data.length).powi(2),
-        };
-        if better {
-            *best = Some(f);
-        }
-    };
+    let mut solved = Vec::with_capacity(candidates.len());
     for c in &candidates {
-        if let Some(f) = run(c, &data, placement, params) {
-            iterations += f.iterations;
-            consider(f, &mut best, true);
+        if let Some(s) = lm::solve(
+            &c.shape,
+            c.theta,
+            &sub,
+            placement,
+            params.max_iterations,
+            LM_TOL_BEFORE_REFINE,
+        ) {
+            iterations += s.iterations;
+            solved.push((c, s));
         }
     }
-    for c in &elastica_starts {
-        if let Some(f) = run(c, &data, placement, params) {
+    let floor = (1e-13 * data.length).powi(2);
+    let best_cost = solved
+        .iter()
+        .map(|(_, s)| s.cost)
+        .fold(f64::INFINITY, f64::min);
+    // phase 2: the candidates within reach of the best, simplest first; a later one must
+    // beat the best so far clearly, so a straight section stays a line and a circular one
+    // an arc
+    let mut best: Option<Fitted> = None;
+    let mut done: Vec<(&Shape, &lm::Solved)> = Vec::new();
+    for (c, s) in &solved {
+        if s.cost > REFINE_WITHIN * best_cost + floor {
+            continue;
+        }
+        // two elastica starts that met in phase 1 need one refinement
+        if matches!(c.shape, Shape::Elastica { .. })
+            && done
+                .iter()
+                .any(|(shape, d)| same_minimum(shape, d, &c.shape, s))
+        {
+            continue;
+        }
+        done.push((&c.shape, s));
+        if let Some(f) = run(c, s.clone(), &data, placement, params) {
             iterations += f.iterations;
-            consider(f, &mut best, false);
+            keep_better(&mut best, f, floor);
+        }
+    }
+    let poor = best
+        .as_ref()
+        .is_none_or(|b| b.cost > (POOR_FIT * data.length).powi(2));
+    if placement != Placement::Free && params.warm_start.is_none() && poor {
+        // A poor constrained fit (a curve far from any elastica): on such curves the
+        // refined free fit can lead to a better minimum than the quick free start.
+        let free = FitParams {
+            constraint: FitConstraint::Free,
+            lines_and_arcs: false,
+            ..params.clone()
+        };
+        if let Some(c) = fit_data(data.clone(), Placement::Free, false, &free)
+            .ok()
+            .and_then(|f| theta_of(&f.segment, fixed_length))
+        {
+            if let Some(f) = lm::solve(
+                &c.shape,
+                c.theta,
+                &sub,
+                placement,
+                params.max_iterations,
+                LM_TOL_BEFORE_REFINE,
+            )
+            .and_then(|s| run(&c, s, &data, placement, params))
+            {
+                iterations += f.iterations;
+                keep_better(&mut best, f, floor);
+            }
         }
     }
     let best = best.ok_or_else(|| FitError::Failed("every candidate diverged".into()))?;
     finish(best, iterations, input_length)
+}
+
+/// Replace `best` by `f` when `f` is clearly better (by a relative 1e-6 and `floor`).
+fn keep_better(best: &mut Option<Fitted>, f: Fitted, floor: f64) {
+    let better = match best {
+        None => true,
+        Some(b) => f.cost < b.cost * (1.0 - 1e-6) - floor,
+    };
+    if better {
+        *best = Some(f);
+    }
+}
+
+/// Whether two phase-1 elastica solutions are the same minimum: same family and costs
+/// equal to 1e-4 (phase 1 stops at a relative cost decrease of 1e-7, where the parameters
+/// along a flat direction can still differ in their third digit).
+fn same_minimum(sa: &Shape, a: &lm::Solved, sb: &Shape, b: &lm::Solved) -> bool {
+    let family = |s: &Shape| match s {
+        Shape::Elastica { family, .. } => Some(*family),
+        _ => None,
+    };
+    family(sa).is_some()
+        && family(sa) == family(sb)
+        && (a.cost - b.cost).abs() <= 1e-4 * a.cost.max(b.cost)
 }
 
 /// Curvature of the arc with the data's end points and length (sign from the data).
@@ -389,26 +484,40 @@ fn arc_curvature_for_length(data: &Data, local: &guess::Local) -> Option<f64> {
     Some(sign * 2.0 * lo / data.length)
 }
 
-/// Solve one candidate by arc-length matching, then refine orthogonally and map the feet of
-/// the first and last point to t = 0 and t = 1.
-fn run(c: &Candidate, data: &Data, placement: Placement, params: &FitParams) -> Option<Fitted> {
+/// Finish one candidate from its phase-1 solution: refine it orthogonally on all points
+/// (or, without refinement, solve it again on all points by arc-length matching), then map
+/// the feet of the first and last point to t = 0 and t = 1.
+fn run(
+    c: &Candidate,
+    start: lm::Solved,
+    data: &Data,
+    placement: Placement,
+    params: &FitParams,
+) -> Option<Fitted> {
     let mut data = data.clone();
-    let solved = lm::solve(&c.shape, c.theta, &data, placement, params.max_iterations)?;
-    let mut iterations = solved.iterations;
+    let before = start.iterations;
     let solved = if params.refine_iterations > 0 {
-        let before = solved.iterations;
-        let r = odr::refine(
+        odr::refine(
             &c.shape,
-            solved,
+            start,
             &mut data,
             placement,
             params.refine_iterations,
-        );
-        iterations += r.iterations - before;
-        r
+        )
     } else {
-        solved
+        let mut s = lm::solve(
+            &c.shape,
+            start.theta,
+            &data,
+            placement,
+            params.max_iterations,
+            LM_TOL,
+        )?;
+        s.iterations += before;
+        s
     };
+    // phase-1 iterations are already counted
+    let iterations = solved.iterations - before;
     let seg = c
         .shape
         .segment(&solved.theta, solved.l, solved.a, solved.b, data.length);

@@ -20,6 +20,41 @@ pub(crate) struct Data {
     pub length: f64,
 }
 
+impl Data {
+    /// At most `m` (≥ 3) of the points, evenly spread by index and always including the first
+    /// and last, with trapezoid weights for their parameters.
+    pub fn subsample(&self, m: usize) -> Data {
+        let n = self.p.len();
+        if n <= m {
+            return self.clone();
+        }
+        let m = m.max(3);
+        let idx: Vec<usize> = (0..m)
+            .map(|j| ((j * (n - 1)) as f64 / (m - 1) as f64).round() as usize)
+            .collect();
+        let t: Vec<f64> = idx.iter().map(|&i| self.t[i]).collect();
+        Data {
+            p: idx.iter().map(|&i| self.p[i]).collect(),
+            w: trapezoid_weights(&t),
+            t,
+            length: self.length,
+        }
+    }
+}
+
+/// Trapezoid weights of parameters `t` spanning [0, 1]: their sum is 1 and Σ wᵢ f(tᵢ)
+/// approximates ∫₀¹ f dt.
+pub(crate) fn trapezoid_weights(t: &[f64]) -> Vec<f64> {
+    let n = t.len();
+    (0..n)
+        .map(|i| {
+            let lo = if i == 0 { t[0] } else { t[i - 1] };
+            let hi = if i + 1 == n { t[n - 1] } else { t[i + 1] };
+            0.5 * (hi - lo)
+        })
+        .collect()
+}
+
 /// Which placement constraints hold.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Placement {
@@ -136,9 +171,9 @@ impl Shape {
                 let mut dz = Vec::with_capacity(n);
                 let mut tan = Vec::with_capacity(n);
                 for &t in &data.t {
-                    let (u, dk) = unit.eval_dk(s0 + l * t);
-                    let tc = C::new(u.t[0], u.t[1]);
-                    z.push(C::new(u.p[0], u.p[1]));
+                    let (p, tv, dk) = unit.eval_fit(s0 + l * t);
+                    let tc = C::new(tv[0], tv[1]);
+                    z.push(C::new(p[0], p[1]));
                     dz.push([C::new(dk[0], dk[1]), tc, tc * t]);
                     tan.push(tc);
                 }

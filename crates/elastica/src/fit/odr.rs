@@ -7,13 +7,17 @@
 //! chord lengths on noisy points. Converges quadratically for small residuals, where
 //! alternating "fit, then re-foot" converges only linearly.
 
-use super::lm::{damped_step, symmetrize_and_pad, Solved};
+use super::lm::{
+    damped_step, predicted_gain, symmetrize_and_pad, Solved, CREEP, CREEP_STEPS, MAX_TRIALS,
+};
 use super::model::{jacobian, place, plausible, Data, Placement, Shape, ShapeEval, C};
 use nalgebra::{SMatrix, SVector};
 
 type M7 = SMatrix<f64, 7, 7>;
 type V7 = SVector<f64, 7>;
 
+/// Relative cost decrease below which the refinement has converged.
+const TOL: f64 = 1e-10;
 /// Scalar residuals with their direction: the normal distance for interior points (their
 /// feet move), both coordinates for the first and last point (their parameters stay at 0 and
 /// 1 and pin down where the segment starts and ends). Returns (value, direction, weight)
@@ -75,6 +79,7 @@ pub(crate) fn refine(
     let floor = (1e-15 * data.length).powi(2);
     let mut mu = 1e-4;
     let mut small_steps = 0;
+    let mut creeping = 0;
     for _ in 0..max_iterations {
         let (res, shift) = residuals(&ev, s.a, s.b, data);
         let f = weighted_sq(&res);
@@ -121,10 +126,11 @@ pub(crate) fn refine(
             }
         }
         symmetrize_and_pad(&mut h, nparams);
+        let done = predicted_gain(&h, &g, nparams) <= TOL * f + floor;
         // the feet move with the current segment before the step is tried
         move_feet(data, &shift);
         let mut accepted = false;
-        for _ in 0..25 {
+        for _ in 0..if done { 0 } else { MAX_TRIALS } {
             let Some(step) = damped_step(&h, &g, nparams, mu) else {
                 mu *= 10.0;
                 continue;
@@ -165,7 +171,8 @@ pub(crate) fn refine(
                 ev = ev_t;
                 mu = (mu / 5.0).max(1e-15);
                 accepted = true;
-                small_steps = if rel < 1e-10 { small_steps + 1 } else { 0 };
+                small_steps = if rel < TOL { small_steps + 1 } else { 0 };
+                creeping = if rel < CREEP { creeping + 1 } else { 0 };
                 break;
             }
             mu *= 5.0;
@@ -173,7 +180,7 @@ pub(crate) fn refine(
                 break;
             }
         }
-        if !accepted || small_steps >= 2 {
+        if !accepted || small_steps >= 2 || creeping >= CREEP_STEPS {
             // re-evaluate at the moved feet for the final numbers
             if let Some(e) = shape.eval(&s.theta, data, s.l) {
                 let (r, shift) = residuals(&e, s.a, s.b, data);
