@@ -1,5 +1,6 @@
 //! Benchmarks: one Jacobi evaluation (sn, cn, dn, am, E together) and fitting one
-//! 200-point curve of `../shared/data/curves` with each constraint option.
+//! 200-point curve of `../shared/data/curves` with each constraint option, and the generic
+//! 7-parameter baseline fit.
 //! Run: `cargo bench -p elastica`.
 
 use elastica::elliptic::Elliptic;
@@ -57,9 +58,9 @@ const OPTIONS: [FitConstraint; 3] = [
     FitConstraint::EndPointsAndLength,
 ];
 
-/// One fit per iteration, cycling through all 72 curves; divan's median is then the median
-/// over curves and repetitions.
-#[divan::bench(args = OPTIONS)]
+/// One fit per sample, cycling through all 72 curves ten times (720 samples): divan's median
+/// is the median over the curves.
+#[divan::bench(args = OPTIONS, sample_count = 720)]
 fn fit_200_points(bencher: divan::Bencher, constraint: FitConstraint) {
     let cs = curves();
     let params = FitParams {
@@ -70,5 +71,17 @@ fn fit_200_points(bencher: divan::Bencher, constraint: FitConstraint) {
     bencher.bench_local(|| {
         i = (i + 1) % cs.len();
         divan::black_box(fit_points(&cs[i].1, &params).ok())
+    });
+}
+
+/// The generic 7-parameter Levenberg–Marquardt baseline (forward-difference Jacobian, same
+/// §5.1 guess, same curves); compare with `fit_200_points` Free.
+#[divan::bench(sample_count = 720)]
+fn baseline_fit_200_points(bencher: divan::Bencher) {
+    let cs = curves();
+    let mut i = 0;
+    bencher.bench_local(|| {
+        i = (i + 1) % cs.len();
+        divan::black_box(elastica::fit::baseline::fit_points_baseline(&cs[i].1, 200).ok())
     });
 }

@@ -216,3 +216,50 @@ fn sampled_segments_lines_and_arcs_are_recovered() {
         }
     }
 }
+
+/// The comparison of `BENCHMARKS.md`: the fit against the generic 7-parameter
+/// Levenberg–Marquardt baseline from the same §5.1 guess, both measured by the RMS distance
+/// of the input points to the fitted curve (each point at its foot). Per class, the fit
+/// must be at least as accurate over the curves the baseline fits at all.
+#[test]
+fn fit_is_at_least_as_accurate_as_the_generic_baseline() {
+    use elastica::fit::baseline::fit_points_baseline;
+    use std::collections::BTreeMap;
+    // class → (Σ ours², Σ baseline², curves compared, baseline failures, baseline better)
+    let mut classes: BTreeMap<String, (f64, f64, usize, usize, usize)> = BTreeMap::new();
+    for c in load() {
+        let id = c["id"].as_str().unwrap();
+        let class = c["class"].as_str().unwrap().to_string();
+        let pts = points(&c["points"]);
+        let ours = fit_points(&pts, &FitParams::default()).unwrap();
+        let entry = classes.entry(class).or_default();
+        match fit_points_baseline(&pts, 200) {
+            Ok(base) => {
+                let (a, b) = (rms_to(&ours, &pts), rms_to(&base, &pts));
+                println!(
+                    "{id}: ours {a:.3e} baseline {b:.3e} ({} iterations)",
+                    base.iterations
+                );
+                entry.0 += a * a;
+                entry.1 += b * b;
+                entry.2 += 1;
+                if b < a * (1.0 - 1e-6) {
+                    entry.4 += 1;
+                }
+            }
+            Err(e) => {
+                println!("{id}: baseline failed: {e}");
+                entry.3 += 1;
+            }
+        }
+    }
+    println!("| class | fit RMS | baseline RMS | curves | baseline failed | baseline better |");
+    for (class, (a, b, n, failed, better)) in &classes {
+        let (a, b) = ((a / *n as f64).sqrt(), (b / *n as f64).sqrt());
+        println!("| {class} | {a:.2e} | {b:.2e} | {n} | {failed} | {better} |");
+        assert!(
+            a <= b * (1.0 + 1e-6) + 1e-15,
+            "{class}: fit {a} vs baseline {b}"
+        );
+    }
+}

@@ -32,6 +32,8 @@
 // index; iterator zips of four slices read worse.
 #![allow(clippy::needless_range_loop)]
 
+/// The generic 7-parameter comparison baseline of the benchmarks.
+pub mod baseline;
 mod guess;
 mod lm;
 mod model;
@@ -256,8 +258,12 @@ const REFINE_WITHIN: f64 = 4.0;
 /// RMS distance, relative to the length, above which a constrained fit also tries the
 /// refined free fit as its start.
 const POOR_FIT: f64 = 3e-2;
+/// RMS distance, relative to the length, below which the guess's constrained fit is taken
+/// as close enough to skip the free-fit start.
+const GOOD_FIT: f64 = 1e-3;
 
 /// A candidate shape with its start.
+#[derive(Clone)]
 struct Candidate {
     shape: Shape,
     theta: [f64; 3],
@@ -326,8 +332,45 @@ fn fit_data(
     }
     let guess = guess::elastica_guess(&data, &local);
     if let Some((family, theta)) = guess {
-        if placement != Placement::Free && params.warm_start.is_none() {
-            // constrained fits also start from the free fit, which is close and robust
+        candidates.push(Candidate {
+            shape: Shape::Elastica {
+                family,
+                fixed_length,
+            },
+            theta,
+        });
+    }
+
+    // phase 1: every candidate solved by arc-length matching on the subsample
+    let mut iterations = 0;
+    let phase1 = |c: Candidate, iterations: &mut usize| {
+        let s = lm::solve(
+            &c.shape,
+            c.theta,
+            &sub,
+            placement,
+            params.max_iterations,
+            LM_TOL_BEFORE_REFINE,
+        )?;
+        *iterations += s.iterations;
+        Some((c, s))
+    };
+    let mut solved: Vec<(Candidate, lm::Solved)> = candidates
+        .into_iter()
+        .filter_map(|c| phase1(c, &mut iterations))
+        .collect();
+    let elastica_cost = solved
+        .iter()
+        .filter(|(c, _)| matches!(c.shape, Shape::Elastica { .. }))
+        .map(|(_, s)| s.cost)
+        .fold(f64::INFINITY, f64::min);
+    if let Some((family, theta)) = guess {
+        if placement != Placement::Free
+            && params.warm_start.is_none()
+            && !(elastica_cost <= (GOOD_FIT * data.length).powi(2))
+        {
+            // the guess did not lead to a close constrained fit: also start from the free
+            // fit, which is close to it and robust to find
             let free = Shape::Elastica {
                 family,
                 fixed_length: false,
@@ -340,38 +383,23 @@ fn fit_data(
                 params.max_iterations,
                 LM_TOL_BEFORE_REFINE,
             ) {
-                candidates.push(Candidate {
+                iterations += f.iterations;
+                let c = Candidate {
                     shape: Shape::Elastica {
                         family,
                         fixed_length,
                     },
                     theta: f.theta,
-                });
+                };
+                // before the guess's own candidate: refined first on a tie
+                let at = solved
+                    .iter()
+                    .position(|(c, _)| matches!(c.shape, Shape::Elastica { .. }))
+                    .unwrap_or(solved.len());
+                if let Some(cs) = phase1(c, &mut iterations) {
+                    solved.insert(at, cs);
+                }
             }
-        }
-        candidates.push(Candidate {
-            shape: Shape::Elastica {
-                family,
-                fixed_length,
-            },
-            theta,
-        });
-    }
-
-    // phase 1: every candidate solved by arc-length matching on the subsample
-    let mut iterations = 0;
-    let mut solved = Vec::with_capacity(candidates.len());
-    for c in &candidates {
-        if let Some(s) = lm::solve(
-            &c.shape,
-            c.theta,
-            &sub,
-            placement,
-            params.max_iterations,
-            LM_TOL_BEFORE_REFINE,
-        ) {
-            iterations += s.iterations;
-            solved.push((c, s));
         }
     }
     let floor = (1e-13 * data.length).powi(2);
@@ -384,7 +412,7 @@ fn fit_data(
     // an arc
     let mut best: Option<Fitted> = None;
     let mut done: Vec<(&Shape, &lm::Solved)> = Vec::new();
-    for (c, s) in &solved {
+    for (c, s) in solved.iter() {
         if s.cost > REFINE_WITHIN * best_cost + floor {
             continue;
         }
