@@ -4,7 +4,7 @@
 //! lengths, trapezoid weights), and nothing else: no variable projection, no analytic
 //! derivatives, no line or arc candidates, no orthogonal refinement. This is what a
 //! straightforward implementation of "Hot Blade Cuttings" §5.1 looks like; it exists so that
-//! `BENCHMARKS.md` can say how much the method of [`super::fit_points`] gains.
+//! `BENCHMARKS.md` can say how much the method of [`crate::fit::fit_points`] gains.
 
 use super::model::{place, trapezoid_weights, Data, Placement, C};
 use super::{guess, FitError, FitResult};
