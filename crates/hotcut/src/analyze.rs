@@ -25,23 +25,42 @@ pub struct AnalyzeParams {
     pub curve: CurveAnalysisParams,
 }
 
+/// The job's name for a surface kind: `HeightField`, `Mesh` or `Spline`.
+pub fn surface_kind(surface: &Surface) -> &'static str {
+    match surface {
+        Surface::Mesh(_) => "Mesh",
+        Surface::HeightField(_) => "HeightField",
+        Surface::Spline(_) => "Spline",
+    }
+}
+
 impl AnalyzeParams {
-    /// The parameters a resolved job asks for.
+    /// How the job's `cutting` and `tolerance` section the surface (shared by the tasks
+    /// that work on sections).
+    pub fn sectioning(job: &ResolvedJob) -> SectionParams {
+        SectionParams {
+            direction: job.direction,
+            count: job.job.cutting.sections as usize,
+            smoothing: SmoothingParams {
+                degree: 3,
+                tolerance: job.job.tolerance.smoothing,
+                max_control: 400,
+                chordal: false,
+            },
+            spline_grid: 200,
+        }
+    }
+
+    /// The parameters a resolved job asks for (the default curve sampling for tasks other
+    /// than `Analyze`).
     pub fn from_job(job: &ResolvedJob) -> Self {
-        let crate::job::TaskSpec::Analyze { samples } = job.job.task;
+        let samples = match job.job.task {
+            crate::job::TaskSpec::Analyze { samples } => samples,
+            _ => 2000,
+        };
         let t = &job.job.tolerance;
         Self {
-            sections: SectionParams {
-                direction: job.direction,
-                count: job.job.cutting.sections as usize,
-                smoothing: SmoothingParams {
-                    degree: 3,
-                    tolerance: t.smoothing,
-                    max_control: 400,
-                    chordal: false,
-                },
-                spline_grid: 200,
-            },
+            sections: Self::sectioning(job),
             curve: CurveAnalysisParams {
                 samples: samples as usize,
                 bisection_tolerance: t.bisection,
@@ -229,12 +248,7 @@ pub fn analyze(
         task: "Analyze".into(),
         units: job.job.units,
         surface: SurfaceInfo {
-            kind: match surface {
-                Surface::Mesh(_) => "Mesh",
-                Surface::HeightField(_) => "HeightField",
-                Surface::Spline(_) => "Spline",
-            }
-            .into(),
+            kind: surface_kind(surface).into(),
             bbox_min: arr(&bbox.min),
             bbox_max: arr(&bbox.max),
             warnings: job.warnings.clone(),

@@ -21,7 +21,7 @@ pub struct Job {
     /// Length unit of every length in the job and its outputs. Default: `Millimetre`.
     #[serde(default)]
     pub units: Units,
-    /// The surface to cut. Required by `Analyze`.
+    /// The surface to cut. Required by `Analyze`, and by `FitCurves` without `input`.
     #[serde(default)]
     pub surface: Option<SurfaceSpec>,
     /// The foam block. When omitted, the block-size constraint is not checked.
@@ -246,10 +246,60 @@ pub enum TaskSpec {
         #[schemars(range(min = 8, max = 1000000))]
         samples: u32,
     },
+    /// Fit every curve of `input` (or, without `input`, every section of the surface) by
+    /// one elastica, line or arc — the shapes a hot blade takes ("Hot Blade Cuttings" §5.1).
+    /// Writes `report.json` (per curve the segment, its distances to the curve and the
+    /// fitted curve sampled at 400 points) and `fit.svg` (input and fit overlaid). Write
+    /// `FitCurves(input: "curves.json", constraint: Free)`.
+    FitCurves {
+        /// Curves file, relative to the job file: JSON
+        /// `{"curves": [{"id": "a", "points": [[x, y], ...]}, ...]}` (other fields are
+        /// ignored) or CSV with a header `id,x,y` and one row per point, a curve's rows
+        /// consecutive. Coordinates in job units. Default: the sections of `surface`.
+        #[serde(default)]
+        #[schemars(length(min = 1))]
+        input: Option<String>,
+        /// What the fitted segment must reproduce exactly. Default: `Free`.
+        #[serde(default)]
+        constraint: FitConstraintSpec,
+        /// Points each surface section is sampled at, equally spaced in arc length (≥ 3;
+        /// unused with `input`). Default: 200.
+        #[serde(default = "default_fit_samples")]
+        #[schemars(range(min = 3, max = 100000))]
+        samples: u32,
+    },
 }
 
 fn default_samples() -> u32 {
     2000
+}
+
+fn default_fit_samples() -> u32 {
+    200
+}
+
+/// Boundary constraints of a fit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+pub enum FitConstraintSpec {
+    /// Nothing: the segment closest to the curve.
+    #[default]
+    Free,
+    /// The segment starts and ends at the curve's end points.
+    EndPoints,
+    /// End points, and the segment is as long as the curve (the skater-ramp setting of the
+    /// hot-blade paper §7: the blade keeps its length).
+    EndPointsAndLength,
+}
+
+impl FitConstraintSpec {
+    /// The `elastica` option.
+    pub fn to_fit(self) -> elastica::fit::FitConstraint {
+        match self {
+            Self::Free => elastica::fit::FitConstraint::Free,
+            Self::EndPoints => elastica::fit::FitConstraint::EndPoints,
+            Self::EndPointsAndLength => elastica::fit::FitConstraint::EndPointsAndLength,
+        }
+    }
 }
 
 /// A file to write.
@@ -258,7 +308,8 @@ fn default_samples() -> u32 {
 pub enum OutputSpec {
     /// `report.json`: the task's full result.
     Report,
-    /// `sections.svg` (Analyze): plan and profile drawing of the sections.
+    /// `sections.svg` (Analyze): plan and profile drawing of the sections; `fit.svg`
+    /// (FitCurves): every curve with its fit overlaid.
     Svg,
     /// `sections.obj`: the section curves as 3D polylines.
     Obj,

@@ -1,7 +1,7 @@
 //! # hotcut — job files, validation, the task runner and the `hotcut` CLI
 //!
 //! A job file (RON) is read in three layers ([`load`]), resolved into checked geometry, run
-//! by its task ([`analyze`]) and written atomically ([`run`]). Schemas of the job file and
+//! by its task ([`analyze`], [`fit_curves`]) and written atomically ([`run`]). Schemas of the job file and
 //! the report come from the types in [`job`] and [`report`].
 //!
 //! ```
@@ -16,16 +16,19 @@
 //! let job = hotcut::load::load_job(&path).unwrap();
 //! let out = hotcut::run::run_job(&job, &dir.path().join("out"), &hotcut::NoProgress).unwrap();
 //! // sin(y/200) changes sign at y = 200π and 400π inside (0, 1500)
-//! assert_eq!(out.report.sections[0].inflections.len(), 2);
+//! let report = out.report.analyze().unwrap();
+//! assert_eq!(report.sections[0].inflections.len(), 2);
 //! assert!(out.dir.join("report.json").is_file());
 //! ```
 
 /// The `Analyze` task.
 pub mod analyze;
-/// The `sections.svg` drawing.
+/// The `sections.svg` and `fit.svg` drawings.
 pub mod draw;
 /// Error types.
 pub mod error;
+/// The `FitCurves` task.
+pub mod fit_curves;
 /// Job-file types (serde + JSON Schema).
 pub mod job;
 /// Reading, validating and resolving job files.
@@ -65,10 +68,33 @@ pub fn job_schema_json() -> String {
     s
 }
 
-/// The JSON Schema of `report.json`, as written to `schemas/report.schema.json`.
+/// The JSON Schema of an `Analyze` run's `report.json`, as written to
+/// `schemas/report.schema.json`.
 pub fn report_schema_json() -> String {
     let v = serde_json::to_value(schemars::schema_for!(report::AnalyzeReport)).unwrap_or_default();
     let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
     s.push('\n');
     s
+}
+
+/// The JSON Schema of a `FitCurves` run's `report.json`, as written to
+/// `schemas/fit-curves-report.schema.json`.
+pub fn fit_curves_report_schema_json() -> String {
+    let v =
+        serde_json::to_value(schemars::schema_for!(report::FitCurvesReport)).unwrap_or_default();
+    let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
+    s.push('\n');
+    s
+}
+
+/// Every schema file of `schemas/`: (file name, contents).
+pub fn schema_files() -> Vec<(&'static str, String)> {
+    vec![
+        ("job.schema.json", job_schema_json()),
+        ("report.schema.json", report_schema_json()),
+        (
+            "fit-curves-report.schema.json",
+            fit_curves_report_schema_json(),
+        ),
+    ]
 }

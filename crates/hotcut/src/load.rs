@@ -373,6 +373,33 @@ pub fn resolve(path: &Path, job: Job) -> Result<ResolvedJob, Vec<JobError>> {
     };
 
     match &job.task {
+        TaskSpec::FitCurves { input, .. } => {
+            match input {
+                Some(rel) => {
+                    if let Err(m) = crate::fit_curves::read_curves(&base.join(rel)) {
+                        errors.push(semantic(path, "/task/FitCurves/input", m));
+                    }
+                }
+                None if job.surface.is_none() => errors.push(semantic(
+                    path,
+                    "/task/FitCurves/input",
+                    "task FitCurves needs `input` (a curves file) or a surface to section",
+                )),
+                None => {}
+            }
+            for (i, o) in job.outputs.iter().enumerate() {
+                if !matches!(o, OutputSpec::Report | OutputSpec::Svg) {
+                    errors.push(semantic(
+                        path,
+                        &format!("/outputs/{i}"),
+                        format!(
+                            "output {} is not produced by task FitCurves (it writes Report, Svg)",
+                            o.name()
+                        ),
+                    ));
+                }
+            }
+        }
         TaskSpec::Analyze { .. } => {
             if job.surface.is_none() {
                 errors.push(semantic(path, "/surface", "task Analyze needs a surface"));

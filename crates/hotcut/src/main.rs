@@ -7,7 +7,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use hotcut::load::{load_job, ResolvedJob};
-use hotcut::report::{AnalyzeReport, Violation};
+use hotcut::report::{AnalyzeReport, FitCurvesReport, TaskReport, Violation};
 use hotcut::Progress;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -36,12 +36,16 @@ enum Command {
         #[arg(required = true)]
         jobs: Vec<PathBuf>,
     },
-    /// Print the JSON Schema of job files (or of report.json), or write both to a folder.
+    /// Print the JSON Schema of job files (or of a report.json), or write all schemas to a folder.
     Schema {
-        /// Print the schema of report.json instead.
+        /// Print the schema of an Analyze run's report.json instead.
         #[arg(long)]
         report: bool,
-        /// Write job.schema.json and report.schema.json into this folder.
+        /// Print the schema of a FitCurves run's report.json instead.
+        #[arg(long, conflicts_with = "report")]
+        fit_report: bool,
+        /// Write job.schema.json, report.schema.json and fit-curves-report.schema.json into
+        /// this folder.
         #[arg(long, value_name = "DIR")]
         write: Option<PathBuf>,
     },
@@ -147,6 +151,24 @@ fn print_summary(r: &AnalyzeReport, units: &str) {
     );
 }
 
+fn print_fit_summary(r: &FitCurvesReport, units: &str) {
+    let s = &r.summary;
+    println!("{} (FitCurves, {:?}, {}):", r.job, r.constraint, r.source);
+    println!(
+        "  {} curve(s): {} inflectional, {} non-inflectional elastica, {} arc(s), {} line(s)",
+        s.curves, s.inflectional, s.noninflectional, s.arcs, s.lines
+    );
+    println!(
+        "  RMS distance: median {:.3e} {units}, max {:.3e} {units}; largest distance {:.3e} {units}",
+        s.median_rms, s.max_rms, s.max_distance
+    );
+    for c in &r.curves {
+        if let Some(e) = &c.error {
+            println!("  warning: curve `{}` was not fitted: {e}", c.id);
+        }
+    }
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(c) => c,
@@ -157,13 +179,13 @@ fn main() -> ExitCode {
         }
     };
     match cli.command {
-        Command::Schema { report, write } => {
+        Command::Schema {
+            report,
+            fit_report,
+            write,
+        } => {
             if let Some(dir) = write {
-                let files = [
-                    ("job.schema.json", hotcut::job_schema_json()),
-                    ("report.schema.json", hotcut::report_schema_json()),
-                ];
-                for (name, text) in files {
+                for (name, text) in hotcut::schema_files() {
                     let p = dir.join(name);
                     if let Err(e) =
                         std::fs::create_dir_all(&dir).and_then(|_| std::fs::write(&p, text))
@@ -175,6 +197,8 @@ fn main() -> ExitCode {
                 }
             } else if report {
                 print!("{}", hotcut::report_schema_json());
+            } else if fit_report {
+                print!("{}", hotcut::fit_curves_report_schema_json());
             } else {
                 print!("{}", hotcut::job_schema_json());
             }
@@ -202,7 +226,10 @@ fn main() -> ExitCode {
             for j in &list {
                 match hotcut::run::run_job(j, &out, &bars) {
                     Ok(o) => {
-                        print_summary(&o.report, j.job.units.symbol());
+                        match &o.report {
+                            TaskReport::Analyze(r) => print_summary(r, j.job.units.symbol()),
+                            TaskReport::FitCurves(r) => print_fit_summary(r, j.job.units.symbol()),
+                        }
                         println!("  wrote {}: {}", o.dir.display(), o.files.join(", "));
                     }
                     Err(e) => {

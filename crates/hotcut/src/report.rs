@@ -169,3 +169,121 @@ pub struct Summary {
     /// True when nothing is violated: one block, one blade, no segmentation needed.
     pub cuttable_without_segmentation: bool,
 }
+
+/// The result of the `FitCurves` task (`report.json`; schema
+/// `schemas/fit-curves-report.schema.json`).
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct FitCurvesReport {
+    /// Job name.
+    pub job: String,
+    /// Task name, `FitCurves`.
+    pub task: String,
+    /// Length unit of every coordinate and length; curvatures in 1/unit.
+    pub units: Units,
+    /// Where the curves came from: `file <path>` or `sections of the <kind> surface`.
+    pub source: String,
+    /// The boundary constraint every fit honours.
+    pub constraint: crate::job::FitConstraintSpec,
+    /// Totals.
+    pub summary: FitSummary,
+    /// One entry per curve, in input order (sections: by plane, then piece).
+    pub curves: Vec<CurveFit>,
+}
+
+/// Totals of a `FitCurves` run.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct FitSummary {
+    /// Curves read.
+    pub curves: usize,
+    /// Curves that could not be fitted (see their `error`).
+    pub failed: usize,
+    /// Fits that are straight lines.
+    pub lines: usize,
+    /// Fits that are circular arcs.
+    pub arcs: usize,
+    /// Fits that are inflectional elastica.
+    pub inflectional: usize,
+    /// Fits that are non-inflectional elastica.
+    pub noninflectional: usize,
+    /// Largest RMS distance over the curves.
+    pub max_rms: f64,
+    /// Median RMS distance over the curves.
+    pub median_rms: f64,
+    /// Largest distance between a point and its match on the fit, over all curves.
+    pub max_distance: f64,
+}
+
+/// One curve and its fit.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct CurveFit {
+    /// The curve's id (from the input file; `section <plane>.<piece>` for sections).
+    pub id: String,
+    /// Number of input points.
+    pub points: usize,
+    /// Length of the input polyline (sections: of the section curve).
+    pub input_length: f64,
+    /// Why the curve could not be fitted; absent when it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+    /// The fit; absent when the curve could not be fitted.
+    #[serde(flatten)]
+    pub fit: Option<FittedCurve>,
+}
+
+/// A fitted segment with its quality and geometry.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct FittedCurve {
+    /// `line`, `arc`, `inflectional` or `noninflectional`.
+    pub family: String,
+    /// The segment's parameters. Elastica: the papers' `k`, `s0`, `l`, `S`, `phi`, `x0`,
+    /// `y0` (the point at t ∈ [0, 1] is S·R(φ)·f(s₀ + ℓt) + (x₀, y₀); ℓ < 0 runs the
+    /// normalized curve backwards). Line: `x0`, `y0`, `phi`, `length`. Arc: `x0`, `y0`,
+    /// `phi` (start tangent angle), `curvature` (signed, left positive), `length`.
+    pub parameters: std::collections::BTreeMap<String, f64>,
+    /// Root-mean-square distance over arc length between the curve and the fit, √(∫|x − γ|² ds / L).
+    pub rms: f64,
+    /// Largest distance between an input point and its matched point on the fit.
+    pub max: f64,
+    /// Length of the fitted segment.
+    pub length: f64,
+    /// Number of inflection points of the fitted segment.
+    pub inflections: usize,
+    /// The inflection points of the fitted segment.
+    pub inflection_points: Vec<[f64; 2]>,
+    /// Largest |curvature| along the fitted segment.
+    pub max_abs_curvature: f64,
+    /// Solver iterations.
+    pub iterations: usize,
+    /// Whether the last solve met its convergence test.
+    pub converged: bool,
+    /// The fitted segment sampled at 400 points equally spaced in arc length.
+    pub fitted: Vec<[f64; 2]>,
+}
+
+/// The report of whichever task ran.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum TaskReport {
+    /// From `Analyze` (boxed: it is much larger than the other reports' headers).
+    Analyze(Box<AnalyzeReport>),
+    /// From `FitCurves`.
+    FitCurves(FitCurvesReport),
+}
+
+impl TaskReport {
+    /// The `Analyze` report, if that task ran.
+    pub fn analyze(&self) -> Option<&AnalyzeReport> {
+        match self {
+            Self::Analyze(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// The `FitCurves` report, if that task ran.
+    pub fn fit_curves(&self) -> Option<&FitCurvesReport> {
+        match self {
+            Self::FitCurves(r) => Some(r),
+            _ => None,
+        }
+    }
+}

@@ -12,11 +12,12 @@ use export::json::{to_json_string, REPORT_DIGITS};
 use export::obj::ObjWriter;
 
 use crate::analyze::{analyze, sample_world, AnalyzeParams};
-use crate::draw::sections_svg;
+use crate::draw::{fit_svg, sections_svg};
 use crate::error::{HotcutError, Result};
-use crate::job::OutputSpec;
+use crate::fit_curves::{fit_curves, FitCurvesParams};
+use crate::job::{OutputSpec, TaskSpec};
 use crate::load::ResolvedJob;
-use crate::report::AnalyzeReport;
+use crate::report::TaskReport;
 use crate::Progress;
 
 /// What a run produced.
@@ -27,8 +28,14 @@ pub struct RunOutcome {
     /// Files written, relative to `dir`, in order.
     pub files: Vec<String>,
     /// The report.
-    pub report: AnalyzeReport,
+    pub report: TaskReport,
 }
+
+/// One output file: its name and how to render it.
+type Render<'a> = (
+    &'static str,
+    Box<dyn Fn(&mut Vec<u8>) -> export::Result<()> + 'a>,
+);
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> HotcutError + '_ {
     move |source| HotcutError::Io {
@@ -43,9 +50,79 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> HotcutError + '_ {
 /// # Errors
 /// Geometry failures of the task; I/O failures writing the outputs.
 pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result<RunOutcome> {
-    let params = AnalyzeParams::from_job(job);
-    let analysis = analyze(job, &params, progress)?;
     let units = job.job.units.symbol();
+    // run the task, then render the outputs it was asked for (validation rejected the rest)
+    let (report, renders): (TaskReport, Vec<Render<'_>>) = match &job.job.task {
+        TaskSpec::Analyze { .. } => {
+            let params = AnalyzeParams::from_job(job);
+            let analysis = std::rc::Rc::new(analyze(job, &params, progress)?);
+            let mut renders: Vec<Render<'_>> = Vec::new();
+            for o in &job.job.outputs {
+                let a = analysis.clone();
+                match o {
+                    OutputSpec::Report => renders.push((
+                        "report.json",
+                        Box::new(move |buf| {
+                            buf.extend(to_json_string(&a.report, REPORT_DIGITS)?.into_bytes());
+                            Ok(())
+                        }),
+                    )),
+                    OutputSpec::Svg => renders.push((
+                        "sections.svg",
+                        Box::new(move |buf| sections_svg(&a, units).write(buf)),
+                    )),
+                    OutputSpec::Obj => renders.push((
+                        "sections.obj",
+                        Box::new(move |buf| {
+                            let mut w = ObjWriter::new(REPORT_DIGITS);
+                            for (s, _) in &a.sections {
+                                w.polyline(
+                                    &format!("section_{}_{}", s.index, s.piece),
+                                    &sample_world(&a.frame, s, 400),
+                                );
+                            }
+                            w.write(buf)
+                        }),
+                    )),
+                    _ => {}
+                }
+            }
+            (
+                TaskReport::Analyze(Box::new(analysis.report.clone())),
+                renders,
+            )
+        }
+        TaskSpec::FitCurves {
+            constraint,
+            samples,
+            ..
+        } => {
+            let params = FitCurvesParams {
+                constraint: *constraint,
+                samples: *samples as usize,
+            };
+            let fit = std::rc::Rc::new(fit_curves(job, &params, progress)?);
+            let mut renders: Vec<Render<'_>> = Vec::new();
+            for o in &job.job.outputs {
+                let f = fit.clone();
+                match o {
+                    OutputSpec::Report => renders.push((
+                        "report.json",
+                        Box::new(move |buf| {
+                            buf.extend(to_json_string(&f.report, REPORT_DIGITS)?.into_bytes());
+                            Ok(())
+                        }),
+                    )),
+                    OutputSpec::Svg => renders.push((
+                        "fit.svg",
+                        Box::new(move |buf| fit_svg(&f, units).write(buf)),
+                    )),
+                    _ => {}
+                }
+            }
+            (TaskReport::FitCurves(fit.report.clone()), renders)
+        }
+    };
 
     std::fs::create_dir_all(out).map_err(io(out))?;
     let tmp = tempfile::Builder::new()
@@ -53,41 +130,16 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
         .tempdir_in(out)
         .map_err(io(out))?;
     let mut files = Vec::new();
-    // renders one output into memory, then writes it into the temporary folder
-    let mut emit =
-        |name: &str, render: &dyn Fn(&mut Vec<u8>) -> export::Result<()>| -> Result<()> {
-            let p = tmp.path().join(name);
-            let mut buf = Vec::new();
-            render(&mut buf).map_err(|source| HotcutError::Export {
-                path: p.clone(),
-                source,
-            })?;
-            std::fs::write(&p, buf).map_err(io(&p))?;
-            files.push(name.to_string());
-            Ok(())
-        };
-    for o in &job.job.outputs {
-        match o {
-            OutputSpec::Report => emit("report.json", &|buf| {
-                buf.extend(to_json_string(&analysis.report, REPORT_DIGITS)?.into_bytes());
-                Ok(())
-            })?,
-            OutputSpec::Svg => emit("sections.svg", &|buf| {
-                sections_svg(&analysis, units).write(buf)
-            })?,
-            OutputSpec::Obj => emit("sections.obj", &|buf| {
-                let mut w = ObjWriter::new(REPORT_DIGITS);
-                for (s, _) in &analysis.sections {
-                    w.polyline(
-                        &format!("section_{}_{}", s.index, s.piece),
-                        &sample_world(&analysis.frame, s, 400),
-                    );
-                }
-                w.write(buf)
-            })?,
-            // rejected by validation for Analyze
-            _ => {}
-        }
+    // renders each output into memory, then writes it into the temporary folder
+    for (name, render) in renders {
+        let p = tmp.path().join(name);
+        let mut buf = Vec::new();
+        render(&mut buf).map_err(|source| HotcutError::Export {
+            path: p.clone(),
+            source,
+        })?;
+        std::fs::write(&p, buf).map_err(io(&p))?;
+        files.push(name.to_string());
     }
     let dir = out.join(&job.job.name);
     if dir.exists() {
@@ -101,9 +153,5 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
             source: e,
         }
     })?;
-    Ok(RunOutcome {
-        dir,
-        files,
-        report: analysis.report,
-    })
+    Ok(RunOutcome { dir, files, report })
 }

@@ -281,10 +281,7 @@ fn one_invalid_job_stops_the_whole_run() {
 #[test]
 fn checked_in_schemas_are_current() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    for (file, text) in [
-        ("job.schema.json", hotcut::job_schema_json()),
-        ("report.schema.json", hotcut::report_schema_json()),
-    ] {
+    for (file, text) in hotcut::schema_files() {
         let path = root.join("schemas").join(file);
         if std::env::var_os("HOTCUT_UPDATE_SCHEMAS").is_some() {
             std::fs::write(&path, &text).unwrap();
@@ -370,4 +367,76 @@ fn default_blade_is_converted_for_metre_jobs() {
         report["summary"]["sections_too_curved"],
         serde_json::json!(0)
     );
+}
+
+#[test]
+fn fit_curves_jobs_are_checked() {
+    let no_surface = VALID.replace(
+        "surface: HeightField(z: \"50*sin(y/100)\", x: (0, 300), y: (0, 900)),",
+        "",
+    );
+    // neither an input file nor a surface
+    expect_invalid(
+        &no_surface.replace("task: Analyze(),", "task: FitCurves(),"),
+        &["/task/FitCurves/input", "needs `input`"],
+    );
+    // a missing input file
+    expect_invalid(
+        &no_surface.replace("task: Analyze(),", "task: FitCurves(input: \"none.json\"),"),
+        &["/task/FitCurves/input", "none.json"],
+    );
+    // an unknown constraint, an output the task does not write, too few samples
+    expect_invalid(
+        &VALID.replace("task: Analyze(),", "task: FitCurves(constraint: Tight),"),
+        &["Tight"],
+    );
+    expect_invalid(
+        &VALID.replace(
+            "task: Analyze(),",
+            "task: FitCurves(),\n    outputs: [Report, Obj],",
+        ),
+        &["/outputs/1", "FitCurves"],
+    );
+    expect_invalid(
+        &VALID.replace("task: Analyze(),", "task: FitCurves(samples: 2),"),
+        &["samples"],
+    );
+}
+
+#[test]
+fn fit_curves_runs_on_a_curves_file() {
+    let dir = tempfile::tempdir().unwrap();
+    // a quarter circle and a parabola, CSV
+    let mut csv = String::from("id,x,y\n");
+    for i in 0..40 {
+        let a = std::f64::consts::FRAC_PI_2 * i as f64 / 39.0;
+        csv.push_str(&format!("arc,{},{}\n", 100.0 * a.cos(), 100.0 * a.sin()));
+    }
+    for i in 0..40 {
+        let x = i as f64 * 10.0;
+        csv.push_str(&format!("parabola,{x},{}\n", 0.001 * x * x));
+    }
+    write(dir.path(), "curves.csv", &csv);
+    write(
+        dir.path(),
+        "job.ron",
+        "Job(name: \"fit\", task: FitCurves(input: \"curves.csv\", constraint: EndPoints))",
+    );
+    let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let report: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.path().join("out/fit/report.json")).unwrap(),
+    )
+    .unwrap();
+    let curves = report["curves"].as_array().unwrap();
+    assert_eq!(curves.len(), 2);
+    assert_eq!(curves[0]["family"], "arc");
+    assert!(curves[0]["rms"].as_f64().unwrap() < 1e-9);
+    assert_eq!(curves[0]["fitted"].as_array().unwrap().len(), 400);
+    // end points interpolated
+    let f = curves[1]["fitted"].as_array().unwrap();
+    let last = &f[f.len() - 1];
+    assert!((last[0].as_f64().unwrap() - 390.0).abs() < 1e-6);
+    assert!((last[1].as_f64().unwrap() - 152.1).abs() < 1e-6);
+    assert!(dir.path().join("out/fit/fit.svg").is_file());
 }
