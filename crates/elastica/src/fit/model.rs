@@ -254,13 +254,21 @@ fn solve_length(unit: &UnitElastica, s0: f64, l0: f64, data: &Data) -> Option<f6
     let start = unit.eval(s0);
     let p0 = C::new(start.p[0], start.p[1]);
     let mut l = l0;
+    // the best iterate: where g is flat in ℓ (chord nearly along the tangent) rounding can
+    // make Newton cycle between two neighbours of the root
+    let mut best = (f64::INFINITY, l0);
     for _ in 0..60 {
         let e = unit.eval(s0 + l);
         let c = C::new(e.p[0], e.p[1]) - p0;
         let norm = c.norm();
         let g = norm - rho * l.abs();
-        if g.abs() <= 1e-15 * l.abs().max(1.0) {
+        // g is a difference of numbers of size |ℓ|: its rounding is a few ε|ℓ|
+        let scale = l.abs().max(1.0);
+        if g.abs() <= 16.0 * f64::EPSILON * scale {
             return Some(l);
+        }
+        if g.abs() < best.0 {
+            best = (g.abs(), l);
         }
         let gl = if norm > 0.0 {
             (c.conj() * C::new(e.t[0], e.t[1])).re / norm - rho * sign
@@ -276,7 +284,7 @@ fn solve_length(unit: &UnitElastica, s0: f64, l0: f64, data: &Data) -> Option<f6
             return None;
         }
     }
-    None
+    (best.0 <= 1e-12 * best.1.abs().max(1.0)).then_some(best.1)
 }
 
 /// The best a, b for z, and the residuals r = a z + b − p.
