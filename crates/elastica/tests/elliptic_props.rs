@@ -39,8 +39,9 @@ proptest! {
         prop_assert!((fd(a.dn, b.dn) + m * c.sn * c.cn).abs() < 1e-9);
         prop_assert!((fd(a.am, b.am) - c.dn).abs() < 1e-9);
         prop_assert!((fd(a.eps, b.eps) - c.dn * c.dn).abs() < 1e-9);
-        // D = ∫ sn² is computed on its own (Landen recursion), not as (u − E)/m
-        prop_assert!((fd(a.d, b.d) - c.sn * c.sn).abs() < 1e-9);
+        // D = ∫ sn² is computed on its own (Landen recursion), not as (u − E)/m; it grows
+        // like u, and its rounding (a few ulp of D) enters the difference quotient
+        prop_assert!((fd(a.d, b.d) - c.sn * c.sn).abs() < 1e-9 * (1.0 + c.d.abs()));
     }
 
     /// D(u|m) = ∫₀ᵘ sn² matches its m = 0 limit (u − sin u cos u)/2 to first order in m.
