@@ -31,6 +31,9 @@ pub struct RunOutcome {
     pub report: TaskReport,
 }
 
+/// How a task renders its own output files (all but `report.json`).
+type TaskFiles = Box<dyn Fn(&OutputSpec) -> Option<Render<'static>>>;
+
 /// One output file: its name and how to render it.
 type Render<'a> = (
     &'static str,
@@ -51,27 +54,20 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> HotcutError + '_ {
 /// Geometry failures of the task; I/O failures writing the outputs.
 pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result<RunOutcome> {
     let units = job.job.units.symbol();
-    // run the task, then render the outputs it was asked for (validation rejected the rest)
-    let (report, renders): (TaskReport, Vec<Render<'_>>) = match &job.job.task {
+    // run the task; `render` makes the task's own files (validation rejected the rest)
+    let (report, render): (TaskReport, TaskFiles) = match &job.job.task {
         TaskSpec::Analyze { .. } => {
             let params = AnalyzeParams::from_job(job);
-            let analysis = std::rc::Rc::new(analyze(job, &params, progress)?);
-            let mut renders: Vec<Render<'_>> = Vec::new();
-            for o in &job.job.outputs {
-                let a = analysis.clone();
+            let a = std::rc::Rc::new(analyze(job, &params, progress)?);
+            let report = TaskReport::Analyze(Box::new(a.report.clone()));
+            let render = move |o: &OutputSpec| -> Option<Render<'static>> {
+                let a = a.clone();
                 match o {
-                    OutputSpec::Report => renders.push((
-                        "report.json",
-                        Box::new(move |buf| {
-                            buf.extend(to_json_string(&a.report, REPORT_DIGITS)?.into_bytes());
-                            Ok(())
-                        }),
-                    )),
-                    OutputSpec::Svg => renders.push((
+                    OutputSpec::Svg => Some((
                         "sections.svg",
                         Box::new(move |buf| sections_svg(&a, units).write(buf)),
                     )),
-                    OutputSpec::Obj => renders.push((
+                    OutputSpec::Obj => Some((
                         "sections.obj",
                         Box::new(move |buf| {
                             let mut w = ObjWriter::new(REPORT_DIGITS);
@@ -84,13 +80,10 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
                             w.write(buf)
                         }),
                     )),
-                    _ => {}
+                    _ => None,
                 }
-            }
-            (
-                TaskReport::Analyze(Box::new(analysis.report.clone())),
-                renders,
-            )
+            };
+            (report, Box::new(render))
         }
         TaskSpec::FitCurves {
             constraint,
@@ -101,28 +94,34 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
                 constraint: *constraint,
                 samples: *samples as usize,
             };
-            let fit = std::rc::Rc::new(fit_curves(job, &params, progress)?);
-            let mut renders: Vec<Render<'_>> = Vec::new();
-            for o in &job.job.outputs {
-                let f = fit.clone();
+            let f = std::rc::Rc::new(fit_curves(job, &params, progress)?);
+            let report = TaskReport::FitCurves(f.report.clone());
+            let render = move |o: &OutputSpec| -> Option<Render<'static>> {
+                let f = f.clone();
                 match o {
-                    OutputSpec::Report => renders.push((
-                        "report.json",
-                        Box::new(move |buf| {
-                            buf.extend(to_json_string(&f.report, REPORT_DIGITS)?.into_bytes());
-                            Ok(())
-                        }),
-                    )),
-                    OutputSpec::Svg => renders.push((
+                    OutputSpec::Svg => Some((
                         "fit.svg",
                         Box::new(move |buf| fit_svg(&f, units).write(buf)),
                     )),
-                    _ => {}
+                    _ => None,
                 }
-            }
-            (TaskReport::FitCurves(fit.report.clone()), renders)
+            };
+            (report, Box::new(render))
         }
     };
+    let mut renders: Vec<Render<'_>> = Vec::new();
+    for o in &job.job.outputs {
+        match o {
+            OutputSpec::Report => renders.push((
+                "report.json",
+                Box::new(|buf| {
+                    buf.extend(to_json_string(&report, REPORT_DIGITS)?.into_bytes());
+                    Ok(())
+                }),
+            )),
+            other => renders.extend(render(other)),
+        }
+    }
 
     std::fs::create_dir_all(out).map_err(io(out))?;
     let tmp = tempfile::Builder::new()

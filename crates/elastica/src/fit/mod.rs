@@ -411,15 +411,8 @@ fn fit_data(
             .ok()
             .and_then(|f| theta_of(&f.segment, fixed_length))
         {
-            if let Some(f) = lm::solve(
-                &c.shape,
-                c.theta,
-                &sub,
-                placement,
-                params.max_iterations,
-                LM_TOL_BEFORE_REFINE,
-            )
-            .and_then(|s| run(&c, s, &data, placement, params))
+            if let Some(f) =
+                phase1(c, &mut iterations).and_then(|(c, s)| run(&c, s, &data, placement, params))
             {
                 iterations += f.iterations;
                 keep_better(&mut best, f, floor);
