@@ -19,5 +19,7 @@ pub mod elliptic;
 pub mod fit;
 /// Elastica segments (closed form, line, arc): evaluation, derivatives, inflections.
 pub mod segment;
+/// Elastica-swept patches: parameter interpolation between sections, 3D blade poses.
+pub mod sweep;
 /// The normalized inflectional and non-inflectional elastica.
 pub mod unit;

@@ -39,6 +39,8 @@ pub mod hull;
 pub mod index;
 /// Triangle meshes: OBJ loading, validation, area, volume.
 pub mod mesh;
+/// Unit surface normals near points (exact for height fields).
+pub mod normals;
 /// Planar curves: the `PlanarCurve` trait, curvature, arc length.
 pub mod planar;
 /// Plane frames, slab offsets and mesh slicing.

@@ -153,15 +153,34 @@ impl Surface {
             ));
         }
         let (lo, hi) = self.extent_along(&frame.normal);
-        let offsets = slab_centres(lo, hi, params.count);
+        let planes: Vec<(PlaneFrame, f64)> = slab_centres(lo, hi, params.count)
+            .into_iter()
+            .map(|o| (frame, o))
+            .collect();
+        Ok((frame, self.sections_at(&planes, params, progress)?))
+    }
+
+    /// Sections by arbitrary planes, each given by its frame and its offset along the frame's
+    /// normal (planes need not be parallel: cutting planes that follow a curve, thesis
+    /// eq. 5.4). `params.direction` and `params.count` are not used. A section's `index` is
+    /// the index of its plane in `planes`; results are in plane order, then piece order.
+    ///
+    /// # Errors
+    /// As [`Surface::sections`].
+    pub fn sections_at(
+        &self,
+        planes: &[(PlaneFrame, f64)],
+        params: &SectionParams,
+        progress: &(dyn Fn() + Sync),
+    ) -> Result<Vec<Section>> {
         let spline_mesh = match self {
             Self::Spline(s) => Some(spline_grid_mesh(s, params.spline_grid.max(8))?),
             _ => None,
         };
-        let per_plane: Vec<Result<Vec<Section>>> = offsets
+        let per_plane: Vec<Result<Vec<Section>>> = planes
             .par_iter()
             .enumerate()
-            .map(|(index, &offset)| {
+            .map(|(index, &(frame, offset))| {
                 let r = match self {
                     Self::HeightField(h) => Ok(h
                         .section(&frame, offset)?
@@ -206,7 +225,7 @@ impl Surface {
         for r in per_plane {
             out.extend(r?);
         }
-        Ok((frame, out))
+        Ok(out)
     }
 }
 
@@ -290,7 +309,7 @@ fn spline_grid_points(s: &BSplineSurface, n: usize) -> (Vec<Vector3<f64>>, Vec<(
     (pts, uv)
 }
 
-fn spline_grid_mesh(s: &BSplineSurface, n: usize) -> Result<(TriMesh, Vec<(f64, f64)>)> {
+pub(crate) fn spline_grid_mesh(s: &BSplineSurface, n: usize) -> Result<(TriMesh, Vec<(f64, f64)>)> {
     let (pts, uv) = spline_grid_points(s, n);
     let mut faces = Vec::with_capacity(2 * (n - 1) * (n - 1));
     let w = n as u32;

@@ -1,0 +1,244 @@
+//! Surfaces swept by elastica ("Hot Blade Cuttings" §4, §6) and the blade poses that cut
+//! them ("Robotic Hot-Blade Cutting" §4).
+//!
+//! A swept patch is a sequence of fitted segments, each in its own cutting plane. Between
+//! two fitted planes the patch is swept by the segments whose parameters interpolate the
+//! neighbours' linearly ([`interpolate`]): same kind (elastica of one family, line, arc),
+//! rotation unwrapped. The 3D pose of a blade ([`blade_pose`]) gives, for both held ends,
+//! the position, the unit tangent and the tool orientation as a unit quaternion whose x-axis
+//! is the blade's tangent (pointing from the first end to the second) and whose z-axis is
+//! the cutting plane's normal.
+
+use geom::slice::PlaneFrame;
+use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector2, Vector3};
+use serde::Serialize;
+
+use crate::blade::Blade;
+use crate::segment::{ElasticaParams, Segment};
+
+/// Unwraps angle `b` to within π of `a`.
+fn unwrap_near(a: f64, b: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    b - ((b - a) / tau).round() * tau
+}
+
+fn lerp(a: f64, b: f64, w: f64) -> f64 {
+    a + (b - a) * w
+}
+
+/// The segment a fraction `w ∈ [0, 1]` of the way from `a` to `b` in parameter space, or
+/// `None` when the two are of different kinds or elastica families (the sweep between them
+/// is then not a family of one kind, and the caller fits the design section instead).
+///
+/// ```
+/// use elastica::segment::Segment;
+/// use elastica::sweep::interpolate;
+/// let a = Segment::Arc { x0: 0.0, y0: 0.0, phi: 0.0, curvature: 0.01, length: 100.0 };
+/// let b = Segment::Arc { x0: 0.0, y0: 10.0, phi: 0.2, curvature: 0.02, length: 120.0 };
+/// let Some(Segment::Arc { y0, curvature, length, .. }) = interpolate(&a, &b, 0.5) else { panic!() };
+/// assert_eq!((y0, curvature, length), (5.0, 0.015, 110.0));
+/// ```
+pub fn interpolate(a: &Segment, b: &Segment, w: f64) -> Option<Segment> {
+    match (*a, *b) {
+        (Segment::Elastica(p), Segment::Elastica(q)) if p.family == q.family => {
+            Some(Segment::Elastica(ElasticaParams {
+                family: p.family,
+                k: lerp(p.k, q.k, w),
+                s0: lerp(p.s0, q.s0, w),
+                l: lerp(p.l, q.l, w),
+                scale: lerp(p.scale, q.scale, w),
+                phi: lerp(p.phi, unwrap_near(p.phi, q.phi), w),
+                x0: lerp(p.x0, q.x0, w),
+                y0: lerp(p.y0, q.y0, w),
+            }))
+        }
+        (
+            Segment::Line {
+                x0,
+                y0,
+                phi,
+                length,
+            },
+            Segment::Line {
+                x0: x1,
+                y0: y1,
+                phi: phi1,
+                length: length1,
+            },
+        ) => Some(Segment::Line {
+            x0: lerp(x0, x1, w),
+            y0: lerp(y0, y1, w),
+            phi: lerp(phi, unwrap_near(phi, phi1), w),
+            length: lerp(length, length1, w),
+        }),
+        (
+            Segment::Arc {
+                x0,
+                y0,
+                phi,
+                curvature,
+                length,
+            },
+            Segment::Arc {
+                x0: x1,
+                y0: y1,
+                phi: phi1,
+                curvature: c1,
+                length: length1,
+            },
+        ) => Some(Segment::Arc {
+            x0: lerp(x0, x1, w),
+            y0: lerp(y0, y1, w),
+            phi: lerp(phi, unwrap_near(phi, phi1), w),
+            curvature: lerp(curvature, c1, w),
+            length: lerp(length, length1, w),
+        }),
+        _ => None,
+    }
+}
+
+/// One held end of the blade in 3D.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct EndPose {
+    /// Position.
+    pub position: [f64; 3],
+    /// Unit tangent of the blade there, pointing from the first end to the second.
+    pub tangent: [f64; 3],
+    /// Tool orientation `[w, x, y, z]`: x-axis = `tangent`, z-axis = the plane normal.
+    pub rotation: [f64; 4],
+}
+
+/// A blade pose: the cutting plane's normal and both held ends.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct BladePose {
+    /// Unit normal of the cutting plane.
+    pub plane_normal: [f64; 3],
+    /// The two ends, the blade's start (t = 0) first.
+    pub ends: [EndPose; 2],
+}
+
+fn arr3(v: &Vector3<f64>) -> [f64; 3] {
+    [v.x, v.y, v.z]
+}
+
+/// The unit quaternion `[w, x, y, z]` of the frame with axes `x`, `z × x`, `z` (`x ⟂ z`,
+/// both unit), with `w ≥ 0` (ties broken by the first non-zero component positive) so the
+/// same orientation always prints the same numbers.
+pub fn frame_quaternion(x: &Vector3<f64>, z: &Vector3<f64>) -> [f64; 4] {
+    let y = z.cross(x);
+    let m = Matrix3::from_columns(&[*x, y, *z]);
+    let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(m));
+    let c = q.as_ref().coords; // (x, y, z, w)
+    let mut out = [c.w, c.x, c.y, c.z];
+    let first = out.iter().copied().find(|v| *v != 0.0).unwrap_or(1.0);
+    if out[0] < 0.0 || (out[0] == 0.0 && first < 0.0) {
+        out.iter_mut().for_each(|v| *v = -*v);
+    }
+    out
+}
+
+/// The 3D pose of `blade` (in plane coordinates of `frame`) on the plane at `offset`.
+pub fn blade_pose(frame: &PlaneFrame, offset: f64, blade: &Blade) -> BladePose {
+    let n = frame.normal;
+    let end = |i: usize| {
+        let e = &blade.ends[i];
+        let p = frame.to_world(offset, &Vector2::new(e.position[0], e.position[1]));
+        let t = frame.u * e.tangent[0] + frame.v * e.tangent[1];
+        let t = t / t.norm();
+        EndPose {
+            position: arr3(&p),
+            tangent: arr3(&t),
+            rotation: frame_quaternion(&t, &n),
+        }
+    };
+    BladePose {
+        plane_normal: arr3(&n),
+        ends: [end(0), end(1)],
+    }
+}
+
+/// Rotates `v` by the unit quaternion `q = [w, x, y, z]`.
+pub fn rotate(q: &[f64; 4], v: &[f64; 3]) -> [f64; 3] {
+    let uq = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]));
+    arr3(&(uq * Vector3::new(v[0], v[1], v[2])))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::blade::{extend_to_blade, BladeParams};
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn quaternion_axes_are_the_frame(a in -3.0f64..3.0, b in -1.5f64..1.5, c in -3.0f64..3.0) {
+            let z = Vector3::new(b.cos() * a.cos(), b.cos() * a.sin(), b.sin());
+            let helper = if z.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+            let x0 = helper - z * z.dot(&helper);
+            let x0 = x0.normalize();
+            let x = x0 * c.cos() + z.cross(&x0) * c.sin();
+            let q = frame_quaternion(&x, &z);
+            let norm: f64 = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+            prop_assert!((norm - 1.0).abs() < 1e-12);
+            prop_assert!(q[0] >= 0.0);
+            let rx = rotate(&q, &[1.0, 0.0, 0.0]);
+            let rz = rotate(&q, &[0.0, 0.0, 1.0]);
+            prop_assert!((Vector3::from(rx) - x).norm() < 1e-12);
+            prop_assert!((Vector3::from(rz) - z).norm() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn pose_of_an_arc_blade_in_the_default_frame() {
+        // default cutting direction +x: plane coordinates are (y, z)
+        let frame = PlaneFrame::from_direction(Vector3::x()).unwrap();
+        let arc = Segment::Arc {
+            x0: 0.0,
+            y0: 0.0,
+            phi: 0.0,
+            curvature: 0.001,
+            length: 500.0,
+        };
+        let blade = extend_to_blade(&arc, &BladeParams::new(1000.0)).unwrap();
+        let pose = blade_pose(&frame, 250.0, &blade);
+        assert_eq!(pose.plane_normal, [1.0, 0.0, 0.0]);
+        for e in &pose.ends {
+            assert_eq!(e.position[0], 250.0);
+            let z = rotate(&e.rotation, &[0.0, 0.0, 1.0]);
+            assert!((Vector3::from(z) - Vector3::x()).norm() < 1e-12);
+            let x = rotate(&e.rotation, &[1.0, 0.0, 0.0]);
+            assert!((Vector3::from(x) - Vector3::from(e.tangent)).norm() < 1e-12);
+        }
+        // the arc turns by κ·L = 1 rad over the whole blade, symmetric about the middle
+        let [t0, t1] = [pose.ends[0].tangent, pose.ends[1].tangent];
+        assert!((t0[1] * t1[1] + t0[2] * t1[2] - 1f64.cos()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn interpolation_needs_one_kind_and_unwraps_the_angle() {
+        let l = Segment::Line {
+            x0: 0.0,
+            y0: 0.0,
+            phi: 3.1,
+            length: 1.0,
+        };
+        let m = Segment::Line {
+            x0: 0.0,
+            y0: 0.0,
+            phi: -3.1,
+            length: 1.0,
+        };
+        let Some(Segment::Line { phi, .. }) = interpolate(&l, &m, 0.5) else {
+            panic!()
+        };
+        assert!((phi - std::f64::consts::PI).abs() < 1e-12);
+        let a = Segment::Arc {
+            x0: 0.0,
+            y0: 0.0,
+            phi: 0.0,
+            curvature: 0.1,
+            length: 1.0,
+        };
+        assert!(interpolate(&l, &a, 0.5).is_none());
+    }
+}
