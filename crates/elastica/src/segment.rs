@@ -239,6 +239,63 @@ impl Segment {
         })
     }
 
+    /// The elastica of shape `(family, k, s₀, ℓ)` scaled, rotated and moved so that it runs
+    /// from `p0` (t = 0) to `p1` (t = 1); `None` when the shape's ends coincide or `k` is out
+    /// of range.
+    ///
+    /// ```
+    /// use elastica::segment::Segment;
+    /// use elastica::unit::Family;
+    /// let s = Segment::elastica_between(Family::Inflectional, 0.5, 0.3, 1.2, [1.0, 2.0], [4.0, 6.0]).unwrap();
+    /// let (a, b) = (s.eval(0.0).unwrap().p, s.eval(1.0).unwrap().p);
+    /// assert!((a[0] - 1.0).abs() < 1e-12 && (a[1] - 2.0).abs() < 1e-12);
+    /// assert!((b[0] - 4.0).abs() < 1e-12 && (b[1] - 6.0).abs() < 1e-12);
+    /// ```
+    pub fn elastica_between(
+        family: Family,
+        k: f64,
+        s0: f64,
+        l: f64,
+        p0: [f64; 2],
+        p1: [f64; 2],
+    ) -> Option<Segment> {
+        let unit = Segment::Elastica(ElasticaParams {
+            family,
+            k,
+            s0,
+            l,
+            scale: 1.0,
+            phi: 0.0,
+            x0: 0.0,
+            y0: 0.0,
+        });
+        let e = unit.evaluator().ok()?;
+        let (z0, z1) = (e.eval(0.0).p, e.eval(1.0).p);
+        let (dzx, dzy) = (z1[0] - z0[0], z1[1] - z0[1]);
+        let dz2 = dzx * dzx + dzy * dzy;
+        if !(dz2 > 0.0) {
+            return None;
+        }
+        // a = (p1 − p0)/(z1 − z0) as complex numbers, b = p0 − a·z0
+        let (dpx, dpy) = (p1[0] - p0[0], p1[1] - p0[1]);
+        let ax = (dpx * dzx + dpy * dzy) / dz2;
+        let ay = (dpy * dzx - dpx * dzy) / dz2;
+        let scale = ax.hypot(ay);
+        if !(scale > 0.0) || !scale.is_finite() {
+            return None;
+        }
+        Some(Segment::Elastica(ElasticaParams {
+            family,
+            k,
+            s0,
+            l,
+            scale,
+            phi: ay.atan2(ax),
+            x0: p0[0] - (ax * z0[0] - ay * z0[1]),
+            y0: p0[1] - (ax * z0[1] + ay * z0[0]),
+        }))
+    }
+
     /// The same curve continued by `before` length units before t = 0 and `after` beyond
     /// t = 1 (negative values shorten it); the result is again parameterized on [0, 1].
     pub fn extended(&self, before: f64, after: f64) -> Segment {

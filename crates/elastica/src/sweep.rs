@@ -2,9 +2,8 @@
 //! them ("Robotic Hot-Blade Cutting" §4).
 //!
 //! A swept patch is a sequence of fitted segments, each in its own cutting plane. Between
-//! two fitted planes the patch is swept by the segments whose parameters interpolate the
-//! neighbours' linearly ([`interpolate`]): same kind (elastica of one family, line, arc),
-//! rotation unwrapped. The 3D pose of a blade ([`blade_pose`]) gives, for both held ends,
+//! two fitted planes the patch is swept by the segments whose shape parameters interpolate
+//! the neighbours' linearly and whose end points move linearly ([`interpolate`]). The 3D pose of a blade ([`blade_pose`]) gives, for both held ends,
 //! the position, the unit tangent and the tool orientation as a unit quaternion whose x-axis
 //! is the blade's tangent (pointing from the first end to the second) and whose z-axis is
 //! the cutting plane's normal.
@@ -14,85 +13,86 @@ use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector2, Vector3};
 use serde::Serialize;
 
 use crate::blade::Blade;
-use crate::segment::{ElasticaParams, Segment};
-
-/// Unwraps angle `b` to within π of `a`.
-fn unwrap_near(a: f64, b: f64) -> f64 {
-    let tau = std::f64::consts::TAU;
-    b - ((b - a) / tau).round() * tau
-}
+use crate::segment::Segment;
 
 fn lerp(a: f64, b: f64, w: f64) -> f64 {
     a + (b - a) * w
 }
 
-/// The segment a fraction `w ∈ [0, 1]` of the way from `a` to `b` in parameter space, or
-/// `None` when the two are of different kinds or elastica families (the sweep between them
-/// is then not a family of one kind, and the caller fits the design section instead).
+/// The segment a fraction `w ∈ [0, 1]` of the way from `a` to `b`: the shape parameters
+/// interpolated linearly (elastica: k, s₀, ℓ of one family; arc: the turning angle; line:
+/// nothing), placed between the linearly interpolated end points (the papers interpolate
+/// "end points, end tangents and lengths", §6). `None` when the two are of different
+/// kinds or elastica families, or the shape degenerates: the sweep between them is then
+/// not a family of one kind, and the caller decides what to do.
 ///
 /// ```
 /// use elastica::segment::Segment;
 /// use elastica::sweep::interpolate;
-/// let a = Segment::Arc { x0: 0.0, y0: 0.0, phi: 0.0, curvature: 0.01, length: 100.0 };
-/// let b = Segment::Arc { x0: 0.0, y0: 10.0, phi: 0.2, curvature: 0.02, length: 120.0 };
-/// let Some(Segment::Arc { y0, curvature, length, .. }) = interpolate(&a, &b, 0.5) else { panic!() };
-/// assert_eq!((y0, curvature, length), (5.0, 0.015, 110.0));
+/// let a = Segment::Line { x0: 0.0, y0: 0.0, phi: 0.0, length: 100.0 };
+/// let b = Segment::Line { x0: 0.0, y0: 10.0, phi: 0.0, length: 120.0 };
+/// let Some(Segment::Line { y0, length, .. }) = interpolate(&a, &b, 0.5) else { panic!() };
+/// assert_eq!((y0, length), (5.0, 110.0));
 /// ```
 pub fn interpolate(a: &Segment, b: &Segment, w: f64) -> Option<Segment> {
+    let ends = |s: &Segment| -> Option<([f64; 2], [f64; 2])> {
+        let e = s.evaluator().ok()?;
+        Some((e.eval(0.0).p, e.eval(1.0).p))
+    };
+    let ((a0, a1), (b0, b1)) = (ends(a)?, ends(b)?);
+    let mix = |p: [f64; 2], q: [f64; 2]| [lerp(p[0], q[0], w), lerp(p[1], q[1], w)];
+    let (p0, p1) = (mix(a0, b0), mix(a1, b1));
+    let chord = (p1[0] - p0[0]).hypot(p1[1] - p0[1]);
+    let dir = (p1[1] - p0[1]).atan2(p1[0] - p0[0]);
     match (*a, *b) {
         (Segment::Elastica(p), Segment::Elastica(q)) if p.family == q.family => {
-            Some(Segment::Elastica(ElasticaParams {
-                family: p.family,
-                k: lerp(p.k, q.k, w),
-                s0: lerp(p.s0, q.s0, w),
-                l: lerp(p.l, q.l, w),
-                scale: lerp(p.scale, q.scale, w),
-                phi: lerp(p.phi, unwrap_near(p.phi, q.phi), w),
-                x0: lerp(p.x0, q.x0, w),
-                y0: lerp(p.y0, q.y0, w),
-            }))
+            Segment::elastica_between(
+                p.family,
+                lerp(p.k, q.k, w),
+                lerp(p.s0, q.s0, w),
+                lerp(p.l, q.l, w),
+                p0,
+                p1,
+            )
         }
-        (
-            Segment::Line {
-                x0,
-                y0,
-                phi,
-                length,
-            },
-            Segment::Line {
-                x0: x1,
-                y0: y1,
-                phi: phi1,
-                length: length1,
-            },
-        ) => Some(Segment::Line {
-            x0: lerp(x0, x1, w),
-            y0: lerp(y0, y1, w),
-            phi: lerp(phi, unwrap_near(phi, phi1), w),
-            length: lerp(length, length1, w),
+        (Segment::Line { .. }, Segment::Line { .. }) => Some(Segment::Line {
+            x0: p0[0],
+            y0: p0[1],
+            phi: dir,
+            length: chord,
         }),
         (
             Segment::Arc {
-                x0,
-                y0,
-                phi,
-                curvature,
-                length,
+                curvature: ca,
+                length: la,
+                ..
             },
             Segment::Arc {
-                x0: x1,
-                y0: y1,
-                phi: phi1,
-                curvature: c1,
-                length: length1,
+                curvature: cb,
+                length: lb,
+                ..
             },
-        ) => Some(Segment::Arc {
-            x0: lerp(x0, x1, w),
-            y0: lerp(y0, y1, w),
-            phi: lerp(phi, unwrap_near(phi, phi1), w),
-            curvature: lerp(curvature, c1, w),
-            length: lerp(length, length1, w),
-        }),
+        ) => {
+            // turning angle θ; the arc over the chord turning by θ has length c·(θ/2)/sin(θ/2)
+            let theta = lerp(ca * la, cb * lb, w);
+            let half = 0.5 * theta;
+            if !(half.abs() < std::f64::consts::PI) {
+                return None;
+            }
+            let sinc = if half.abs() < 1e-8 {
+                1.0
+            } else {
+                half.sin() / half
+            };
+            let length = chord / sinc;
+            Some(Segment::Arc {
+                x0: p0[0],
+                y0: p0[1],
+                phi: dir - half,
+                curvature: if length > 0.0 { theta / length } else { 0.0 },
+                length,
+            })
+        }
         _ => None,
     }
 }

@@ -9,10 +9,14 @@
 //! assert_eq!(String::from_utf8(out).unwrap(), "{\n  \"length\": 0.333333\n}\n");
 //! ```
 
+/// glTF 2.0 (JSON with an embedded buffer) for meshes with colours.
+pub mod gltf;
 /// Deterministic JSON with rounded floats.
 pub mod json;
 /// Wavefront OBJ writer for meshes and polylines.
 pub mod obj;
+/// ABB RAPID modules and program files for a two-robot MultiMove hot-blade cell.
+pub mod rapid;
 /// A small SVG builder with a world-to-page viewport.
 pub mod svg;
 

@@ -13,7 +13,7 @@ const WIDTH: f64 = 1000.0;
 const MARGIN: f64 = 40.0;
 const SAMPLES: usize = 200;
 
-fn bounds(pts: impl Iterator<Item = (f64, f64)>) -> ((f64, f64), (f64, f64)) {
+pub(crate) fn bounds(pts: impl Iterator<Item = (f64, f64)>) -> ((f64, f64), (f64, f64)) {
     pts.fold(
         (
             (f64::INFINITY, f64::INFINITY),

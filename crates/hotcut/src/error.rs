@@ -82,6 +82,15 @@ pub enum HotcutError {
         /// The geometry error.
         source: geom::GeomError,
     },
+    /// A task could not produce its result from valid input (e.g. a section no elastica
+    /// fits).
+    #[error("{path}: {message}")]
+    Task {
+        /// Job file.
+        path: PathBuf,
+        /// What failed, and where.
+        message: String,
+    },
     /// Writing an output failed.
     #[error("{path}: {source}")]
     Export {

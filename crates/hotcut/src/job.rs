@@ -153,10 +153,19 @@ pub struct CuttingSpec {
     #[serde(default = "default_direction")]
     pub direction: (f64, f64, f64),
     /// Number of section planes, at the centres of equal slabs of the surface's extent
-    /// along the direction (≥ 1). Default: 26.
+    /// along the direction (≥ 1). Default: 26. `HotBlade` places its own planes per block
+    /// (`targets_per_block`) and does not use this.
     #[serde(default = "default_sections")]
     #[schemars(range(min = 1, max = 100000))]
     pub sections: u32,
+    /// `HotBlade` only: a cutting-direction curve, as plan points `[(x, y), ...]` (at least
+    /// 2, strictly advancing from the first towards the last). The section planes then
+    /// follow it (thesis §5.1.5, eq. 5.4): each plane is vertical, through a point of the
+    /// curve, with the curve's horizontal tangent as its normal; the block grid is aligned
+    /// with the chord from the first to the last point, which replaces `direction`.
+    /// Default: none (parallel planes normal to `direction`).
+    #[serde(default)]
+    pub curve: Option<Vec<(f64, f64)>>,
 }
 
 fn default_direction() -> (f64, f64, f64) {
@@ -172,6 +181,7 @@ impl Default for CuttingSpec {
         Self {
             direction: default_direction(),
             sections: default_sections(),
+            curve: None,
         }
     }
 }
@@ -268,6 +278,94 @@ pub enum TaskSpec {
         #[schemars(range(min = 3, max = 100000))]
         samples: u32,
     },
+    /// Hot-blade rationalization ("Hot Blade Cuttings" §6–7, "Robotic Hot-Blade Cutting"
+    /// §4): the surface inside a grid of blocks, every block's sections fitted by elastica,
+    /// the swept surface between them, the blade poses for the two robots, and a RAPID
+    /// program. Write `HotBlade(targets_per_block: 51)`.
+    HotBlade {
+        /// Blade poses per block (≥ 2), on planes equally spaced from the block's entry face
+        /// to its exit face; a section is fitted on each. Default: 51 (the paper's cell).
+        #[serde(default = "default_targets")]
+        #[schemars(range(min = 2, max = 10000))]
+        targets_per_block: u32,
+        /// What each fitted elastica keeps of its section: `EndPoints`, or
+        /// `EndPointsAndLength` (the skater ramp of "Hot Blade Cuttings" §7). End points are
+        /// always kept, so neighbouring blocks meet. Default: `EndPointsAndLength`.
+        #[serde(default = "default_blade_constraint")]
+        constraint: FitConstraintSpec,
+        /// Continuity where neighbouring blocks meet across a face along the cut: `C0`
+        /// (shared end points) or `C1` (also shared end tangents, those of the design
+        /// section). Default: `C0`.
+        #[serde(default)]
+        continuity: Continuity,
+        /// How many times a column of blocks whose fit breaks the tolerance is halved along
+        /// the cutting direction and refitted (0 = never). Default: 2.
+        #[serde(default = "default_split_depth")]
+        #[schemars(range(max = 8))]
+        split_depth: u32,
+        /// Points each section is sampled at for its fit (≥ 8). Default: 100.
+        #[serde(default = "default_blade_samples")]
+        #[schemars(range(min = 8, max = 100000))]
+        samples: u32,
+        /// Cutting speed of the blade through the block (> 0), job units per second.
+        /// Default: 7 mm/s.
+        #[serde(default)]
+        speed: Option<f64>,
+        /// Flat-blade restriction (§4): largest angle between the cutting plane and the
+        /// surface normal, radians, in [0, π/2]. Default: 0.5236 (30°).
+        #[serde(default = "default_plane_angle")]
+        #[schemars(range(min = 0, max = 1.5707963267948966))]
+        max_plane_angle: f64,
+        /// Approach and retreat distance of the blade before and after the block, along the
+        /// cut (≥ 0). Default: 50 mm.
+        #[serde(default)]
+        approach: Option<f64>,
+        /// Planes between two neighbouring targets on which the rationalized surface is
+        /// compared with the design (and meshed). Default: 3.
+        #[serde(default = "default_refine")]
+        #[schemars(range(max = 100))]
+        refine: u32,
+    },
+}
+
+impl TaskSpec {
+    /// Name as written in job files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Analyze { .. } => "Analyze",
+            Self::FitCurves { .. } => "FitCurves",
+            Self::HotBlade { .. } => "HotBlade",
+        }
+    }
+}
+
+/// Continuity of the rationalized surface across block faces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+pub enum Continuity {
+    /// Neighbouring blades share their end points.
+    #[default]
+    C0,
+    /// Neighbouring blades share their end points and end tangents.
+    C1,
+}
+
+fn default_targets() -> u32 {
+    51
+}
+fn default_blade_constraint() -> FitConstraintSpec {
+    FitConstraintSpec::EndPointsAndLength
+}
+fn default_split_depth() -> u32 {
+    2
+}
+fn default_blade_samples() -> u32 {
+    100
+}
+fn default_plane_angle() -> f64 {
+    0.5236
+}
+fn default_refine() -> u32 {
+    3
 }
 
 fn default_samples() -> u32 {
@@ -313,17 +411,19 @@ pub enum OutputSpec {
     Svg,
     /// `sections.obj`: the section curves as 3D polylines.
     Obj,
-    /// `model.gltf` (later tasks).
+    /// `model.gltf` (HotBlade: blocks as boxes, the rationalized surfaces coloured by
+    /// deviation).
     Gltf,
-    /// `sections.csv` (later tasks).
+    /// `sections.csv` (HotBlade: one row per fitted section).
     Csv,
-    /// Robot targets per block (hot-blade task).
+    /// `targets.json` and `targets.csv`: blade poses per block (HotBlade).
     RobotTargets {
-        /// Targets per block.
+        /// Targets per block; must equal the task's `targets_per_block`.
         #[schemars(range(min = 2))]
         per_block: u32,
     },
-    /// ABB RAPID program (hot-blade task).
+    /// ABB RAPID program for a MultiMove cell, one module and `.pgf` per blade robot
+    /// (HotBlade).
     Rapid,
     /// Hot-wire G-code (pre-cut task).
     GCode,

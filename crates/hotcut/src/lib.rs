@@ -29,6 +29,8 @@ pub mod draw;
 pub mod error;
 /// The `FitCurves` task.
 pub mod fit_curves;
+/// The `HotBlade` task: block grid, elastica fits, swept surface, robot data.
+pub mod hot_blade;
 /// Job-file types (serde + JSON Schema).
 pub mod job;
 /// Reading, validating and resolving job files.
@@ -87,6 +89,16 @@ pub fn fit_curves_report_schema_json() -> String {
     s
 }
 
+/// The JSON Schema of a `HotBlade` run's `report.json`, as written to
+/// `schemas/hot-blade-report.schema.json`.
+pub fn hot_blade_report_schema_json() -> String {
+    let v = serde_json::to_value(schemars::schema_for!(hot_blade::report::HotBladeReport))
+        .unwrap_or_default();
+    let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
+    s.push('\n');
+    s
+}
+
 /// Every schema file of `schemas/`: (file name, contents).
 pub fn schema_files() -> Vec<(&'static str, String)> {
     vec![
@@ -95,6 +107,10 @@ pub fn schema_files() -> Vec<(&'static str, String)> {
         (
             "fit-curves-report.schema.json",
             fit_curves_report_schema_json(),
+        ),
+        (
+            "hot-blade-report.schema.json",
+            hot_blade_report_schema_json(),
         ),
     ]
 }

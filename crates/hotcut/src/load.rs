@@ -23,7 +23,7 @@ use nalgebra::Vector3;
 use serde::Deserialize;
 
 use crate::error::JobError;
-use crate::job::{BladeSpec, Job, OutputSpec, SurfaceSpec, TaskSpec, Units};
+use crate::job::{BladeSpec, FitConstraintSpec, Job, OutputSpec, SurfaceSpec, TaskSpec, Units};
 
 /// Turns a `serde_path_to_error` path into a JSON pointer.
 fn pointer_of(path: &serde_path_to_error::Path) -> String {
@@ -251,6 +251,34 @@ pub fn default_blade(units: Units) -> Blade {
     }
 }
 
+/// Checks a cutting-direction curve and returns its unit chord.
+fn check_curve(curve: &[(f64, f64)]) -> Result<Vector3<f64>, String> {
+    if curve.len() < 2 {
+        return Err(format!("needs at least 2 points, got {}", curve.len()));
+    }
+    if let Some(i) = curve
+        .iter()
+        .position(|p| !p.0.is_finite() || !p.1.is_finite())
+    {
+        return Err(format!("point {i} is not finite"));
+    }
+    let (a, b) = (curve[0], curve[curve.len() - 1]);
+    let chord = Vector3::new(b.0 - a.0, b.1 - a.1, 0.0);
+    if !(chord.norm() > 0.0) {
+        return Err("the first and last points coincide".into());
+    }
+    let d = chord.normalize();
+    for i in 1..curve.len() {
+        let step = (curve[i].0 - curve[i - 1].0) * d.x + (curve[i].1 - curve[i - 1].1) * d.y;
+        if !(step > 0.0) {
+            return Err(format!(
+                "point {i} does not advance along the chord from the first to the last point (planes would cross)"
+            ));
+        }
+    }
+    Ok(d)
+}
+
 /// Layer 3 and resolution: checks what the schema cannot and loads the surface.
 ///
 /// # Errors
@@ -268,11 +296,24 @@ pub fn resolve(path: &Path, job: Job) -> Result<ResolvedJob, Vec<JobError>> {
             "the cutting direction must be a non-zero vector",
         ));
     }
-    let direction = if direction.norm() > 0.0 {
+    let mut direction = if direction.norm() > 0.0 {
         direction.normalize()
     } else {
         Vector3::x()
     };
+    if let Some(curve) = &job.cutting.curve {
+        match check_curve(curve) {
+            Ok(chord) => direction = chord,
+            Err(m) => errors.push(semantic(path, "/cutting/curve", m)),
+        }
+        if !matches!(job.task, TaskSpec::HotBlade { .. }) {
+            errors.push(semantic(
+                path,
+                "/cutting/curve",
+                "a cutting-direction curve is used by task HotBlade only",
+            ));
+        }
+    }
 
     if let Some(b) = &job.block {
         for (i, v) in [b.size.0, b.size.1, b.size.2].into_iter().enumerate() {
@@ -372,7 +413,7 @@ pub fn resolve(path: &Path, job: Job) -> Result<ResolvedJob, Vec<JobError>> {
         }
     };
 
-    match &job.task {
+    let allowed: &[&str] = match &job.task {
         TaskSpec::FitCurves { input, .. } => {
             match input {
                 Some(rel) => {
@@ -387,32 +428,91 @@ pub fn resolve(path: &Path, job: Job) -> Result<ResolvedJob, Vec<JobError>> {
                 )),
                 None => {}
             }
-            for (i, o) in job.outputs.iter().enumerate() {
-                if !matches!(o, OutputSpec::Report | OutputSpec::Svg) {
-                    errors.push(semantic(
-                        path,
-                        &format!("/outputs/{i}"),
-                        format!(
-                            "output {} is not produced by task FitCurves (it writes Report, Svg)",
-                            o.name()
-                        ),
-                    ));
-                }
-            }
+            &["Report", "Svg"]
         }
         TaskSpec::Analyze { .. } => {
             if job.surface.is_none() {
                 errors.push(semantic(path, "/surface", "task Analyze needs a surface"));
             }
-            for (i, o) in job.outputs.iter().enumerate() {
-                if !matches!(o, OutputSpec::Report | OutputSpec::Svg | OutputSpec::Obj) {
+            &["Report", "Svg", "Obj"]
+        }
+        TaskSpec::HotBlade {
+            targets_per_block,
+            constraint,
+            speed,
+            approach,
+            max_plane_angle,
+            ..
+        } => {
+            let ptr = "/task/HotBlade";
+            if job.surface.is_none() {
+                errors.push(semantic(path, "/surface", "task HotBlade needs a surface"));
+            }
+            if job.block.is_none() {
+                errors.push(semantic(
+                    path,
+                    "/block",
+                    "task HotBlade needs `block` (the size of the blocks the surface is cut from)",
+                ));
+            }
+            if *constraint == FitConstraintSpec::Free {
+                errors.push(semantic(path, &format!("{ptr}/constraint"), "HotBlade fits keep the sections' end points so that neighbouring blocks meet: use EndPoints or EndPointsAndLength"));
+            }
+            if let Some(v) = speed {
+                if !(*v > 0.0) || !v.is_finite() {
                     errors.push(semantic(
                         path,
-                        &format!("/outputs/{i}"),
-                        format!("output {} is not produced by task Analyze (it writes Report, Svg, Obj)", o.name()),
+                        &format!("{ptr}/speed"),
+                        format!("the cutting speed must be a positive number, got {v}"),
                     ));
                 }
             }
+            if let Some(v) = approach {
+                if !(*v >= 0.0) || !v.is_finite() {
+                    errors.push(semantic(
+                        path,
+                        &format!("{ptr}/approach"),
+                        format!("the approach distance must be ≥ 0, got {v}"),
+                    ));
+                }
+            }
+            if !(*max_plane_angle >= 0.0 && *max_plane_angle <= std::f64::consts::FRAC_PI_2) {
+                errors.push(semantic(
+                    path,
+                    &format!("{ptr}/max_plane_angle"),
+                    format!("the plane angle must be in [0, π/2], got {max_plane_angle}"),
+                ));
+            }
+            for (i, o) in job.outputs.iter().enumerate() {
+                if let OutputSpec::RobotTargets { per_block } = o {
+                    if per_block != targets_per_block {
+                        errors.push(semantic(path, &format!("/outputs/{i}/RobotTargets/per_block"), format!("per_block ({per_block}) must equal the task's targets_per_block ({targets_per_block})")));
+                    }
+                }
+            }
+            &[
+                "Report",
+                "Svg",
+                "Obj",
+                "Gltf",
+                "Csv",
+                "RobotTargets",
+                "Rapid",
+            ]
+        }
+    };
+    for (i, o) in job.outputs.iter().enumerate() {
+        if !allowed.contains(&o.name()) {
+            errors.push(semantic(
+                path,
+                &format!("/outputs/{i}"),
+                format!(
+                    "output {} is not produced by task {} (it writes {})",
+                    o.name(),
+                    job.task.name(),
+                    allowed.join(", ")
+                ),
+            ));
         }
     }
     let blade = match &job.blade {

@@ -169,6 +169,56 @@ fn print_fit_summary(r: &FitCurvesReport, units: &str) {
     }
 }
 
+fn print_hot_blade_summary(r: &hotcut::hot_blade::report::HotBladeReport, units: &str) {
+    let s = &r.summary;
+    println!(
+        "{} (HotBlade, {:?}, {:?}): {} block(s) in {} row(s) × {} column(s), {} split(s)",
+        r.job,
+        r.settings.constraint,
+        r.settings.continuity,
+        s.blocks,
+        r.grid.rows,
+        r.grid.columns,
+        r.splits.len()
+    );
+    println!(
+        "  {} section(s): L2 min {:.4}, max {:.4}, avg {:.4}; largest fit distance {:.4} {units}, deviation {:.4} {units}",
+        s.sections, s.l2.min, s.l2.max, s.l2.avg, s.max_fit_distance, s.max_deviation
+    );
+    println!(
+        "  blade: max |κ| {:.4e} /{units}, ≤ {} inflection(s); plane angle ≤ {:.1}°; face gap {:.1e} {units}, angle {:.1e} rad",
+        s.max_abs_curvature,
+        s.max_inflections,
+        s.max_plane_angle.to_degrees(),
+        s.max_face_gap,
+        s.max_face_angle
+    );
+    let f = &s.flagged;
+    if s.all_ok {
+        println!("  every block meets every constraint");
+    } else {
+        println!(
+            "  warning: blocks breaking a constraint — approximation {}, blade strain {}, shape {}, blade length {}, flat blade {}, block height {}, overlap {}",
+            f.approximation, f.blade_strain, f.shape, f.blade_length, f.flat_blade, f.block_height, f.overlap
+        );
+    }
+}
+
+/// Lists written files, folding long runs of per-block files.
+fn print_files(dir: &std::path::Path, files: &[String]) {
+    if files.len() <= 12 {
+        println!("  wrote {}: {}", dir.display(), files.join(", "));
+    } else {
+        println!(
+            "  wrote {}: {} files ({}, …, {})",
+            dir.display(),
+            files.len(),
+            files[..6].join(", "),
+            files[files.len() - 2..].join(", ")
+        );
+    }
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(c) => c,
@@ -229,8 +279,11 @@ fn main() -> ExitCode {
                         match &o.report {
                             TaskReport::Analyze(r) => print_summary(r, j.job.units.symbol()),
                             TaskReport::FitCurves(r) => print_fit_summary(r, j.job.units.symbol()),
+                            TaskReport::HotBlade(r) => {
+                                print_hot_blade_summary(r, j.job.units.symbol())
+                            }
                         }
-                        println!("  wrote {}: {}", o.dir.display(), o.files.join(", "));
+                        print_files(&o.dir, &o.files);
                     }
                     Err(e) => {
                         eprintln!("error: {e}");

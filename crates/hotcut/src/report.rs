@@ -268,6 +268,8 @@ pub enum TaskReport {
     Analyze(Box<AnalyzeReport>),
     /// From `FitCurves`.
     FitCurves(FitCurvesReport),
+    /// From `HotBlade`.
+    HotBlade(Box<crate::hot_blade::report::HotBladeReport>),
 }
 
 impl TaskReport {
@@ -275,6 +277,14 @@ impl TaskReport {
     pub fn analyze(&self) -> Option<&AnalyzeReport> {
         match self {
             Self::Analyze(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// The `HotBlade` report, if that task ran.
+    pub fn hot_blade(&self) -> Option<&crate::hot_blade::report::HotBladeReport> {
+        match self {
+            Self::HotBlade(r) => Some(r),
             _ => None,
         }
     }

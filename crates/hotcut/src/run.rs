@@ -15,6 +15,7 @@ use crate::analyze::{analyze, sample_world, AnalyzeParams};
 use crate::draw::{fit_svg, sections_svg};
 use crate::error::{HotcutError, Result};
 use crate::fit_curves::{fit_curves, FitCurvesParams};
+use crate::hot_blade::{hot_blade, HotBladeParams};
 use crate::job::{OutputSpec, TaskSpec};
 use crate::load::ResolvedJob;
 use crate::report::TaskReport;
@@ -31,14 +32,12 @@ pub struct RunOutcome {
     pub report: TaskReport,
 }
 
-/// How a task renders its own output files (all but `report.json`).
-type TaskFiles = Box<dyn Fn(&OutputSpec) -> Option<Render<'static>>>;
+/// How a task renders its own output files (all but `report.json`); an output kind may
+/// give several files.
+type TaskFiles = Box<dyn Fn(&OutputSpec) -> Vec<Render<'static>>>;
 
 /// One output file: its name and how to render it.
-type Render<'a> = (
-    &'static str,
-    Box<dyn Fn(&mut Vec<u8>) -> export::Result<()> + 'a>,
-);
+pub(crate) type Render<'a> = (String, Box<dyn Fn(&mut Vec<u8>) -> export::Result<()> + 'a>);
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> HotcutError + '_ {
     move |source| HotcutError::Io {
@@ -60,15 +59,15 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
             let params = AnalyzeParams::from_job(job);
             let a = std::rc::Rc::new(analyze(job, &params, progress)?);
             let report = TaskReport::Analyze(Box::new(a.report.clone()));
-            let render = move |o: &OutputSpec| -> Option<Render<'static>> {
+            let render = move |o: &OutputSpec| -> Vec<Render<'static>> {
                 let a = a.clone();
                 match o {
-                    OutputSpec::Svg => Some((
-                        "sections.svg",
+                    OutputSpec::Svg => vec![(
+                        "sections.svg".into(),
                         Box::new(move |buf| sections_svg(&a, units).write(buf)),
-                    )),
-                    OutputSpec::Obj => Some((
-                        "sections.obj",
+                    )],
+                    OutputSpec::Obj => vec![(
+                        "sections.obj".into(),
                         Box::new(move |buf| {
                             let mut w = ObjWriter::new(REPORT_DIGITS);
                             for (s, _) in &a.sections {
@@ -79,8 +78,8 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
                             }
                             w.write(buf)
                         }),
-                    )),
-                    _ => None,
+                    )],
+                    _ => Vec::new(),
                 }
             };
             (report, Box::new(render))
@@ -96,16 +95,29 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
             };
             let f = std::rc::Rc::new(fit_curves(job, &params, progress)?);
             let report = TaskReport::FitCurves(f.report.clone());
-            let render = move |o: &OutputSpec| -> Option<Render<'static>> {
+            let render = move |o: &OutputSpec| -> Vec<Render<'static>> {
                 let f = f.clone();
                 match o {
-                    OutputSpec::Svg => Some((
-                        "fit.svg",
+                    OutputSpec::Svg => vec![(
+                        "fit.svg".into(),
                         Box::new(move |buf| fit_svg(&f, units).write(buf)),
-                    )),
-                    _ => None,
+                    )],
+                    _ => Vec::new(),
                 }
             };
+            (report, Box::new(render))
+        }
+        TaskSpec::HotBlade { .. } => {
+            let params = HotBladeParams::from_job(job).ok_or_else(|| HotcutError::Task {
+                path: job.path.clone(),
+                message: "not a HotBlade job".into(),
+            })?;
+            let h = std::rc::Rc::new(hot_blade(job, &params, progress)?);
+            let report = TaskReport::HotBlade(Box::new(h.report.clone()));
+            let units = job.job.units;
+            let name = job.job.name.clone();
+            let render =
+                move |o: &OutputSpec| crate::hot_blade::outputs::render(&h, o, units, &name);
             (report, Box::new(render))
         }
     };
@@ -113,7 +125,7 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
     for o in &job.job.outputs {
         match o {
             OutputSpec::Report => renders.push((
-                "report.json",
+                "report.json".into(),
                 Box::new(|buf| {
                     buf.extend(to_json_string(&report, REPORT_DIGITS)?.into_bytes());
                     Ok(())
@@ -131,14 +143,14 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
     let mut files = Vec::new();
     // renders each output into memory, then writes it into the temporary folder
     for (name, render) in renders {
-        let p = tmp.path().join(name);
+        let p = tmp.path().join(&name);
         let mut buf = Vec::new();
         render(&mut buf).map_err(|source| HotcutError::Export {
             path: p.clone(),
             source,
         })?;
         std::fs::write(&p, buf).map_err(io(&p))?;
-        files.push(name.to_string());
+        files.push(name);
     }
     let dir = out.join(&job.job.name);
     if dir.exists() {

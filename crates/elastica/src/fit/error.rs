@@ -32,6 +32,9 @@ pub enum FitError {
     /// The end points coincide, so end-point constraints cannot place a segment.
     #[error("the end points coincide (closed curve); end-point constraints need distinct ends")]
     ClosedCurve,
+    /// End tangents (C¹ joints) could not be met from the end-point fit.
+    #[error("the end tangents could not be kept ({0})")]
+    Tangents(String),
     /// No candidate produced a finite fit.
     #[error("no elastica, arc or line could be fitted: {0}")]
     Failed(String),

@@ -39,6 +39,7 @@ mod guess;
 mod lm;
 mod model;
 mod odr;
+mod tangents;
 
 use crate::segment::Segment;
 use crate::unit::Family;
@@ -46,6 +47,7 @@ use model::{Data, Placement, Shape, C};
 use serde::{Deserialize, Serialize};
 
 pub use error::FitError;
+pub use tangents::fit_with_end_tangents;
 
 /// Which boundary data the fitted segment must reproduce exactly.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]

@@ -1,0 +1,171 @@
+//! glTF 2.0 writer: one self-contained `.gltf` (JSON, buffer embedded as a base64 data
+//! URI) holding triangle meshes with optional per-vertex colours and simple PBR materials.
+//! Coordinates are written as given (z up) under a root node that turns them to glTF's
+//! y-up convention.
+
+use std::io::Write;
+
+use base64::Engine;
+use serde_json::{json, Value};
+
+use crate::Result;
+
+/// A material: base colour (linear RGBA) and whether it is see-through.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    /// Name.
+    pub name: String,
+    /// Base colour, linear RGBA in [0, 1].
+    pub color: [f32; 4],
+    /// Alpha blending on (for translucent boxes).
+    pub blend: bool,
+}
+
+/// A triangle mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mesh {
+    /// Name (also the node's name).
+    pub name: String,
+    /// Vertex positions.
+    pub positions: Vec<[f32; 3]>,
+    /// Per-vertex linear RGBA colours (same length as `positions`), if any.
+    pub colors: Option<Vec<[f32; 4]>>,
+    /// Triangles as vertex indices, three per triangle.
+    pub indices: Vec<u32>,
+    /// Index into the materials.
+    pub material: usize,
+}
+
+/// Writes the scene.
+///
+/// ```
+/// use export::gltf::{write_gltf, Material, Mesh};
+/// let m = Mesh { name: "tri".into(), positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+///     colors: None, indices: vec![0, 1, 2], material: 0 };
+/// let mat = Material { name: "grey".into(), color: [0.5, 0.5, 0.5, 1.0], blend: false };
+/// let mut out = Vec::new();
+/// write_gltf("hotcut", &[m], &[mat], &mut out).unwrap();
+/// let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
+/// assert_eq!(v["asset"]["version"], "2.0");
+/// assert_eq!(v["accessors"][0]["max"][0], 1.0);
+/// ```
+///
+/// # Errors
+/// I/O errors of `w`.
+pub fn write_gltf(
+    generator: &str,
+    meshes: &[Mesh],
+    materials: &[Material],
+    mut w: impl Write,
+) -> Result<()> {
+    let mut buffer: Vec<u8> = Vec::new();
+    let mut views: Vec<Value> = Vec::new();
+    let mut accessors: Vec<Value> = Vec::new();
+    let mut gl_meshes: Vec<Value> = Vec::new();
+    let mut nodes: Vec<Value> = Vec::new();
+    let mut children: Vec<usize> = Vec::new();
+    let mut push_view = |bytes: &[u8], target: u32, buffer: &mut Vec<u8>| -> usize {
+        while buffer.len() % 4 != 0 {
+            buffer.push(0);
+        }
+        let offset = buffer.len();
+        buffer.extend_from_slice(bytes);
+        views.push(
+            json!({"buffer": 0, "byteOffset": offset, "byteLength": bytes.len(), "target": target}),
+        );
+        views.len() - 1
+    };
+    for m in meshes
+        .iter()
+        .filter(|m| !m.positions.is_empty() && !m.indices.is_empty())
+    {
+        let mut bytes = Vec::with_capacity(12 * m.positions.len());
+        let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+        for p in &m.positions {
+            for k in 0..3 {
+                bytes.extend_from_slice(&p[k].to_le_bytes());
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let pv = push_view(&bytes, 34962, &mut buffer);
+        accessors.push(
+            json!({"bufferView": pv, "componentType": 5126, "count": m.positions.len(),
+            "type": "VEC3", "min": lo, "max": hi}),
+        );
+        let pos = accessors.len() - 1;
+        let mut attributes = json!({"POSITION": pos});
+        if let Some(colors) = m.colors.as_ref().filter(|c| c.len() == m.positions.len()) {
+            let mut bytes = Vec::with_capacity(16 * colors.len());
+            for c in colors {
+                for v in c {
+                    bytes.extend_from_slice(&v.clamp(0.0, 1.0).to_le_bytes());
+                }
+            }
+            let cv = push_view(&bytes, 34962, &mut buffer);
+            accessors.push(json!({"bufferView": cv, "componentType": 5126, "count": colors.len(), "type": "VEC4"}));
+            attributes["COLOR_0"] = json!(accessors.len() - 1);
+        }
+        let bytes: Vec<u8> = m.indices.iter().flat_map(|i| i.to_le_bytes()).collect();
+        let iv = push_view(&bytes, 34963, &mut buffer);
+        accessors.push(json!({"bufferView": iv, "componentType": 5125, "count": m.indices.len(), "type": "SCALAR"}));
+        let idx = accessors.len() - 1;
+        gl_meshes.push(
+            json!({"name": m.name, "primitives": [{"attributes": attributes, "indices": idx,
+            "material": m.material.min(materials.len().saturating_sub(1)), "mode": 4}]}),
+        );
+        nodes.push(json!({"name": m.name, "mesh": gl_meshes.len() - 1}));
+        children.push(nodes.len() - 1);
+    }
+    // z-up to y-up: −90° about x
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let mut root_node = json!({"name": "z-up", "rotation": [-h, 0.0, 0.0, h]});
+    if !children.is_empty() {
+        root_node["children"] = json!(children);
+    }
+    nodes.push(root_node);
+    let root = nodes.len() - 1;
+    let mats: Vec<Value> = materials
+        .iter()
+        .map(|m| {
+            let mut v = json!({"name": m.name, "pbrMetallicRoughness": {"baseColorFactor": m.color,
+                "metallicFactor": 0.0, "roughnessFactor": 0.8}, "doubleSided": true});
+            if m.blend {
+                v["alphaMode"] = json!("BLEND");
+            }
+            v
+        })
+        .collect();
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&buffer)
+    );
+    let mut doc = json!({
+        "asset": {"version": "2.0", "generator": generator},
+        "scene": 0,
+        "scenes": [{"nodes": [root]}],
+        "nodes": nodes,
+        "meshes": gl_meshes,
+        "accessors": accessors,
+        "bufferViews": views,
+        "buffers": [{"byteLength": buffer.len(), "uri": uri}],
+    });
+    if !mats.is_empty() {
+        doc["materials"] = json!(mats);
+    }
+    if gl_meshes_is_empty(&doc) {
+        // glTF forbids empty arrays
+        for key in ["meshes", "accessors", "bufferViews", "buffers"] {
+            if let Some(o) = doc.as_object_mut() {
+                o.remove(key);
+            }
+        }
+    }
+    serde_json::to_writer(&mut w, &doc)?;
+    w.write_all(b"\n")?;
+    Ok(())
+}
+
+fn gl_meshes_is_empty(doc: &Value) -> bool {
+    doc["meshes"].as_array().is_none_or(|a| a.is_empty())
+}
