@@ -9,7 +9,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::{fit_points_with_arclength, FitConstraint, FitError, FitParams, FitResult};
-use crate::segment::Segment;
+use crate::segment::{ElasticaParams, Segment};
 use crate::unit::Family;
 
 /// Constraint residual that counts as met (radians, and relative length).
@@ -20,13 +20,35 @@ fn wrap(a: f64) -> f64 {
     a - (a / tau).round() * tau
 }
 
-/// The segment of shape `theta` placed so that it runs from `p0` to `p1`.
-fn placed(family: Family, theta: &[f64; 3], p0: [f64; 2], p1: [f64; 2]) -> Option<Segment> {
-    Segment::elastica_between(family, theta[0], theta[1], theta[2], p0, p1)
+/// The two families as one chart: `q ∈ [0, 1]` is the inflectional elastica of modulus
+/// `k = q`, `q ∈ (1, 2)` the non-inflectional one of modulus `k = 2 − q`. Both families are
+/// the same curve at k = 1 (κ = 2 sech σ), so a solve can cross from one to the other.
+fn chart(q: f64) -> Option<(Family, f64)> {
+    if (0.0..=1.0).contains(&q) {
+        Some((Family::Inflectional, q))
+    } else if q > 1.0 && q < 2.0 {
+        Some((Family::NonInflectional, 2.0 - q))
+    } else {
+        None
+    }
+}
+
+/// The chart coordinate of a family and modulus.
+fn chart_of(family: Family, k: f64) -> f64 {
+    match family {
+        Family::Inflectional => k,
+        Family::NonInflectional => 2.0 - k,
+    }
+}
+
+/// The segment of shape `theta` (chart coordinate, s₀, ℓ) placed so that it runs from `p0`
+/// to `p1`.
+fn placed(theta: &[f64; 3], p0: [f64; 2], p1: [f64; 2]) -> Option<Segment> {
+    let (family, k) = chart(theta[0])?;
+    Segment::elastica_between(family, k, theta[1], theta[2], p0, p1)
 }
 
 struct Problem<'a> {
-    family: Family,
     points: &'a [[f64; 2]],
     t: Vec<f64>,
     w: Vec<f64>,
@@ -36,10 +58,42 @@ struct Problem<'a> {
 }
 
 impl Problem<'_> {
+    /// Jacobians of the residuals and constraints at θ: central differences, one-sided
+    /// where a side leaves the valid range (k ∉ [0, 1]).
+    fn jacobians(
+        &self,
+        theta: &[f64; 3],
+        r: &[f64],
+        c: &[f64],
+    ) -> Option<(DMatrix<f64>, DMatrix<f64>)> {
+        let mut jr = DMatrix::zeros(r.len(), 3);
+        let mut jc = DMatrix::zeros(c.len(), 3);
+        for k in 0..3 {
+            let h = 1e-7 * (1.0 + theta[k].abs());
+            let (mut tp, mut tm) = (*theta, *theta);
+            tp[k] += h;
+            tm[k] -= h;
+            let (plus, minus) = (self.eval(&tp), self.eval(&tm));
+            let ((rp, cp), (rm, cm), width) = match (plus, minus) {
+                (Some((rp, cp, _)), Some((rm, cm, _))) => ((rp, cp), (rm, cm), 2.0 * h),
+                (Some((rp, cp, _)), None) => ((rp, cp), (r.to_vec(), c.to_vec()), h),
+                (None, Some((rm, cm, _))) => ((r.to_vec(), c.to_vec()), (rm, cm), h),
+                (None, None) => return None,
+            };
+            for i in 0..r.len() {
+                jr[(i, k)] = (rp[i] - rm[i]) / width;
+            }
+            for i in 0..c.len() {
+                jc[(i, k)] = wrap(cp[i] - cm[i]) / width;
+            }
+        }
+        Some((jr, jc))
+    }
+
     /// Weighted residuals and constraint values at θ.
     fn eval(&self, theta: &[f64; 3]) -> Option<(Vec<f64>, Vec<f64>, Segment)> {
         let n = self.points.len();
-        let seg = placed(self.family, theta, self.points[0], self.points[n - 1])?;
+        let seg = placed(theta, self.points[0], self.points[n - 1])?;
         let e = seg.evaluator().ok()?;
         let mut r = Vec::with_capacity(2 * n);
         for (i, q) in self.points.iter().enumerate() {
@@ -75,6 +129,7 @@ pub fn fit_with_end_tangents(
     points: &[[f64; 2]],
     s: &[f64],
     fit: &FitResult,
+    warm: Option<&Segment>,
     start: Option<f64>,
     end: Option<f64>,
     constraint: FitConstraint,
@@ -87,30 +142,73 @@ pub fn fit_with_end_tangents(
     if n < 3 || s.len() != n || !(total > 0.0) {
         return Err(FitError::TooFewPoints(n));
     }
-    // lines and arcs have too few parameters for four boundary conditions: start from
-    // the best elastica instead
-    let base = match fit.segment {
-        Segment::Elastica(p) => p,
-        _ => {
-            let refit = fit_points_with_arclength(
+    // starts: the neighbour's solution (already close to meeting similar constraints),
+    // the end-point fit, and — lines and arcs have too few parameters for four boundary
+    // conditions — the best elastica
+    let mut bases: Vec<ElasticaParams> = Vec::new();
+    if let Some(Segment::Elastica(p)) = warm {
+        bases.push(*p);
+    }
+    if let Segment::Elastica(p) = fit.segment {
+        bases.push(p);
+    }
+    let mut last_err = FitError::Tangents("no elastica start".into());
+    let mut best: Option<FitResult> = None;
+    for round in 0..2 {
+        for base in &bases {
+            match refine_from(
                 points,
                 s,
-                &FitParams {
-                    constraint,
-                    lines_and_arcs: false,
-                    ..FitParams::default()
-                },
-            )?;
-            match refit.segment {
-                Segment::Elastica(p) => p,
-                _ => return Err(FitError::Tangents("no elastica start".into())),
+                total,
+                *base,
+                start,
+                end,
+                constraint,
+                fit.iterations,
+            ) {
+                Ok(r) => {
+                    if best.as_ref().is_none_or(|b| r.l2 < b.l2) {
+                        best = Some(r);
+                    }
+                }
+                Err(e) => last_err = e,
             }
         }
-    };
+        if best.is_some() || round == 1 {
+            break;
+        }
+        let refit = fit_points_with_arclength(
+            points,
+            s,
+            &FitParams {
+                constraint,
+                lines_and_arcs: false,
+                ..FitParams::default()
+            },
+        )?;
+        bases.clear();
+        if let Segment::Elastica(p) = refit.segment {
+            bases.push(p);
+        }
+    }
+    best.ok_or(last_err)
+}
+
+/// The constrained Gauss–Newton solve from one start.
+#[allow(clippy::too_many_arguments)]
+fn refine_from(
+    points: &[[f64; 2]],
+    s: &[f64],
+    total: f64,
+    base: ElasticaParams,
+    start: Option<f64>,
+    end: Option<f64>,
+    constraint: FitConstraint,
+    prior_iterations: usize,
+) -> Result<FitResult, FitError> {
     let t: Vec<f64> = s.iter().map(|v| v / total).collect();
     let tw = super::model::trapezoid_weights(&t);
     let problem = Problem {
-        family: base.family,
         points,
         t: t.clone(),
         w: tw.iter().map(|v| (v * total).sqrt()).collect(),
@@ -118,87 +216,123 @@ pub fn fit_with_end_tangents(
         end,
         length: (constraint == FitConstraint::EndPointsAndLength).then_some(total),
     };
-    let mut theta = [base.k, base.s0, base.l];
+    let mut theta = [chart_of(base.family, base.k), base.s0, base.l];
     let (mut r, mut c, mut seg) = problem
         .eval(&theta)
         .ok_or_else(|| FitError::Tangents("invalid start".into()))?;
     let mut iterations = 0;
+    let mut mu = 1e-12;
+    let viol = |c: &[f64]| c.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let cost = |r: &[f64]| r.iter().map(|v| v * v).sum::<f64>();
     for _ in 0..100 {
         iterations += 1;
         let m = c.len();
-        // Jacobians by central differences
-        let mut jr = DMatrix::zeros(r.len(), 3);
-        let mut jc = DMatrix::zeros(m, 3);
-        for k in 0..3 {
-            let h = 1e-7 * (1.0 + theta[k].abs());
-            let (mut tp, mut tm) = (theta, theta);
-            tp[k] += h;
-            tm[k] -= h;
-            let (Some((rp, cp, _)), Some((rm, cm, _))) = (problem.eval(&tp), problem.eval(&tm))
-            else {
-                return Err(FitError::Tangents("the shape left the valid range".into()));
-            };
-            for i in 0..r.len() {
-                jr[(i, k)] = (rp[i] - rm[i]) / (2.0 * h);
-            }
-            for i in 0..m {
-                jc[(i, k)] = wrap(cp[i] - cm[i]) / (2.0 * h);
-            }
-        }
+        let Some((jr, jc)) = problem.jacobians(&theta, &r, &c) else {
+            return Err(FitError::Tangents("the shape left the valid range".into()));
+        };
         // KKT: [JᵀJ + μI, Cᵀ; C, 0] [Δ; λ] = [−Jᵀr; −c]
         let rv = DVector::from_vec(r.clone());
         let jtj = jr.transpose() * &jr;
         let g = jr.transpose() * rv;
-        let mu = 1e-12 * (1.0 + jtj.diagonal().amax());
-        let mut kkt = DMatrix::zeros(3 + m, 3 + m);
-        let mut rhs = DVector::zeros(3 + m);
-        for i in 0..3 {
-            for j in 0..3 {
-                kkt[(i, j)] = jtj[(i, j)] + if i == j { mu } else { 0.0 };
-            }
-            rhs[i] = -g[i];
-        }
-        for i in 0..m {
-            for j in 0..3 {
-                kkt[(3 + i, j)] = jc[(i, j)];
-                kkt[(j, 3 + i)] = jc[(i, j)];
-            }
-            rhs[3 + i] = -c[i];
-        }
-        let Some(step) = kkt.lu().solve(&rhs) else {
-            return Err(FitError::Tangents("singular constraints".into()));
-        };
-        // backtrack on the merit ‖c‖ first, the cost second
-        let viol = |c: &[f64]| c.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let cost = |r: &[f64]| r.iter().map(|v| v * v).sum::<f64>();
+        let scale = 1.0 + jtj.diagonal().amax();
+        // Levenberg–Marquardt damping on the least-squares part: as μ grows the step tends
+        // to the minimum-norm step onto the linearised constraints
         let (v0, f0) = (viol(&c), cost(&r));
-        let mut alpha = 1.0;
         let mut moved = false;
-        for _ in 0..30 {
-            let mut tn = theta;
-            for k in 0..3 {
-                tn[k] += alpha * step[k];
-            }
-            if let Some((rn, cn, sn)) = problem.eval(&tn) {
-                let (v1, f1) = (viol(&cn), cost(&rn));
-                if v1 < v0 * (1.0 - 1e-4 * alpha) || (v1 <= v0.max(TOLERANCE) && f1 <= f0) {
-                    theta = tn;
-                    r = rn;
-                    c = cn;
-                    seg = sn;
-                    moved = true;
-                    break;
+        let mut last_step = [0.0; 3];
+        for _ in 0..40 {
+            let mut kkt = DMatrix::zeros(3 + m, 3 + m);
+            let mut rhs = DVector::zeros(3 + m);
+            for i in 0..3 {
+                for j in 0..3 {
+                    kkt[(i, j)] = jtj[(i, j)] + if i == j { mu * scale } else { 0.0 };
                 }
+                rhs[i] = -g[i];
             }
-            alpha *= 0.5;
+            for i in 0..m {
+                for j in 0..3 {
+                    kkt[(3 + i, j)] = jc[(i, j)];
+                    kkt[(j, 3 + i)] = jc[(i, j)];
+                }
+                rhs[3 + i] = -c[i];
+            }
+            let Some(step) = kkt.lu().solve(&rhs) else {
+                mu *= 4.0;
+                continue;
+            };
+            // backtrack along the step (needed when the constraints fix all three parameters
+            // and μ has no effect)
+            let mut alpha = 1.0;
+            for _ in 0..24 {
+                let mut tn = theta;
+                for k in 0..3 {
+                    tn[k] += alpha * step[k];
+                    last_step[k] = alpha * step[k];
+                }
+                if let Some((rn, cn, sn)) = problem.eval(&tn) {
+                    let (v1, f1) = (viol(&cn), cost(&rn));
+                    let better = if v0 > TOLERANCE {
+                        v1 < v0 * (1.0 - 1e-4 * alpha) || (v1 < v0 && f1 <= f0)
+                    } else {
+                        v1 <= TOLERANCE && f1 < f0
+                    };
+                    if better {
+                        theta = tn;
+                        r = rn;
+                        c = cn;
+                        seg = sn;
+                        moved = true;
+                        break;
+                    }
+                }
+                alpha *= 0.5;
+            }
+            if moved {
+                mu = (mu / 10.0).max(1e-12);
+                break;
+            }
+            mu *= 10.0;
+            if mu > 1e12 {
+                break;
+            }
         }
         let done = viol(&c) <= TOLERANCE;
-        let small = (0..3).all(|k| (alpha * step[k]).abs() <= 1e-12 * (1.0 + theta[k].abs()));
+        let small = (0..3).all(|k| last_step[k].abs() <= 1e-12 * (1.0 + theta[k].abs()));
         if done && (small || !moved) {
             break;
         }
         if !moved {
             break;
+        }
+    }
+    // finish on the constraints alone: minimum-norm Newton steps Δ = −Cᵀ(CCᵀ)⁻¹c
+    for _ in 0..30 {
+        if c.iter().all(|v| v.abs() <= TOLERANCE) {
+            break;
+        }
+        let Some((_, jc)) = problem.jacobians(&theta, &r, &c) else {
+            break;
+        };
+        let cct = &jc * jc.transpose();
+        let Some(y) = cct.lu().solve(&DVector::from_vec(c.clone())) else {
+            break;
+        };
+        let step = -(jc.transpose() * y);
+        let mut tn = theta;
+        for k in 0..3 {
+            tn[k] += step[k];
+        }
+        match problem.eval(&tn) {
+            Some((rn, cn, sn))
+                if cn.iter().map(|v| v.abs()).fold(0.0, f64::max)
+                    < c.iter().map(|v| v.abs()).fold(0.0, f64::max) =>
+            {
+                theta = tn;
+                r = rn;
+                c = cn;
+                seg = sn;
+            }
+            _ => break,
         }
     }
     if let Some(v) = c.iter().find(|v| v.abs() > TOLERANCE * 10.0) {
@@ -223,8 +357,78 @@ pub fn fit_with_end_tangents(
         max: d.iter().copied().fold(0.0, f64::max),
         l2: l2sq.sqrt(),
         input_length: total,
-        iterations: fit.iterations + iterations,
+        iterations: prior_iterations + iterations,
         converged: true,
         t,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fit::fit_points;
+
+    fn sample(seg: &Segment, n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
+        let pts = seg.sample(n).unwrap();
+        let s = (0..n)
+            .map(|i| seg.length() * i as f64 / (n - 1) as f64)
+            .collect();
+        (pts, s)
+    }
+
+    #[test]
+    fn end_tangents_are_kept_to_rounding() {
+        let seg = Segment::elastica_between(
+            Family::Inflectional,
+            0.4,
+            0.3,
+            0.9,
+            [0.0, 0.0],
+            [600.0, 20.0],
+        )
+        .unwrap();
+        let (pts, s) = sample(&seg, 100);
+        for constraint in [FitConstraint::EndPoints, FitConstraint::EndPointsAndLength] {
+            let fit = fit_points_with_arclength(
+                &pts,
+                &s,
+                &FitParams {
+                    constraint,
+                    ..FitParams::default()
+                },
+            )
+            .unwrap();
+            let e = seg.evaluator().unwrap();
+            let (a0, a1) = (e.eval(0.0).angle, e.eval(1.0).angle);
+            for (start, end) in [
+                (Some(a0 + 0.01), None),
+                (None, Some(a1 - 0.02)),
+                (Some(a0 - 0.01), Some(a1 + 0.01)),
+            ] {
+                let r = fit_with_end_tangents(&pts, &s, &fit, None, start, end, constraint)
+                    .unwrap_or_else(|e| panic!("{constraint:?} {start:?} {end:?} {a0} {a1}: {e}"));
+                let f = r.segment.evaluator().unwrap();
+                if let Some(a) = start {
+                    assert!(
+                        wrap(f.eval(0.0).angle - a).abs() < 1e-9,
+                        "{constraint:?} start"
+                    );
+                }
+                if let Some(a) = end {
+                    assert!(
+                        wrap(f.eval(1.0).angle - a).abs() < 1e-9,
+                        "{constraint:?} end"
+                    );
+                }
+                let (p0, p1) = (f.eval(0.0).p, f.eval(1.0).p);
+                assert!((p0[0] - pts[0][0]).hypot(p0[1] - pts[0][1]) < 1e-9);
+                assert!((p1[0] - pts[99][0]).hypot(p1[1] - pts[99][1]) < 1e-9);
+                if constraint == FitConstraint::EndPointsAndLength {
+                    assert!((r.segment.length() / s[99] - 1.0).abs() < 1e-9);
+                }
+                assert!(r.max < 10.0, "{}", r.max);
+            }
+        }
+        let _ = fit_points;
+    }
 }

@@ -137,6 +137,9 @@ pub struct FittedSection {
     pub pose: BladePose,
     /// Largest angle between the plane and the surface normal along the section.
     pub plane_angle: f64,
+    /// With `C1`: whether the fit keeps the design's end tangents (false: the end-point fit
+    /// was kept because the tangent solve failed).
+    pub tangents_kept: bool,
 }
 
 /// A vertex of the rationalized surface mesh with its deviation from the design.
@@ -435,6 +438,7 @@ pub fn hot_blade(
         max_plane_angle: fold(&|b| b.max_plane_angle),
         max_face_gap: gap,
         max_face_angle: angle,
+        tangent_failures: reports.iter().map(|b| b.tangent_failures).sum(),
         all_ok: reports.iter().all(|b| !b.flags.any()),
         flagged,
     };
@@ -537,22 +541,22 @@ fn fit_part(
                     part.column, part.range.0, part.range.1
                 ))
             })?;
+        let mut tangents_kept = true;
         if p.continuity == Continuity::C1 {
             let (t0, t1) = design_tangents(ctx, plane, &design, part.range);
-            fit = elastica::fit::fit_with_end_tangents(
+            match elastica::fit::fit_with_end_tangents(
                 &design.points,
                 &design.s,
                 &fit,
+                warm.as_ref(),
                 t0,
                 t1,
                 constraint,
-            )
-            .map_err(|e| {
-                task_err(format!(
-                    "column {}, plane {plane}: keeping end tangents: {e}",
-                    part.column
-                ))
-            })?;
+            ) {
+                Ok(f) => fit = f,
+                // keep the C⁰ fit; the block reports it and the face angle shows it
+                Err(_) => tangents_kept = false,
+            }
         }
         warm = Some(fit.segment);
         let blade = make_blade(&fit.segment, &p.blade)
@@ -581,6 +585,7 @@ fn fit_part(
             blade,
             pose,
             plane_angle,
+            tangents_kept,
         }));
     }
     Ok(FittedPart { part, fits })
@@ -799,6 +804,7 @@ fn build_block(
         max_plane_angle: max_angle,
         worst_section,
         blended_planes: blended,
+        tangent_failures: sections.iter().filter(|s| !s.tangents_kept).count(),
         overlaps,
         flags,
     };

@@ -195,6 +195,9 @@ pub struct BlockReport {
     /// their pointwise blend by more than the tolerance (different kinds or branches), so
     /// the swept curve there is the elastica fitted to the blend.
     pub blended_planes: usize,
+    /// With `C1`: sections whose fit could not keep the design's end tangents (their
+    /// end-point fit is used; the joint there is only C⁰).
+    pub tangent_failures: usize,
     /// Pairs of target indices whose planes cross inside the block.
     pub overlaps: Vec<[usize; 2]>,
     /// Broken constraints.
@@ -237,6 +240,8 @@ pub struct HotBladeSummary {
     pub max_face_gap: f64,
     /// Largest angle between the end tangents of neighbouring blocks' blades.
     pub max_face_angle: f64,
+    /// With `C1`: sections that could keep only C⁰ (see the blocks).
+    pub tangent_failures: usize,
     /// Blocks breaking each constraint.
     pub flagged: FlagCounts,
     /// Whether every block meets every constraint.
