@@ -243,6 +243,9 @@ pub struct Clipped {
     pub s: Vec<f64>,
     /// Design length of the part.
     pub length: f64,
+    /// Tangent angles of the design section at the part's start and end (plane
+    /// coordinates, direction of increasing arc length).
+    pub end_angles: [f64; 2],
 }
 
 /// Parameter samples used to find where a section enters and leaves a `u` range; fixed so
@@ -335,7 +338,16 @@ pub fn clip(
             length * i as f64 / (n - 1) as f64
         });
     }
-    Some(Clipped { points, s, length })
+    let angle = |t: f64| {
+        let d = curve.jet(t).d1;
+        d.y.atan2(d.x)
+    };
+    Some(Clipped {
+        points,
+        s,
+        length,
+        end_angles: [angle(ta), angle(tb)],
+    })
 }
 
 #[cfg(test)]

@@ -600,13 +600,6 @@ fn design_tangents(
     range: (f64, f64),
 ) -> (Option<f64>, Option<f64>) {
     let n = design.points.len();
-    let angle = |a: [f64; 2], b: [f64; 2]| (b[1] - a[1]).atan2(b[0] - a[0]);
-    // a tangent from a tiny clip around the end point: the design curve's own tangent
-    let tangent_at = |u: f64| -> Option<f64> {
-        let h = 1e-6 * (range.1 - range.0);
-        let c = design_part(ctx, plane, (u - h, u + h), 3)?;
-        Some(angle(c.points[0], c.points[2]))
-    };
     let grid_u = |q: [f64; 2]| {
         let pl = &ctx.planes[plane];
         ctx.grid
@@ -622,16 +615,8 @@ fn design_tangents(
         ctx.grid.origin[1] + ctx.grid.cols as f64 * ctx.grid.size[1],
     );
     let inner = |u: f64| !on_face(u, faces.0) && !on_face(u, faces.1);
-    let t0 = if on_face(u0, range.0) && inner(u0) {
-        tangent_at(range.0)
-    } else {
-        None
-    };
-    let t1 = if on_face(u1, range.1) && inner(u1) {
-        tangent_at(range.1)
-    } else {
-        None
-    };
+    let t0 = (on_face(u0, range.0) && inner(u0)).then_some(design.end_angles[0]);
+    let t1 = (on_face(u1, range.1) && inner(u1)).then_some(design.end_angles[1]);
     (t0, t1)
 }
 
