@@ -312,9 +312,9 @@ pub enum TaskSpec {
         #[serde(default)]
         speed: Option<f64>,
         /// Flat-blade restriction (§4): largest angle between the cutting plane and the
-        /// surface normal, radians, in [0, π/2]. Default: 0.5236 (30°).
+        /// surface normal, radians, in [0, π/2]. Default: π/6 (30°).
         #[serde(default = "default_plane_angle")]
-        #[schemars(range(min = 0, max = 1.5707963267948966))]
+        #[schemars(range(min = 0, max = 1.571))]
         max_plane_angle: f64,
         /// Approach and retreat distance of the blade before and after the block, along the
         /// cut (≥ 0). Default: 50 mm.
@@ -362,7 +362,7 @@ fn default_blade_samples() -> u32 {
     100
 }
 fn default_plane_angle() -> f64 {
-    0.5236
+    std::f64::consts::FRAC_PI_6
 }
 fn default_refine() -> u32 {
     3
