@@ -247,12 +247,7 @@ pub fn analyze(
         job: job.job.name.clone(),
         task: "Analyze".into(),
         units: job.job.units,
-        surface: SurfaceInfo {
-            kind: surface_kind(surface).into(),
-            bbox_min: arr(&bbox.min),
-            bbox_max: arr(&bbox.max),
-            warnings: job.warnings.clone(),
-        },
+        surface: SurfaceInfo::of(job, surface),
         cutting: CuttingInfo {
             direction: arr(&frame.normal),
             plane_u: arr(&frame.u),

@@ -42,6 +42,19 @@ pub struct SurfaceInfo {
     pub warnings: Vec<String>,
 }
 
+impl SurfaceInfo {
+    /// What a resolved job loaded.
+    pub fn of(job: &crate::load::ResolvedJob, surface: &geom::surface::Surface) -> Self {
+        let b = surface.aabb();
+        Self {
+            kind: crate::analyze::surface_kind(surface).into(),
+            bbox_min: [b.min.x, b.min.y, b.min.z],
+            bbox_max: [b.max.x, b.max.y, b.max.z],
+            warnings: job.warnings.clone(),
+        }
+    }
+}
+
 /// The plane family.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct CuttingInfo {

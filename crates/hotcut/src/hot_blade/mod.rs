@@ -37,7 +37,7 @@ use geom::surface::{Section, SectionParams};
 use nalgebra::{Vector2, Vector3};
 use rayon::prelude::*;
 
-use crate::analyze::{surface_kind, AnalyzeParams};
+use crate::analyze::AnalyzeParams;
 use crate::error::{HotcutError, JobError, Result};
 use crate::job::{Continuity, FitConstraintSpec, TaskSpec};
 use crate::load::{Blade as BladeLimits, ResolvedJob};
@@ -442,17 +442,11 @@ pub fn hot_blade(
         all_ok: reports.iter().all(|b| !b.flags.any()),
         flagged,
     };
-    let bbox = surface.aabb();
     let report = HotBladeReport {
         job: job.job.name.clone(),
         task: "HotBlade".into(),
         units: job.job.units,
-        surface: SurfaceInfo {
-            kind: surface_kind(surface).into(),
-            bbox_min: arr(&bbox.min),
-            bbox_max: arr(&bbox.max),
-            warnings: job.warnings.clone(),
-        },
+        surface: SurfaceInfo::of(job, surface),
         settings: HotBladeSettings {
             targets_per_block: params.targets,
             constraint: params.constraint,
