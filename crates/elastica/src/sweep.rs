@@ -3,7 +3,7 @@
 //!
 //! A swept patch is a sequence of fitted segments, each in its own cutting plane. Between
 //! two fitted planes the patch is swept by the segments whose shape parameters interpolate
-//! the neighbours' linearly and whose end points move linearly ([`interpolate`]). The 3D pose of a blade ([`blade_pose`]) gives, for both held ends,
+//! the neighbours' linearly and whose end points move linearly ([`interpolate`](crate::sweep::interpolate)). The 3D pose of a blade ([`blade_pose`](crate::sweep::blade_pose)) gives, for both held ends,
 //! the position, the unit tangent and the tool orientation as a unit quaternion whose x-axis
 //! is the blade's tangent (pointing from the first end to the second) and whose z-axis is
 //! the cutting plane's normal.

@@ -124,7 +124,7 @@ impl Problem<'_> {
 /// points, and the length when `constraint` is [`FitConstraint::EndPointsAndLength`].
 ///
 /// # Errors
-/// [`FitError::NotConverged`] when the constraints cannot be met from this start.
+/// [`FitError::Tangents`] when the constraints cannot be met from this start.
 pub fn fit_with_end_tangents(
     points: &[[f64; 2]],
     s: &[f64],

@@ -5,7 +5,7 @@
 //!
 //! The method, per column of blocks (blocks side by side across the cut):
 //! 1. Target planes: `targets_per_block` per block, from its entry face to its exit face;
-//!    neighbouring rows share the face plane (module [`grid`]).
+//!    neighbouring rows share the face plane (module `grid`).
 //! 2. Every plane's section is clipped to the column's range across the cut and fitted by
 //!    an elastica keeping its end points (and, by default, its length), warm-started from
 //!    the previous plane's fit (§7). Neighbouring columns clip at the same point of the same
@@ -48,7 +48,7 @@ use report::*;
 
 /// Share of the largest-distance tolerance by which a parameter-interpolated curve of the
 /// swept surface may stray from the pointwise blend of its two neighbouring fits before
-/// the blend is refitted instead (see [`swept_curve`]).
+/// the blend is refitted instead (see `swept_curve`).
 pub const SWEEP_SHARE: f64 = 0.1;
 
 /// Parameters of [`hot_blade`], taken from the job.
