@@ -115,44 +115,41 @@ pub fn render(
             }
             out
         }
-        OutputSpec::Obj => run
-            .blocks
-            .iter()
-            .enumerate()
-            .map(|(i, b)| {
-                let r = run.clone();
-                file(
-                    format!("surface_block_{:03}.obj", b.report.block),
-                    Box::new(move |buf| {
-                        let b = &r.blocks[i];
-                        let mut w = ObjWriter::new(6);
-                        if let Some(m) = surface_mesh(b) {
-                            w.mesh(&format!("block_{}", b.report.block), &m);
-                        }
-                        w.write(buf)
-                    }),
-                )
-            })
-            .collect(),
+        OutputSpec::Obj => per_block(run, "surface_block", "obj", |b, buf| {
+            let mut w = ObjWriter::new(6);
+            if let Some(m) = surface_mesh(b) {
+                w.mesh(&format!("block_{}", b.report.block), &m);
+            }
+            w.write(buf)
+        }),
         OutputSpec::Gltf => vec![file("model.gltf", Box::new(move |buf| gltf(&r, buf)))],
-        OutputSpec::Svg => run
-            .blocks
-            .iter()
-            .enumerate()
-            .map(|(i, b)| {
-                let r = run.clone();
-                file(
-                    format!("block_{:03}.svg", b.report.block),
-                    Box::new(move |buf| block_svg(&r.blocks[i], units.symbol()).write(buf)),
-                )
-            })
-            .collect(),
+        OutputSpec::Svg => per_block(run, "block", "svg", move |b, buf| {
+            block_svg(b, units.symbol()).write(buf)
+        }),
         OutputSpec::Csv => vec![file(
             "sections.csv",
             Box::new(move |buf| sections_csv(&r, buf)),
         )],
         _ => Vec::new(),
     }
+}
+
+/// One file `<stem>_NNN.<ext>` per block, rendered by `f`.
+fn per_block(
+    run: &Rc<HotBladeRun>,
+    stem: &str,
+    ext: &str,
+    f: impl Fn(&BlockResult, &mut Vec<u8>) -> export::Result<()> + Clone + 'static,
+) -> Vec<Render<'static>> {
+    (0..run.blocks.len())
+        .map(|i| {
+            let (r, f) = (run.clone(), f.clone());
+            file(
+                format!("{stem}_{:03}.{ext}", run.blocks[i].report.block),
+                Box::new(move |buf| f(&r.blocks[i], buf)),
+            )
+        })
+        .collect()
 }
 
 fn targets_csv(run: &HotBladeRun, buf: &mut Vec<u8>) -> export::Result<()> {
