@@ -11,7 +11,7 @@ pub mod blade;
 pub mod carlson;
 /// Double-double arithmetic for the quarter period.
 mod dd;
-/// Discrete elastica from boundary data (turning-angle energy, Newton–KKT).
+/// Discrete elastica from boundary data (turning-angle energy, Newton–KKT, augmented-Lagrangian fallback).
 pub mod discrete;
 /// Jacobi elliptic functions, epsilon function, complete integrals.
 pub mod elliptic;
