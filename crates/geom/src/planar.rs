@@ -121,6 +121,12 @@ impl ArcLength {
     /// Tabulates the arc length with `pieces` intervals (at least 1).
     pub fn new(curve: &dyn PlanarCurve, pieces: usize) -> Self {
         let (a, b) = curve.domain();
+        Self::between(curve, a, b, pieces)
+    }
+
+    /// Tabulates the arc length of the part `[a, b]` of the curve's domain only (`s = 0` at
+    /// `a`; `s_at` and `t_at` clamp to that part), with `pieces` intervals (at least 1).
+    pub fn between(curve: &dyn PlanarCurve, a: f64, b: f64, pieces: usize) -> Self {
         let pieces = pieces.max(1);
         let mut ts = Vec::with_capacity(pieces + 1);
         let mut ss = Vec::with_capacity(pieces + 1);
@@ -181,5 +187,40 @@ impl ArcLength {
             t = next;
         }
         t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Circle of radius 3 on [0, 2]: arc length 3t.
+    struct Circle;
+    impl PlanarCurve for Circle {
+        fn domain(&self) -> (f64, f64) {
+            (0.0, 2.0)
+        }
+        fn jet(&self, t: f64) -> Jet2 {
+            let (s, c) = t.sin_cos();
+            Jet2 {
+                p: Vector2::new(3.0 * c, 3.0 * s),
+                d1: Vector2::new(-3.0 * s, 3.0 * c),
+                d2: Vector2::new(-3.0 * c, -3.0 * s),
+            }
+        }
+    }
+
+    #[test]
+    fn arc_length_of_the_whole_curve_and_of_a_part() {
+        let whole = ArcLength::new(&Circle, 16);
+        assert!((whole.length() - 6.0).abs() < 1e-13);
+        assert!((whole.s_at(&Circle, 0.7) - 2.1).abs() < 1e-13);
+        let part = ArcLength::between(&Circle, 0.5, 1.25, 8);
+        assert!((part.length() - 2.25).abs() < 1e-13);
+        assert!((part.s_at(&Circle, 1.0) - 1.5).abs() < 1e-13);
+        assert!((part.t_at(&Circle, 1.5) - 1.0).abs() < 1e-13);
+        // clamped to the part
+        assert_eq!(part.s_at(&Circle, 0.1), 0.0);
+        assert!((part.t_at(&Circle, 9.0) - 1.25).abs() < 1e-15);
     }
 }

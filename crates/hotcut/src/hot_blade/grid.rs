@@ -252,16 +252,15 @@ pub struct Clipped {
 /// that two neighbouring blocks find their shared end bit for bit.
 const CLIP_SAMPLES: usize = 1024;
 
-/// The part of `section` (on `plane`) whose grid `u` lies in `range`, sampled at `n`
-/// points equally spaced in arc length; the first entry to the last exit when the section
-/// leaves the range in between. `None` when no part is inside.
-pub fn clip(
+/// Parameters `[ta, tb]` of the part of `section` (on `plane`) whose grid `u` lies in
+/// `range`: the first entry to the last exit when the section leaves the range in between.
+/// `None` when no part is inside.
+fn crossing(
     section: &Section,
     plane: &Plane,
     grid_u: &Vector3<f64>,
     range: (f64, f64),
-    n: usize,
-) -> Option<Clipped> {
+) -> Option<(f64, f64)> {
     let curve = &section.curve;
     let (t0, t1) = curve.domain();
     let u_of = |t: f64| {
@@ -310,12 +309,24 @@ pub fn clip(
     } else {
         t1
     };
-    if !(tb > ta) {
-        return None;
-    }
-    let arc = ArcLength::new(curve, 4 * n.max(64));
-    let (sa, sb) = (arc.s_at(curve, ta), arc.s_at(curve, tb));
-    let length = sb - sa;
+    (tb > ta).then_some((ta, tb))
+}
+
+/// The part of `section` (on `plane`) whose grid `u` lies in `range`, sampled at `n`
+/// points equally spaced in arc length; the first entry to the last exit when the section
+/// leaves the range in between. `None` when no part is inside.
+pub fn clip(
+    section: &Section,
+    plane: &Plane,
+    grid_u: &Vector3<f64>,
+    range: (f64, f64),
+    n: usize,
+) -> Option<Clipped> {
+    let (ta, tb) = crossing(section, plane, grid_u, range)?;
+    let curve = &section.curve;
+    // the arc length of the part only: the section may run across many blocks
+    let arc = ArcLength::between(curve, ta, tb, 4 * n.max(64));
+    let length = arc.length();
     if !(length > 0.0) {
         return None;
     }
@@ -328,7 +339,7 @@ pub fn clip(
         } else if i == n - 1 {
             tb
         } else {
-            arc.t_at(curve, sa + length * i as f64 / (n - 1) as f64)
+            arc.t_at(curve, length * i as f64 / (n - 1) as f64)
         };
         let q: Vector2<f64> = curve.point(t);
         points.push([q.x, q.y]);
@@ -348,6 +359,33 @@ pub fn clip(
         length,
         end_angles: [angle(ta), angle(tb)],
     })
+}
+
+/// The same part as [`clip`] as a polyline of `n` points equally spaced in the curve's
+/// parameter (no arc-length table): the dense design curve the deviation is measured
+/// against.
+pub fn clip_polyline(
+    section: &Section,
+    plane: &Plane,
+    grid_u: &Vector3<f64>,
+    range: (f64, f64),
+    n: usize,
+) -> Option<Vec<[f64; 2]>> {
+    let (ta, tb) = crossing(section, plane, grid_u, range)?;
+    let n = n.max(2);
+    Some(
+        (0..n)
+            .map(|i| {
+                let t = if i == n - 1 {
+                    tb
+                } else {
+                    ta + (tb - ta) * i as f64 / (n - 1) as f64
+                };
+                let q = section.curve.point(t);
+                [q.x, q.y]
+            })
+            .collect(),
+    )
 }
 
 #[cfg(test)]

@@ -1,0 +1,86 @@
+//! Benchmarks of the `HotBlade` task on the multi-block facade job
+//! (`jobs/hot-blade-facade.ron`: 8 blocks, 408 fitted sections):
+//! - `facade_job`: the whole computation (`hot_blade`: grid, sections, fits, splits,
+//!   swept surfaces, deviation grid, report), no files written;
+//! - `facade_run`: `run_job`, i.e. the above plus validation of the report and every output
+//!   file written to a temporary directory (what `hotcut run` does);
+//! - `section_fit`: one section fit as the task does it (`EndPointsAndLength`, 100 design
+//!   samples), cycling through all 408 design sections of the job, warm-started from the
+//!   previous plane's fit (`warm`) or from scratch (`cold`, the comparison).
+//!
+//! Run: `cargo bench -p hotcut --bench hot_blade`.
+
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+use elastica::fit::{fit_points_with_arclength, FitConstraint, FitParams};
+use elastica::segment::Segment;
+use hotcut::hot_blade::{hot_blade, HotBladeParams};
+
+use hotcut::load::{load_job, ResolvedJob};
+use hotcut::run::run_job;
+use hotcut::NoProgress;
+
+fn main() {
+    divan::main();
+}
+
+fn job_path() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs/hot-blade-facade.ron")
+}
+
+fn job() -> &'static ResolvedJob {
+    static J: OnceLock<ResolvedJob> = OnceLock::new();
+    J.get_or_init(|| load_job(&job_path()).expect("jobs/hot-blade-facade.ron loads"))
+}
+
+#[divan::bench(sample_count = 5, sample_size = 1)]
+fn facade_job() -> usize {
+    let job = job();
+    let params = HotBladeParams::from_job(job).unwrap();
+    hot_blade(job, &params, &NoProgress).unwrap().blocks.len()
+}
+
+#[divan::bench(sample_count = 5, sample_size = 1)]
+fn facade_run() {
+    let dir = tempfile::tempdir().unwrap();
+    run_job(job(), dir.path(), &NoProgress).unwrap();
+}
+
+/// Every design section of the facade job with the fit of the plane before it in the same
+/// block (the task's warm start).
+type Section = (Vec<[f64; 2]>, Vec<f64>, Option<Segment>);
+
+fn sections() -> &'static Vec<Section> {
+    static S: OnceLock<Vec<Section>> = OnceLock::new();
+    S.get_or_init(|| {
+        let job = job();
+        let params = HotBladeParams::from_job(job).unwrap();
+        let run = hot_blade(job, &params, &NoProgress).unwrap();
+        let mut out = Vec::new();
+        for b in &run.blocks {
+            let mut warm = None;
+            for sec in &b.sections {
+                out.push((sec.design.points.clone(), sec.design.s.clone(), warm));
+                warm = Some(sec.fit.segment);
+            }
+        }
+        out
+    })
+}
+
+#[divan::bench(args = ["warm", "cold"])]
+fn section_fit(bencher: divan::Bencher, start: &str) {
+    let sections = sections();
+    let mut i = 0;
+    bencher.bench_local(|| {
+        let (points, s, warm) = &sections[i % sections.len()];
+        i += 1;
+        let params = FitParams {
+            constraint: FitConstraint::EndPointsAndLength,
+            warm_start: if start == "warm" { *warm } else { None },
+            ..FitParams::default()
+        };
+        divan::black_box(fit_points_with_arclength(points, s, &params).unwrap().rms)
+    });
+}
