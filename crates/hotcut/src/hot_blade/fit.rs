@@ -1,0 +1,243 @@
+//! Fitting a part's sections: the design part of each plane, sweeps of warm-started fits,
+//! the C¹ end-tangent fits and the blades with their poses.
+
+use elastica::blade::{extend_to_blade, Blade, BladeError, BladeParams};
+use elastica::fit::{fit_points_with_arclength, FitConstraint, FitError, FitParams, FitResult};
+use elastica::segment::Segment;
+use elastica::sweep::blade_pose;
+use nalgebra::{Vector2, Vector3};
+
+use super::grid::{clip, clip_polyline, Clipped};
+use super::*;
+use crate::error::{HotcutError, Result};
+use crate::job::{Continuity, FitConstraintSpec};
+use crate::load::Blade as BladeLimits;
+use crate::Progress;
+
+/// The longest clipped part of a plane's section pieces as a dense polyline (for the
+/// deviation grid; see [`grid::clip_polyline`]).
+pub(super) fn design_polyline(
+    ctx: &Context<'_>,
+    plane: usize,
+    range: (f64, f64),
+    n: usize,
+) -> Option<Vec<[f64; 2]>> {
+    let length = |p: &[[f64; 2]]| {
+        p.windows(2)
+            .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+            .sum::<f64>()
+    };
+    ctx.sections[plane]
+        .iter()
+        .filter_map(|s| clip_polyline(s, &ctx.planes[plane], &ctx.grid.frame.u, range, n))
+        .map(|p| (length(&p), p))
+        .fold(None, |best: Option<(f64, Vec<[f64; 2]>)>, c| match best {
+            Some(b) if b.0 >= c.0 => Some(b),
+            _ => Some(c),
+        })
+        .map(|(_, p)| p)
+}
+
+/// The longest clipped part of a plane's section pieces.
+fn design_part(ctx: &Context<'_>, plane: usize, range: (f64, f64), n: usize) -> Option<Clipped> {
+    ctx.sections[plane]
+        .iter()
+        .filter_map(|s| clip(s, &ctx.planes[plane], &ctx.grid.frame.u, range, n))
+        .fold(None, |best: Option<Clipped>, c| match best {
+            Some(b) if b.length >= c.length => Some(b),
+            _ => Some(c),
+        })
+}
+
+/// Sweeps of warm-started fits over a part's planes (§7: each section starts from its
+/// neighbour's fit). Forward, each plane keeps the better of a cold fit and one warm-started
+/// from the plane before; then backward and forward again with warm starts from the plane
+/// after / before, a fit replaced only when the new one is better, until a sweep changes
+/// nothing (at most `MAX_SWEEPS`). On long, nearly straight sections any single start
+/// lands in a poor local minimum now and then (an arc 0.6 mm off where an elastica fits
+/// to 0.003 mm); a good fit found anywhere then spreads to its neighbours.
+fn sweep_fits(
+    designs: &[Option<Clipped>],
+    constraint: FitConstraint,
+) -> std::result::Result<Vec<Option<FitResult>>, (usize, FitError)> {
+    const MAX_SWEEPS: usize = 4;
+    let fit_from = |design: &Clipped, warm_start: Option<Segment>| {
+        let fit_params = FitParams {
+            constraint,
+            warm_start,
+            ..FitParams::default()
+        };
+        fit_points_with_arclength(&design.points, &design.s, &fit_params)
+    };
+    let better = |a: &FitResult, b: &FitResult| a.l2 < b.l2 * (1.0 - 1e-9);
+    let mut fits: Vec<Option<FitResult>> = Vec::with_capacity(designs.len());
+    for (plane, design) in designs.iter().enumerate() {
+        let Some(design) = design else {
+            fits.push(None);
+            continue;
+        };
+        let warm = fits.last().and_then(|f| f.as_ref()).map(|f| f.segment);
+        let cold = fit_from(design, None);
+        let fit = match (warm.map(|w| fit_from(design, Some(w))), cold) {
+            (Some(Ok(w)), Ok(c)) => {
+                if better(&c, &w) {
+                    c
+                } else {
+                    w
+                }
+            }
+            (Some(Ok(w)), Err(_)) => w,
+            (_, c) => c.map_err(|e| (plane, e))?,
+        };
+        fits.push(Some(fit));
+    }
+    for sweep in 0..MAX_SWEEPS {
+        let backward = sweep % 2 == 0;
+        let mut changed = false;
+        let order: Vec<usize> = if backward {
+            (0..designs.len()).rev().collect()
+        } else {
+            (0..designs.len()).collect()
+        };
+        for w in order.windows(2) {
+            let (from, to) = (w[0], w[1]);
+            let (Some(design), Some(Some(source))) = (&designs[to], fits.get(from)) else {
+                continue;
+            };
+            let Ok(f) = fit_from(design, Some(source.segment)) else {
+                continue;
+            };
+            if fits[to].as_ref().is_none_or(|cur| better(&f, cur)) {
+                fits[to] = Some(f);
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    Ok(fits)
+}
+
+pub(super) fn fit_part(
+    ctx: &Context<'_>,
+    part: Part,
+    targets: usize,
+    progress: &dyn Progress,
+) -> Result<FittedPart> {
+    let p = ctx.params;
+    let constraint = match p.constraint {
+        FitConstraintSpec::EndPointsAndLength => FitConstraint::EndPointsAndLength,
+        _ => FitConstraint::EndPoints,
+    };
+    let task_err = |message: String| HotcutError::Task {
+        path: ctx.path.to_path_buf(),
+        message,
+    };
+    let designs: Vec<Option<Clipped>> = (0..targets)
+        .map(|plane| design_part(ctx, plane, part.range, p.samples))
+        .collect();
+    let c0 = sweep_fits(&designs, constraint).map_err(|(plane, e)| {
+        task_err(format!(
+            "column {} (range {:.6}..{:.6}), plane {plane}: {e}",
+            part.column, part.range.0, part.range.1
+        ))
+    })?;
+    let mut fits = Vec::with_capacity(targets);
+    let mut warm: Option<Segment> = None;
+    for (plane, (design, fit)) in designs.into_iter().zip(c0).enumerate() {
+        progress.tick();
+        let (Some(design), Some(mut fit)) = (design, fit) else {
+            fits.push(None);
+            continue;
+        };
+        let mut tangents_kept = true;
+        if p.continuity == Continuity::C1 {
+            let (t0, t1) = design_tangents(ctx, plane, &design, part.range);
+            match elastica::fit::fit_with_end_tangents(
+                &design.points,
+                &design.s,
+                &fit,
+                warm.as_ref(),
+                t0,
+                t1,
+                constraint,
+            ) {
+                Ok(f) => fit = f,
+                // keep the C⁰ fit; the block reports it and the face angle shows it
+                Err(_) => tangents_kept = false,
+            }
+        }
+        warm = Some(fit.segment);
+        let blade = make_blade(&fit.segment, &p.blade)
+            .map_err(|e| task_err(format!("plane {plane}: {e}")))?;
+        let plane_ref = &ctx.planes[plane];
+        let pose = blade_pose(&plane_ref.frame, plane_ref.offset, &blade);
+        let world: Vec<Vector3<f64>> = design
+            .points
+            .iter()
+            .map(|q| {
+                plane_ref
+                    .frame
+                    .to_world(plane_ref.offset, &Vector2::new(q[0], q[1]))
+            })
+            .collect();
+        let plane_angle = ctx
+            .normals
+            .normals_near(&world)
+            .iter()
+            .map(|n| n.dot(&plane_ref.frame.normal).abs().min(1.0).asin())
+            .fold(0.0, f64::max);
+        fits.push(Some(FittedSection {
+            plane,
+            design,
+            fit,
+            blade,
+            pose,
+            plane_angle,
+            tangents_kept,
+        }));
+    }
+    Ok(FittedPart { part, fits })
+}
+
+/// The design's unit tangent angles that a C¹ fit keeps at its ends: only where the end is
+/// on a face shared with a neighbouring part (not at the surface's own edge).
+fn design_tangents(
+    ctx: &Context<'_>,
+    plane: usize,
+    design: &Clipped,
+    range: (f64, f64),
+) -> (Option<f64>, Option<f64>) {
+    let n = design.points.len();
+    let grid_u = |q: [f64; 2]| {
+        let pl = &ctx.planes[plane];
+        ctx.grid
+            .frame
+            .u
+            .dot(&pl.frame.to_world(pl.offset, &Vector2::new(q[0], q[1])))
+    };
+    let on_face = |u: f64, face: f64| (u - face).abs() <= 1e-9 * (range.1 - range.0);
+    let u0 = grid_u(design.points[0]);
+    let u1 = grid_u(design.points[n - 1]);
+    let faces = (
+        ctx.grid.origin[1],
+        ctx.grid.origin[1] + ctx.grid.cols as f64 * ctx.grid.size[1],
+    );
+    let inner = |u: f64| !on_face(u, faces.0) && !on_face(u, faces.1);
+    let t0 = (on_face(u0, range.0) && inner(u0)).then_some(design.end_angles[0]);
+    let t1 = (on_face(u1, range.1) && inner(u1)).then_some(design.end_angles[1]);
+    (t0, t1)
+}
+
+/// The fit extended to the blade's length; a section longer than the blade keeps its own
+/// length (and its block is flagged).
+fn make_blade(segment: &Segment, limits: &BladeLimits) -> std::result::Result<Blade, BladeError> {
+    let bp = BladeParams {
+        length: limits.length.max(segment.length()),
+        lead_in_share: 0.5,
+        max_curvature: Some(limits.max_curvature),
+        max_inflections: Some(limits.max_inflections as usize),
+    };
+    extend_to_blade(segment, &bp)
+}
