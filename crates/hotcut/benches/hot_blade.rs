@@ -4,9 +4,11 @@
 //!   swept surfaces, deviation grid, report), no files written;
 //! - `facade_run`: `run_job`, i.e. the above plus validation of the report and every output
 //!   file written to a temporary directory (what `hotcut run` does);
-//! - `section_fit`: one section fit as the task does it (`EndPointsAndLength`, 100 design
-//!   samples), cycling through all 408 design sections of the job, warm-started from the
-//!   previous plane's fit (`warm`) or from scratch (`cold`, the comparison).
+//! - `section_fit`: one elastica fit of one section as the task does it
+//!   (`EndPointsAndLength`, 100 design samples), cycling twice through all 408 design
+//!   sections of the job, warm-started from the previous plane's final fit (`warm`) or from
+//!   scratch (`cold`). The task runs both per section, plus a warm fit per backward or
+//!   forward sweep that still changes something (see `hot_blade::fit::sweep_fits`).
 //!
 //! Run: `cargo bench -p hotcut --bench hot_blade`.
 
@@ -69,7 +71,7 @@ fn sections() -> &'static Vec<Section> {
     })
 }
 
-#[divan::bench(args = ["warm", "cold"])]
+#[divan::bench(args = ["warm", "cold"], sample_count = 816, sample_size = 1)]
 fn section_fit(bencher: divan::Bencher, start: &str) {
     let sections = sections();
     let mut i = 0;
