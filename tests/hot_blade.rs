@@ -5,18 +5,25 @@
 //!   blade that passes within the job's tolerance of the fitted section;
 //! - fits with `EndPointsAndLength` keep the section's length and end points to 1e-9;
 //! - neighbouring blocks share their blades' end points (≤ 1e-6 mm) and, with `C1`, end
-//!   tangents (≤ 1e-6 rad), measured on the blades themselves.
+//!   tangents (≤ 1e-6 rad), measured on the blades themselves;
+//! - planes that follow a cutting-direction curve are reported as overlapping exactly
+//!   where two consecutive planes meet inside the part of the surface a block cuts.
 
 use std::path::Path;
 
 use elastica::discrete::{discrete_elastica, DiscreteParams};
 use hotcut::hot_blade::{hot_blade, HotBladeParams, HotBladeRun};
 use hotcut::job::{Continuity, FitConstraintSpec};
-use hotcut::load::load_job;
+use hotcut::load::{load_job, parse_job, resolve};
 use hotcut::NoProgress;
 use nalgebra::{Vector2, Vector3};
 
-const JOBS: [&str; 3] = ["hot-blade-facade", "hot-blade-corner", "hot-blade-saddle"];
+const JOBS: [&str; 4] = [
+    "hot-blade-facade",
+    "hot-blade-corner",
+    "hot-blade-saddle",
+    "hot-blade-curve",
+];
 
 fn run(name: &str) -> (HotBladeRun, f64) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("jobs/{name}.ron"));
@@ -174,4 +181,83 @@ fn neighbouring_blocks_share_end_points_and_tangents() {
             assert!(angle <= 1e-6, "{name}: angle {angle}");
         }
     }
+}
+
+/// The blocks' overlap lists against plane geometry. Two consecutive planes a, b of a block
+/// are vertical, so the signed distance to plane a varies linearly along plane b's plan
+/// line (and vice versa): section b lies strictly ahead of a — no material cut twice —
+/// exactly when the two plan points at the ends of its lateral extent do, and section a
+/// lies strictly behind b when its two ends do. Pairs with an end within 1e-6 mm of the
+/// other plane are skipped (either answer is right there). Returns (flagged, checked).
+fn overlaps_against_geometry(run: &HotBladeRun) -> (usize, usize) {
+    let axis_u = Vector3::from(run.report.grid.axis_u);
+    let (mut flagged, mut pairs) = (0, 0);
+    // the plan points of a section at the ends of its lateral extent
+    let ends = |sec: &hotcut::hot_blade::FittedSection| {
+        let pl = &run.planes[sec.plane];
+        let world: Vec<Vector3<f64>> = sec
+            .design
+            .points
+            .iter()
+            .map(|q| pl.frame.to_world(pl.offset, &Vector2::new(q[0], q[1])))
+            .collect();
+        let by_u = |a: &&Vector3<f64>, b: &&Vector3<f64>| axis_u.dot(a).total_cmp(&axis_u.dot(b));
+        let lo = *world.iter().min_by(by_u).unwrap();
+        let hi = *world.iter().max_by(by_u).unwrap();
+        [lo, hi]
+    };
+    for b in &run.blocks {
+        'pairs: for (k, w) in b.sections.windows(2).enumerate() {
+            let (pa, pb) = (&run.planes[w[0].plane], &run.planes[w[1].plane]);
+            let dist = |pl: &hotcut::hot_blade::grid::Plane, p: &Vector3<f64>| {
+                let n = Vector3::new(pl.frame.normal.x, pl.frame.normal.y, 0.0);
+                n.dot(&Vector3::new(p.x, p.y, 0.0)) - pl.offset
+            };
+            let db: Vec<f64> = ends(&w[1]).iter().map(|p| dist(pa, p)).collect();
+            let da: Vec<f64> = ends(&w[0]).iter().map(|p| dist(pb, p)).collect();
+            if db.iter().chain(&da).any(|d| d.abs() < 1e-6) {
+                continue 'pairs;
+            }
+            let expected = !(db.iter().all(|d| *d > 0.0) && da.iter().all(|d| *d < 0.0));
+            let reported = b.report.overlaps.contains(&[k, k + 1]);
+            assert_eq!(
+                reported,
+                expected,
+                "block {} planes {k}, {}: reported {reported}, geometry says {expected}",
+                b.report.block,
+                k + 1
+            );
+            assert_eq!(b.report.flags.overlap, !b.report.overlaps.is_empty());
+            flagged += usize::from(reported);
+            pairs += 1;
+        }
+    }
+    (flagged, pairs)
+}
+
+#[test]
+fn overlapping_curve_planes_are_detected() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs/hot-blade-curve.ron");
+    // the job's own gentle curve (radius ≈ 2.7 m, the panel 1.2 m wide): no overlap
+    let (gentle, _) = run("hot-blade-curve");
+    let (flagged, pairs) = overlaps_against_geometry(&gentle);
+    println!("gentle curve: {flagged} of {pairs} consecutive plane pairs overlap");
+    assert!(pairs > 0 && flagged == 0);
+    // an S bending with a radius of ≈ 270 mm: planes cross inside the blocks
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut job = parse_job(&path, &text).unwrap();
+    job.cutting.curve = Some(vec![
+        (0.0, 600.0),
+        (450.0, 900.0),
+        (900.0, 600.0),
+        (1350.0, 300.0),
+        (1800.0, 600.0),
+    ]);
+    let job = resolve(&path, job).unwrap();
+    let params = HotBladeParams::from_job(&job).unwrap();
+    let sharp = hot_blade(&job, &params, &NoProgress).unwrap();
+    let (flagged, pairs) = overlaps_against_geometry(&sharp);
+    println!("sharp S curve: {flagged} of {pairs} consecutive plane pairs overlap");
+    assert!(flagged > 0, "no overlap found on the sharp curve");
+    assert!(sharp.report.summary.flagged.overlap > 0);
 }

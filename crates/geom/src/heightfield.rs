@@ -81,22 +81,69 @@ impl HeightField {
         self.y
     }
 
-    /// Bounding box; `z` from a [`Z_RANGE_SAMPLES`]² sample grid.
+    /// Bounding box; `z` from a [`Z_RANGE_SAMPLES`]² sample grid, its extremes polished
+    /// by Newton steps in the cells around them (exact at smooth interior or edge extrema).
     pub fn aabb(&self) -> Aabb {
         let n = Z_RANGE_SAMPLES - 1;
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let (mut lo, mut hi) = ((f64::INFINITY, 0, 0), (f64::NEG_INFINITY, 0, 0));
         for i in 0..=n {
             for j in 0..=n {
                 let (px, py) = self.grid_point(i, j, n);
                 let z = self.expr.eval(px, py);
-                lo = lo.min(z);
-                hi = hi.max(z);
+                if z < lo.0 {
+                    lo = (z, i, j);
+                }
+                if z > hi.0 {
+                    hi = (z, i, j);
+                }
             }
         }
+        // the sampled extremes miss the true ones by O(h²·f''): polish each inside the
+        // cells around its sample
+        let lo = self.polish_extreme(lo, n, 1.0);
+        let hi = -self.polish_extreme((-hi.0, hi.1, hi.2), n, -1.0);
         Aabb {
             min: Vector3::new(self.x.0, self.y.0, lo),
             max: Vector3::new(self.x.1, self.y.1, hi),
         }
+    }
+
+    /// Lowers `sign · f` (given as `(value, i, j)` at grid sample `(i, j)` of an `n`-cell grid)
+    /// by alternating one-dimensional Newton steps along x and y, each kept inside the cells
+    /// next to the sample and taken only when it lowers the value. Returns the lowest
+    /// `sign · f` found (never above the sample's).
+    fn polish_extreme(&self, (best, i, j): (f64, usize, usize), n: usize, sign: f64) -> f64 {
+        let (x0, y0) = self.grid_point(i.saturating_sub(1), j.saturating_sub(1), n);
+        let (x1, y1) = self.grid_point((i + 1).min(n), (j + 1).min(n), n);
+        let (mut px, mut py) = self.grid_point(i, j, n);
+        let mut best = best;
+        for _ in 0..20 {
+            let before = best;
+            for (dir, lo, hi) in [
+                ((1.0, 0.0), x0 - px, x1 - px),
+                ((0.0, 1.0), y0 - py, y1 - py),
+            ] {
+                let jet = self.expr.eval_along((px, py), dir, 0.0);
+                let (d1, d2) = (sign * jet.d1, sign * jet.d2);
+                let t = if d2 > 0.0 {
+                    (-d1 / d2).clamp(lo, hi)
+                } else if d1 > 0.0 {
+                    lo
+                } else {
+                    hi
+                };
+                let (qx, qy) = (px + t * dir.0, py + t * dir.1);
+                let v = sign * self.expr.eval(qx, qy);
+                if v < best {
+                    best = v;
+                    (px, py) = (qx, qy);
+                }
+            }
+            if !(best < before) {
+                break;
+            }
+        }
+        best
     }
 
     /// The exact section by the plane `frame.normal · p = offset`, or `None` when the plane
@@ -194,6 +241,27 @@ impl PlanarCurve for GraphCurve {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bounding_box_heights_are_the_true_extremes_between_samples() {
+        // interior maximum between grid samples; minimum on an edge (y = 0 and y = 1200)
+        let h = HeightField::try_new(
+            Expr::parse("150 + 40*sin(x/350) - 0.0001*(y - 600)*(y - 600)").unwrap(),
+            (0.0, 1800.0),
+            (0.0, 1200.0),
+        )
+        .unwrap();
+        let b = h.aabb();
+        assert!((b.min.z - 74.0).abs() < 1e-9, "{}", b.min.z);
+        assert!((b.max.z - 190.0).abs() < 1e-9, "{}", b.max.z);
+        let p = HeightField::try_new(
+            Expr::parse("-(x - 0.31371)^2 - (y - 0.77713)^2").unwrap(),
+            (0.0, 1.0),
+            (0.0, 1.0),
+        )
+        .unwrap();
+        assert!(p.aabb().max.z.abs() < 1e-15, "{}", p.aabb().max.z);
+    }
 
     #[test]
     fn section_along_x_is_graph_in_y() {

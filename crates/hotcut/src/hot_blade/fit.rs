@@ -134,8 +134,13 @@ pub(super) fn fit_part(
         path: ctx.path.to_path_buf(),
         message,
     };
+    // a plane that only grazes the block's surface (a corner of a rotated plane, the edge
+    // of a surface) gives a sliver no blade pose can be extrapolated from: left out
+    let shortest = SHORTEST_PART * p.blade.length;
     let designs: Vec<Option<Clipped>> = (0..targets)
-        .map(|plane| design_part(ctx, plane, part.range, p.samples))
+        .map(|plane| {
+            design_part(ctx, plane, part.range, p.samples).filter(|d| d.length >= shortest)
+        })
         .collect();
     let c0 = sweep_fits(&designs, constraint).map_err(|(plane, e)| {
         task_err(format!(

@@ -56,6 +56,11 @@ use report::*;
 /// the blend is refitted instead (see `swept_curve`).
 pub const SWEEP_SHARE: f64 = 0.1;
 
+/// Shortest design part fitted, as a share of the blade length: shorter parts (slivers
+/// where a plane grazes the surface inside the block) get no blade pose and count as missing
+/// sections, since extending a fit of a few millimetres to the whole blade is meaningless.
+pub const SHORTEST_PART: f64 = 0.05;
+
 /// Parameters of [`hot_blade`], taken from the job.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HotBladeParams {

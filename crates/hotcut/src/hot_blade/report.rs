@@ -171,7 +171,8 @@ pub struct BlockReport {
     pub size: [f64; 3],
     /// Fitted sections (= poses).
     pub sections: usize,
-    /// Target planes on which the block holds no surface.
+    /// Target planes on which the block holds no surface, or only a sliver shorter than
+    /// 5 % of the blade ([`super::SHORTEST_PART`]): no blade pose for those.
     pub missing_sections: usize,
     /// L2 distance of eq. (9) per section (the paper's Table 1 columns).
     pub l2: Stats,
