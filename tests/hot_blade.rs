@@ -128,48 +128,56 @@ fn same_length_and_end_points_are_kept() {
     }
 }
 
+/// Largest end-point gap and end-tangent angle between the blades of blocks side by side
+/// across the cut, measured on the blades themselves, and the number of shared ends; also
+/// asserts that consecutive rows cut their shared face with the same blade.
+fn shared_ends(run: &HotBladeRun) -> (f64, f64, usize) {
+    let (mut gap, mut angle, mut pairs) = (0.0f64, 0.0f64, 0);
+    for a in &run.blocks {
+        for b in &run.blocks {
+            // side by side across the cut: a's far face is b's near face
+            let touching = a.report.row == b.report.row
+                && (a.report.origin[1] + a.report.size[1] - b.report.origin[1]).abs() < 1e-9;
+            if !touching {
+                continue;
+            }
+            for sa in &a.sections {
+                let Some(sb) = b.sections.iter().find(|s| s.plane == sa.plane) else {
+                    continue;
+                };
+                let plane = &run.planes[sa.plane];
+                let ea = sa.fit.segment.eval(1.0).unwrap();
+                let eb = sb.fit.segment.eval(0.0).unwrap();
+                let w = |q: [f64; 2]| {
+                    plane
+                        .frame
+                        .to_world(plane.offset, &Vector2::new(q[0], q[1]))
+                };
+                gap = gap.max((w(ea.p) - w(eb.p)).norm());
+                let cross = ea.tangent[0] * eb.tangent[1] - ea.tangent[1] * eb.tangent[0];
+                let dot = ea.tangent[0] * eb.tangent[0] + ea.tangent[1] * eb.tangent[1];
+                angle = angle.max(cross.atan2(dot).abs());
+                pairs += 1;
+            }
+        }
+        // along the cut: consecutive rows cut the shared face with the same blade
+        for b in &run.blocks {
+            if b.report.row == a.report.row + 1 && b.report.origin[1] == a.report.origin[1] {
+                let (la, fb) = (a.sections.last().unwrap(), b.sections.first().unwrap());
+                assert_eq!(la.plane, fb.plane);
+                assert_eq!(la.pose, fb.pose);
+            }
+        }
+    }
+    (gap, angle, pairs)
+}
+
 #[test]
 fn neighbouring_blocks_share_end_points_and_tangents() {
     for name in JOBS {
         let (run, _) = run(name);
         let c1 = run.params.continuity == Continuity::C1;
-        let (mut gap, mut angle, mut pairs) = (0.0f64, 0.0f64, 0);
-        for a in &run.blocks {
-            for b in &run.blocks {
-                // side by side across the cut: a's far face is b's near face
-                let touching = a.report.row == b.report.row
-                    && (a.report.origin[1] + a.report.size[1] - b.report.origin[1]).abs() < 1e-9;
-                if !touching {
-                    continue;
-                }
-                for sa in &a.sections {
-                    let Some(sb) = b.sections.iter().find(|s| s.plane == sa.plane) else {
-                        continue;
-                    };
-                    let plane = &run.planes[sa.plane];
-                    let ea = sa.fit.segment.eval(1.0).unwrap();
-                    let eb = sb.fit.segment.eval(0.0).unwrap();
-                    let w = |q: [f64; 2]| {
-                        plane
-                            .frame
-                            .to_world(plane.offset, &Vector2::new(q[0], q[1]))
-                    };
-                    gap = gap.max((w(ea.p) - w(eb.p)).norm());
-                    let cross = ea.tangent[0] * eb.tangent[1] - ea.tangent[1] * eb.tangent[0];
-                    let dot = ea.tangent[0] * eb.tangent[0] + ea.tangent[1] * eb.tangent[1];
-                    angle = angle.max(cross.atan2(dot).abs());
-                    pairs += 1;
-                }
-            }
-            // along the cut: consecutive rows cut the shared face with the same blade
-            for b in &run.blocks {
-                if b.report.row == a.report.row + 1 && b.report.origin[1] == a.report.origin[1] {
-                    let (la, fb) = (a.sections.last().unwrap(), b.sections.first().unwrap());
-                    assert_eq!(la.plane, fb.plane);
-                    assert_eq!(la.pose, fb.pose);
-                }
-            }
-        }
+        let (gap, angle, pairs) = shared_ends(&run);
         println!(
             "{name}: {pairs} shared ends, gap ≤ {gap:.3e}, tangent angle ≤ {angle:.3e} (C1: {c1})"
         );
@@ -181,6 +189,71 @@ fn neighbouring_blocks_share_end_points_and_tangents() {
             assert!(angle <= 1e-6, "{name}: angle {angle}");
         }
     }
+}
+
+/// With a tolerance the facade's 600 mm sections cannot meet, columns are halved along the
+/// cutting direction and refitted: every block still over the tolerance is at the job's
+/// split depth, the parts of each column tile it in every row alike, the split list names
+/// only parts that broke the tolerance, and the halves still share their blades' ends.
+#[test]
+fn columns_over_tolerance_are_halved_and_refitted() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs/hot-blade-facade.ron");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut job = parse_job(&path, &text).unwrap();
+    job.tolerance.max = 0.01;
+    job.tolerance.rms = 0.005;
+    let job = resolve(&path, job).unwrap();
+    let params = HotBladeParams::from_job(&job).unwrap();
+    let run = hot_blade(&job, &params, &NoProgress).unwrap();
+    let (tol_max, tol_rms, depth) = (0.01, 0.005, params.split_depth);
+    let splits = &run.report.splits;
+    println!(
+        "{} splits, {} blocks (8 unsplit)",
+        splits.len(),
+        run.blocks.len()
+    );
+    assert!(!splits.is_empty());
+    for s in splits {
+        // split because a fit broke the rms or the max tolerance; rms ≤ max distance
+        assert!(s.max_fit_distance > tol_rms.min(tol_max), "{s:?}");
+        assert!(s.level as usize <= depth as usize);
+    }
+    let column_width = run.report.grid.size[1];
+    for b in &run.blocks {
+        let over = b
+            .sections
+            .iter()
+            .any(|s| s.fit.max > tol_max || s.fit.rms > tol_rms);
+        assert!(
+            !over || b.report.split_level == depth,
+            "block {} over tolerance at level {} < {depth}",
+            b.report.block,
+            b.report.split_level
+        );
+        // a part at level n is 2^-n of its column
+        let share = b.report.size[1] / column_width;
+        assert!((share - 0.5f64.powi(b.report.split_level as i32)).abs() < 1e-12);
+    }
+    // per row, the parts tile the surface's width without gap or overlap, alike in all rows
+    let mut tilings = Vec::new();
+    for row in 0..run.report.grid.rows {
+        let mut parts: Vec<(f64, f64)> = run
+            .blocks
+            .iter()
+            .filter(|b| b.report.row == row)
+            .map(|b| (b.report.origin[1], b.report.origin[1] + b.report.size[1]))
+            .collect();
+        parts.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for w in parts.windows(2) {
+            assert!((w[0].1 - w[1].0).abs() < 1e-9, "row {row}: {parts:?}");
+        }
+        tilings.push(parts);
+    }
+    assert!(tilings.windows(2).all(|w| w[0] == w[1]));
+    assert!(run.blocks.len() > 8);
+    let (gap, _, pairs) = shared_ends(&run);
+    println!("{pairs} shared ends after splitting, gap ≤ {gap:.3e}");
+    assert!(gap <= 1e-6);
 }
 
 /// The blocks' overlap lists against plane geometry. Two consecutive planes a, b of a block

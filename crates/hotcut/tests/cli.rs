@@ -440,3 +440,126 @@ fn fit_curves_runs_on_a_curves_file() {
     assert!((last[1].as_f64().unwrap() - 152.1).abs() < 1e-6);
     assert!(dir.path().join("out/fit/fit.svg").is_file());
 }
+
+/// A small valid HotBlade job: two blocks across the cut.
+const HOT_BLADE: &str = r#"Job(
+    name: "t",
+    surface: HeightField(z: "100 - (x*x + y*y)/4000", x: (0, 400), y: (0, 600)),
+    block: Block(size: (400, 300, 300)),
+    blade: Blade(length: 500, max_curvature: 0.011),
+    task: HotBlade(targets_per_block: 5, samples: 40),
+    outputs: [Report, RobotTargets(per_block: 5), Rapid, Gltf, Obj, Svg, Csv],
+)
+"#;
+
+#[test]
+fn hot_blade_job_runs_and_writes_its_files() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "job.ron", HOT_BLADE);
+    let o = hotcut(&["run", "job.ron", "--out", "o"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("2 block(s)"), "{stdout}");
+    for f in [
+        "report.json",
+        "targets.json",
+        "targets.csv",
+        "HotBlade_T_ROB1.mod",
+        "HotBlade_T_ROB1.pgf",
+        "HotBlade_T_ROB2.mod",
+        "HotBlade_T_ROB2.pgf",
+        "model.gltf",
+        "surface_block_001.obj",
+        "block_002.svg",
+        "sections.csv",
+    ] {
+        assert!(dir.path().join("o/t").join(f).is_file(), "missing {f}");
+    }
+    let targets: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.path().join("o/t/targets.json")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(targets["blade_length"].as_f64(), Some(500.0));
+    assert_eq!(targets["blocks"][1]["poses"].as_array().unwrap().len(), 5);
+}
+
+#[test]
+fn hot_blade_jobs_are_checked() {
+    let task = "task: HotBlade(targets_per_block: 5, samples: 40),";
+    let with_task = |t: &str| HOT_BLADE.replace(task, t);
+    // what the task needs from the job
+    expect_invalid(
+        &HOT_BLADE.replace(
+            "surface: HeightField(z: \"100 - (x*x + y*y)/4000\", x: (0, 400), y: (0, 600)),",
+            "",
+        ),
+        &["/surface", "task HotBlade needs a surface"],
+    );
+    expect_invalid(
+        &HOT_BLADE.replace("block: Block(size: (400, 300, 300)),", ""),
+        &["/block", "needs `block`"],
+    );
+    // a free fit would let neighbouring blocks drift apart
+    expect_invalid(
+        &with_task("task: HotBlade(targets_per_block: 5, samples: 40, constraint: Free),"),
+        &["/task/HotBlade/constraint", "EndPoints"],
+    );
+    // the robot targets must be the task's poses
+    expect_invalid(
+        &HOT_BLADE.replace("RobotTargets(per_block: 5)", "RobotTargets(per_block: 51)"),
+        &["/outputs/1/RobotTargets/per_block", "targets_per_block (5)"],
+    );
+    // out of range numbers, each with its pointer
+    for (field, needle) in [
+        ("speed: 0", "/task/HotBlade/speed"),
+        ("speed: -7", "/task/HotBlade/speed"),
+        ("approach: -1", "/task/HotBlade/approach"),
+        ("max_plane_angle: 2", "/task/HotBlade/max_plane_angle"),
+        ("max_plane_angle: -0.1", "/task/HotBlade/max_plane_angle"),
+        ("targets_per_block: 1", "targets_per_block"),
+        ("samples: 3", "samples"),
+        ("split_depth: 9", "split_depth"),
+        ("continuity: C2", "C2"),
+    ] {
+        let t = format!("task: HotBlade(targets_per_block: 5, samples: 40, {field}),")
+            .replace(
+                "targets_per_block: 5, samples: 40, targets_per_block: 1",
+                "targets_per_block: 1, samples: 40",
+            )
+            .replace("samples: 40, samples: 3", "samples: 3");
+        expect_invalid(&with_task(&t), &[needle]);
+    }
+    // a speed given as NaN is not a number the robot can run
+    expect_invalid(
+        &with_task("task: HotBlade(targets_per_block: 5, samples: 40, speed: NaN),"),
+        &["speed"],
+    );
+    // cutting-direction curves
+    let curve = |c: &str| {
+        HOT_BLADE.replace(
+            "task: HotBlade",
+            &format!("cutting: Cutting(curve: {c}),\n    task: HotBlade"),
+        )
+    };
+    expect_invalid(
+        &curve("[(0, 300)]"),
+        &["/cutting/curve", "at least 2 points"],
+    );
+    expect_invalid(
+        &curve("[(0, 300), (0, 300)]"),
+        &["/cutting/curve", "coincide"],
+    );
+    expect_invalid(
+        &curve("[(0, 300), (300, 300), (200, 250), (400, 300)]"),
+        &["/cutting/curve", "point 2 does not advance"],
+    );
+    expect_invalid(&curve("[(0, 300), (inf, 300)]"), &["/cutting/curve"]);
+    // a curve is for HotBlade only
+    expect_invalid(
+        &VALID.replace(
+            "cutting: Cutting(sections: 3),",
+            "cutting: Cutting(curve: [(0, 0), (300, 0)]),",
+        ),
+        &["/cutting/curve", "HotBlade only"],
+    );
+}
