@@ -205,7 +205,7 @@ fn columns_over_tolerance_are_halved_and_refitted() {
     let job = resolve(&path, job).unwrap();
     let params = HotBladeParams::from_job(&job).unwrap();
     let run = hot_blade(&job, &params, &NoProgress).unwrap();
-    let (tol_max, tol_rms, depth) = (0.01, 0.005, params.split_depth);
+    let (tol_max, tol_rms, depth) = (0.01f64, 0.005f64, params.split_depth);
     let splits = &run.report.splits;
     println!(
         "{} splits, {} blocks (8 unsplit)",
