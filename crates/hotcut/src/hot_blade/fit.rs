@@ -148,32 +148,59 @@ pub(super) fn fit_part(
             part.column, part.range.0, part.range.1
         ))
     })?;
-    let mut fits = Vec::with_capacity(targets);
-    let mut warm: Option<Segment> = None;
-    for (plane, (design, fit)) in designs.into_iter().zip(c0).enumerate() {
-        progress.tick();
-        let (Some(design), Some(mut fit)) = (design, fit) else {
-            fits.push(None);
-            continue;
-        };
-        let mut tangents_kept = true;
-        if p.continuity == Continuity::C1 {
-            let (t0, t1) = design_tangents(ctx, plane, &design, part.range);
-            match elastica::fit::fit_with_end_tangents(
+    // C¹: each fit refitted to keep the design's tangents at shared faces, started from the
+    // plane before; those that fail are retried backwards from the plane after
+    let mut fitted: Vec<Option<(Clipped, FitResult, bool)>> = designs
+        .into_iter()
+        .zip(c0)
+        .map(|(d, f)| d.zip(f).map(|(d, f)| (d, f, true)))
+        .collect();
+    if p.continuity == Continuity::C1 {
+        let keep = |plane: usize, design: &Clipped, fit: &FitResult, warm: Option<&Segment>| {
+            let (t0, t1) = design_tangents(ctx, plane, design, part.range);
+            elastica::fit::fit_with_end_tangents(
                 &design.points,
                 &design.s,
-                &fit,
-                warm.as_ref(),
+                fit,
+                warm,
                 t0,
                 t1,
                 constraint,
-            ) {
-                Ok(f) => fit = f,
-                // keep the C⁰ fit; the block reports it and the face angle shows it
-                Err(_) => tangents_kept = false,
+            )
+            .ok()
+        };
+        let mut warm: Option<Segment> = None;
+        for (plane, slot) in fitted.iter_mut().enumerate() {
+            let Some((design, fit, kept)) = slot else {
+                continue;
+            };
+            match keep(plane, design, fit, warm.as_ref()) {
+                Some(f) => *fit = f,
+                None => *kept = false,
+            }
+            warm = Some(fit.segment);
+        }
+        for plane in (0..fitted.len().saturating_sub(1)).rev() {
+            let next = match &fitted[plane + 1] {
+                Some((_, f, true)) => f.segment,
+                _ => continue,
+            };
+            if let Some((design, fit, kept @ false)) = &mut fitted[plane] {
+                if let Some(f) = keep(plane, design, fit, Some(&next)) {
+                    *fit = f;
+                    *kept = true;
+                }
             }
         }
-        warm = Some(fit.segment);
+    }
+    let mut fits = Vec::with_capacity(targets);
+    for (plane, slot) in fitted.into_iter().enumerate() {
+        progress.tick();
+        // a failed C¹ fit keeps its C⁰ fit; the block reports it and the face angle shows it
+        let Some((design, fit, tangents_kept)) = slot else {
+            fits.push(None);
+            continue;
+        };
         let blade = make_blade(&fit.segment, &p.blade)
             .map_err(|e| task_err(format!("plane {plane}: {e}")))?;
         let plane_ref = &ctx.planes[plane];
