@@ -1,0 +1,24 @@
+//! # facade-seg — segmenting facades for hot-blade cutting (thesis ch. 5)
+//!
+//! A facade is cut by a hot blade from blocks; where a block's sections break a
+//! production constraint (§5.1: dimensions, approximation, shape, blade strain) the facade
+//! is segmented into pieces. This crate takes the facade's sections (from
+//! [`geom::surface::Surface::sections`]) and the constraints, and returns pieces: per
+//! section the part each piece holds, the block it is cut from, and a verdict per
+//! constraint.
+
+/// The production constraints of §5.1 and their checks on one section part.
+pub mod constraints;
+/// Why a segmentation failed.
+pub mod error;
+/// The longest-elastica algorithm (§5.4).
+pub mod longest;
+/// Pieces, blocks and seams: what every algorithm returns.
+pub mod piece;
+/// Sections prepared for segmentation: arc length, inflections, sampling.
+pub mod section;
+
+pub use constraints::Constraints;
+pub use error::SegError;
+pub use piece::{Piece, PiecePart, Segmentation};
+pub use section::Facade;

@@ -1,0 +1,191 @@
+//! The longest-elastica algorithm (thesis §5.4, category a: the elastica fits guide the
+//! segmentation). From the facade's start edge, each section's longest part that an
+//! elastica fits within tolerance is found by a halving search; the parts' ends, evened
+//! out so that no part is more than `max_step` longer than its neighbour's, form a seam;
+//! the search restarts from that seam until the facade is covered.
+//!
+//! A part is accepted only when it meets every constraint that segmenting can help with:
+//! the elastica through its end points fits within both tolerances, neither the design nor
+//! the elastica has more than `max_inflections` inflections (the shape constraint, which
+//! the thesis names as the next step), neither bends beyond `max_curvature` (blade strain),
+//! and the part fits the block across the facade.
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::constraints::{Constraints, PartCheck};
+use crate::piece::{pieces_from_bands, Seam, Segmentation};
+use crate::section::Facade;
+use crate::SegError;
+
+/// Parameters of [`longest_elastica`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LongestParams {
+    /// Precision of the halving search (the last step), in facade units: the search takes
+    /// ⌈log₂(blade length / precision)⌉ steps (1 mm on a 1 m blade: 10).
+    pub precision: f64,
+    /// Most a part may be longer than its neighbour's (seam smoothing); `None`: the mean
+    /// spacing between sections, so seams run at most 45° to the cut.
+    pub max_step: Option<f64>,
+    /// Points each part is sampled at for its fit.
+    pub samples: usize,
+    /// Most bands before giving up.
+    pub max_bands: usize,
+}
+
+impl Default for LongestParams {
+    fn default() -> Self {
+        Self {
+            precision: 1.0,
+            max_step: None,
+            samples: 64,
+            max_bands: 200,
+        }
+    }
+}
+
+/// Whether the part `[s0, s1]` of section `j` is acceptable.
+fn accepted(facade: &Facade, c: &Constraints, j: usize, s0: f64, s1: f64, n: usize) -> bool {
+    let check = PartCheck::of(&facade.sections[j], s0, s1, n, true);
+    let v = check.verdicts(c, true);
+    v.dimension && v.approximation == Some(true) && v.shape && v.blade_strain
+}
+
+/// The longest acceptable part of section `j` from `s0`, by the halving search of §5.4.
+/// Returns its length and whether any length was accepted (if none, the shortest tried).
+fn longest_from(
+    facade: &Facade,
+    c: &Constraints,
+    p: &LongestParams,
+    j: usize,
+    s0: f64,
+) -> (f64, bool) {
+    let remaining = facade.sections[j].length - s0;
+    let l = c.blade_length;
+    let steps = (l / p.precision).log2().ceil().max(1.0) as u32;
+    let test = |len: f64| accepted(facade, c, j, s0, s0 + len, p.samples);
+    if remaining <= l && test(remaining) {
+        return (remaining, true);
+    }
+    let mut len = l.min(remaining);
+    let mut best: Option<f64> = None;
+    let mut ok = test(len);
+    if ok {
+        best = Some(len);
+    }
+    let mut shortest = len;
+    for i in 1..=steps {
+        let step = l / f64::from(1u32 << i.min(30));
+        len = if ok { len + step } else { len - step };
+        len = len.clamp(0.0, remaining.min(l));
+        if len <= 0.0 {
+            ok = false;
+            continue;
+        }
+        shortest = shortest.min(len);
+        ok = test(len);
+        if ok && best.is_none_or(|b| len > b) {
+            best = Some(len);
+        }
+    }
+    match best {
+        Some(b) => (b, true),
+        None => (shortest.max(p.precision).min(remaining), false),
+    }
+}
+
+/// Runs the longest-elastica algorithm. `progress` is called once per section per band.
+///
+/// # Errors
+/// [`SegError::Invalid`] for bad constraints or parameters; [`SegError::TooManyPieces`]
+/// when more than `max_bands` bands would be needed.
+pub fn longest_elastica(
+    facade: &Facade,
+    c: &Constraints,
+    p: &LongestParams,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Segmentation, SegError> {
+    c.validate()?;
+    if !(p.precision.is_finite() && p.precision > 0.0) {
+        return Err(SegError::Invalid {
+            what: "precision".into(),
+            message: format!("must be a positive number, got {}", p.precision),
+        });
+    }
+    let n = facade.sections.len();
+    let max_step = p
+        .max_step
+        .unwrap_or_else(|| facade.spacing().max(p.precision));
+    // a part shorter than this is rounding: the section is done
+    let done = |j: usize, s: f64| facade.sections[j].length - s <= 1e-9 * c.blade_length;
+    let mut cur = vec![0.0f64; n];
+    let mut bands: Vec<Vec<Option<(f64, f64)>>> = Vec::new();
+    let mut seams = Vec::new();
+    let mut unmet: Vec<usize> = Vec::new();
+    while (0..n).any(|j| !done(j, cur[j])) {
+        if bands.len() >= p.max_bands {
+            return Err(SegError::TooManyPieces {
+                cap: p.max_bands,
+                why: format!(
+                    "no acceptable part on section(s) {unmet:?} (e.g. a design curvature above the blade's)"
+                ),
+            });
+        }
+        let found: Vec<Option<(f64, bool)>> = (0..n)
+            .into_par_iter()
+            .map(|j| {
+                let r = (!done(j, cur[j])).then(|| longest_from(facade, c, p, j, cur[j]));
+                progress();
+                r
+            })
+            .collect();
+        // even the parts out: a part limited by its fit bounds its neighbours' lengths;
+        // parts reaching the far edge bound nothing
+        let bound: Vec<f64> = (0..n)
+            .map(|j| match found[j] {
+                Some((len, _)) if !done(j, cur[j] + len) => len,
+                _ => f64::INFINITY,
+            })
+            .collect();
+        let mut limit = bound.clone();
+        for j in 1..n {
+            limit[j] = limit[j].min(limit[j - 1] + max_step);
+        }
+        for j in (0..n.saturating_sub(1)).rev() {
+            limit[j] = limit[j].min(limit[j + 1] + max_step);
+        }
+        unmet = (0..n)
+            .filter(|&j| found[j].is_some_and(|(_, ok)| !ok))
+            .map(|j| facade.sections[j].index)
+            .collect();
+        let mut band = Vec::with_capacity(n);
+        let mut seam = Vec::new();
+        for j in 0..n {
+            match found[j] {
+                Some((len, _)) => {
+                    let len = len.min(limit[j]);
+                    band.push(Some((cur[j], cur[j] + len)));
+                    cur[j] += len;
+                    if !done(j, cur[j]) {
+                        let w = facade.world(j, cur[j]);
+                        seam.push([w.x, w.y, w.z]);
+                    }
+                }
+                None => band.push(None),
+            }
+        }
+        if !seam.is_empty() {
+            seams.push(Seam { points: seam });
+        }
+        bands.push(band);
+    }
+    let pieces = pieces_from_bands(facade, c, &bands, true, p.samples);
+    let rows = pieces.iter().map(|q| q.row + 1).max().unwrap_or(0);
+    Ok(Segmentation {
+        algorithm: "LongestElastica".into(),
+        rows,
+        bands: bands.len(),
+        pieces,
+        seams,
+    })
+}

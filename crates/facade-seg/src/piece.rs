@@ -1,0 +1,181 @@
+use serde::Serialize;
+
+use crate::constraints::{Constraints, PartCheck, Verdicts};
+use crate::section::Facade;
+
+/// The part of one section a piece holds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PiecePart {
+    /// Plane index of the section (as numbered in the input).
+    pub plane: usize,
+    /// Plane offset along the cutting direction.
+    pub offset: f64,
+    /// Arc-length range `[s0, s1]` along the section from its start.
+    pub s: [f64; 2],
+    /// 3D start point of the part.
+    pub start: [f64; 3],
+    /// 3D end point of the part.
+    pub end: [f64; 3],
+    /// The part measured against the constraints.
+    pub check: PartCheck,
+}
+
+/// A block placed to hold a piece: axis-aligned in the facade's frame (cutting direction,
+/// `u`, `v`), `origin` its min corner in world coordinates.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Block {
+    /// Min corner (world).
+    pub origin: [f64; 3],
+    /// Size along the cut, `u` and `v`.
+    pub size: [f64; 3],
+    /// The piece's extent in the block's frame (≤ `size` when it fits).
+    pub used: [f64; 3],
+}
+
+/// One piece of the segmentation.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Piece {
+    /// 1-based id.
+    pub id: usize,
+    /// Row of blocks along the cut.
+    pub row: usize,
+    /// Band across the cut (0 at the facade's start edge).
+    pub band: usize,
+    /// The block it is cut from.
+    pub block: Block,
+    /// Its part of every section it crosses, in plane order.
+    pub parts: Vec<PiecePart>,
+    /// Per constraint: met by every part and by the block.
+    pub verdicts: Verdicts,
+}
+
+/// A seam between two bands: one point per section, in plane order.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Seam {
+    /// World points.
+    pub points: Vec<[f64; 3]>,
+}
+
+/// What a segmentation algorithm returns.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Segmentation {
+    /// The algorithm that made it.
+    pub algorithm: String,
+    /// Rows of blocks along the cut.
+    pub rows: usize,
+    /// Bands across the cut.
+    pub bands: usize,
+    /// The pieces, by band then row.
+    pub pieces: Vec<Piece>,
+    /// Seams between bands (`bands − 1` of them, or more where bands end early).
+    pub seams: Vec<Seam>,
+}
+
+fn arr(v: &nalgebra::Vector3<f64>) -> [f64; 3] {
+    [v.x, v.y, v.z]
+}
+
+/// Row of blocks (along the cut) of each section: slabs of `block[0]` from half a spacing
+/// before the first plane.
+pub fn rows_of(facade: &Facade, c: &Constraints) -> Vec<usize> {
+    let first = facade.sections[0].offset - 0.5 * facade.spacing();
+    facade
+        .sections
+        .iter()
+        .map(|s| (((s.offset - first) / c.block[0]).floor().max(0.0)) as usize)
+        .collect()
+}
+
+/// Pieces from bands: `bands[b][j]` is band b's arc-length range on section j (`None` where
+/// the band does not cross it). Each band is cut into rows of blocks; every part is
+/// measured (fitted with `fit`) on `samples` points.
+pub fn pieces_from_bands(
+    facade: &Facade,
+    c: &Constraints,
+    bands: &[Vec<Option<(f64, f64)>>],
+    fit: bool,
+    samples: usize,
+) -> Vec<Piece> {
+    let rows = rows_of(facade, c);
+    let n_rows = rows.iter().copied().max().map_or(0, |r| r + 1);
+    let first = facade.sections[0].offset - 0.5 * facade.spacing();
+    let mut pieces = Vec::new();
+    for (b, band) in bands.iter().enumerate() {
+        for row in 0..n_rows {
+            let parts: Vec<PiecePart> = band
+                .iter()
+                .enumerate()
+                .filter(|(j, r)| rows[*j] == row && r.is_some_and(|(s0, s1)| s1 > s0))
+                .map(|(j, r)| {
+                    let (s0, s1) = r.unwrap_or_default();
+                    let sec = &facade.sections[j];
+                    PiecePart {
+                        plane: sec.index,
+                        offset: sec.offset,
+                        s: [s0, s1],
+                        start: arr(&facade.world(j, s0)),
+                        end: arr(&facade.world(j, s1)),
+                        check: PartCheck::of(sec, s0, s1, samples, fit),
+                    }
+                })
+                .collect();
+            if parts.is_empty() {
+                continue;
+            }
+            // extents in plane coordinates (u, v) over all parts
+            let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+            for p in &parts {
+                let j = facade
+                    .sections
+                    .iter()
+                    .position(|s| s.index == p.plane)
+                    .unwrap_or(0);
+                let (pts, _) = facade.sections[j].samples(p.s[0], p.s[1], samples);
+                for q in pts {
+                    for k in 0..2 {
+                        lo[k] = lo[k].min(q[k]);
+                        hi[k] = hi[k].max(q[k]);
+                    }
+                }
+            }
+            let d0 = first + row as f64 * c.block[0];
+            let (d_lo, d_hi) = parts
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
+                    (a.0.min(p.offset), a.1.max(p.offset))
+                });
+            let used = [d_hi - d_lo, hi[0] - lo[0], hi[1] - lo[1]];
+            let f = &facade.frame;
+            let origin = f.normal * d0 + f.u * lo[0] + f.v * lo[1];
+            let fits = (0..3).all(|k| used[k] <= c.block[k] * (1.0 + 1e-12));
+            let mut verdicts = Verdicts {
+                dimension: fits,
+                approximation: fit.then_some(true),
+                shape: true,
+                blade_strain: true,
+            };
+            for p in &parts {
+                let v = p.check.verdicts(c, fit);
+                verdicts.dimension &= v.dimension;
+                verdicts.shape &= v.shape;
+                verdicts.blade_strain &= v.blade_strain;
+                if let (Some(a), Some(b)) = (verdicts.approximation, v.approximation) {
+                    verdicts.approximation = Some(a && b);
+                }
+            }
+            pieces.push(Piece {
+                id: pieces.len() + 1,
+                row,
+                band: b,
+                block: Block {
+                    origin: arr(&origin),
+                    size: c.block,
+                    used,
+                },
+                parts,
+                verdicts,
+            });
+        }
+    }
+    pieces
+}
