@@ -11,6 +11,8 @@
 pub mod constraints;
 /// Why a segmentation failed.
 pub mod error;
+/// The inflection-points algorithm (§5.2).
+pub mod inflection;
 /// The longest-elastica algorithm (§5.4).
 pub mod longest;
 /// Pieces, blocks and seams: what every algorithm returns.

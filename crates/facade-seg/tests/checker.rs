@@ -1,21 +1,22 @@
-//! The longest-elastica algorithm on a wavy facade, checked from outside its bookkeeping:
+//! The segmentation algorithms on a wavy facade, checked from outside their bookkeeping:
 //! every part of every piece is re-measured on the section curve itself (inflections by
 //! sign changes of the sampled curvature, length by quadrature of the sampled polyline,
-//! extent in the block, a fresh elastica fit), and the parts of each section tile it
-//! exactly once.
+//! extent in the block, for `LongestElastica` a fresh elastica fit), and the parts of each
+//! section tile it exactly once.
 
 use elastica::fit::{fit_points_with_arclength, FitConstraint, FitParams};
+use facade_seg::inflection::{inflection_points, InflectionParams};
 use facade_seg::longest::{longest_elastica, LongestParams};
-use facade_seg::{Constraints, Facade};
+use facade_seg::{Constraints, Facade, Segmentation};
 use geom::expr::Expr;
 use geom::heightfield::HeightField;
 use geom::planar::{signed_curvature, PlanarCurve};
 use geom::surface::{SectionParams, Surface};
 use nalgebra::Vector3;
 
-fn wavy(amplitude: f64, count: usize) -> Facade {
+fn wavy(amplitude: f64, period: f64, count: usize) -> Facade {
     let h = HeightField::try_new(
-        Expr::parse(&format!("{amplitude}*sin(y/150) + 20*cos(x/300)")).unwrap(),
+        Expr::parse(&format!("{amplitude}*sin(y/{period}) + 20*cos(x/300)")).unwrap(),
         (0.0, 1200.0),
         (0.0, 2400.0),
     )
@@ -44,18 +45,16 @@ fn constraints() -> Constraints {
     }
 }
 
-#[test]
-fn every_piece_meets_the_constraints_and_sections_are_covered_once() {
-    let facade = wavy(60.0, 12);
-    let c = constraints();
-    let seg = longest_elastica(&facade, &c, &LongestParams::default(), &|| {}).unwrap();
+/// Checks `seg` against the constraints on the curves themselves; `fitted`: also the
+/// elastica fit and the blade length (the category-a guarantee).
+fn check(facade: &Facade, c: &Constraints, seg: &Segmentation, fitted: bool) {
     println!(
-        "{} bands, {} rows, {} pieces",
+        "{}: {} bands, {} rows, {} pieces",
+        seg.algorithm,
         seg.bands,
         seg.rows,
         seg.pieces.len()
     );
-    assert!(seg.bands > 2, "a 2.4 m wavy facade needs several bands");
     for piece in &seg.pieces {
         let (mut ulo, mut uhi) = (f64::INFINITY, f64::NEG_INFINITY);
         for part in &piece.parts {
@@ -112,6 +111,9 @@ fn every_piece_meets_the_constraints_and_sections_are_covered_once() {
                     Some(*acc)
                 })
                 .collect();
+            if !fitted {
+                continue;
+            }
             let fit = fit_points_with_arclength(
                 &pts,
                 &ss,
@@ -162,8 +164,43 @@ fn every_piece_meets_the_constraints_and_sections_are_covered_once() {
 }
 
 #[test]
+fn longest_elastica_pieces_meet_every_constraint() {
+    let facade = wavy(60.0, 150.0, 12);
+    let c = constraints();
+    let seg = longest_elastica(&facade, &c, &LongestParams::default(), &|| {}).unwrap();
+    assert!(seg.bands > 2, "a 2.4 m wavy facade needs several bands");
+    check(&facade, &c, &seg, true);
+}
+
+#[test]
+fn inflection_pieces_hold_at_most_two_inflections() {
+    let c = constraints();
+    // inflections every 471 mm, and every 141 mm (4 or 5 per 600 mm block: moves needed)
+    for (facade, symmetric) in [
+        (wavy(60.0, 150.0, 12), false),
+        (wavy(60.0, 150.0, 12), true),
+        (wavy(10.0, 45.0, 12), false),
+        (wavy(10.0, 45.0, 12), true),
+    ] {
+        let p = InflectionParams {
+            symmetric,
+            ..InflectionParams::default()
+        };
+        let seg = inflection_points(&facade, &c, &p, &|| {}).unwrap();
+        check(&facade, &c, &seg, false);
+        if symmetric {
+            // every row has the same blocks
+            let bands: Vec<usize> = (0..seg.rows)
+                .map(|r| seg.pieces.iter().filter(|q| q.row == r).count())
+                .collect();
+            assert!(bands.windows(2).all(|w| w[0] == w[1]), "{bands:?}");
+        }
+    }
+}
+
+#[test]
 fn bad_constraints_are_rejected() {
-    let facade = wavy(60.0, 4);
+    let facade = wavy(60.0, 150.0, 4);
     for bad in [
         Constraints {
             blade_length: -1.0,

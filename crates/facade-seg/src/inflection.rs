@@ -1,0 +1,367 @@
+//! The inflection-points algorithm (thesis §5.2, "Robotic Hot-Blade Cutting" §3; category
+//! b: the segmentation guides the fits). Rows of fixed-size blocks along the cut, each row
+//! a sequence of blocks that may overlap across it; where two blocks overlap, the seam on
+//! each section runs through the section's largest |curvature| inside the overlap (so it
+//! follows the surface's ridges and valleys, and never sits on an inflection), and each
+//! block owns its sections between its two seams. While some block owns a section part
+//! with more than `max_inflections` inflections, the first such block is either
+//! (b) translated along its row as far as possible without overloading the neighbour that
+//! takes over its part (tried first), or (a) given a translated copy, placed as far along
+//! as the block itself stays within the limit. Blocks left owning nothing are removed.
+//! With `symmetric`, all rows share one arrangement (the moves are judged on all sections).
+
+use serde::Serialize;
+
+use crate::constraints::Constraints;
+use crate::piece::{pieces_from_bands, rows_of, Segmentation};
+use crate::section::{Facade, PreparedSection};
+use crate::SegError;
+
+/// Parameters of [`inflection_points`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct InflectionParams {
+    /// All rows share one block arrangement.
+    pub symmetric: bool,
+    /// Candidate positions tried per translation (per block width).
+    pub positions: usize,
+    /// Points each part is sampled at for its checks.
+    pub samples: usize,
+    /// Most moves before giving up.
+    pub max_moves: usize,
+}
+
+impl Default for InflectionParams {
+    fn default() -> Self {
+        Self {
+            symmetric: false,
+            positions: 64,
+            samples: 64,
+            max_moves: 1000,
+        }
+    }
+}
+
+/// A section seen across the facade: `u` (plane coordinate across) against arc length,
+/// sampled densely, and where its inflections lie in `u`.
+struct Across {
+    u: Vec<f64>,
+    s: Vec<f64>,
+    k: Vec<f64>,
+    inflections: Vec<f64>,
+}
+
+const ACROSS_SAMPLES: usize = 2048;
+
+impl Across {
+    fn new(facade: &Facade, j: usize) -> Result<Self, SegError> {
+        let sec = &facade.sections[j];
+        let n = ACROSS_SAMPLES;
+        let s: Vec<f64> = (0..=n).map(|i| sec.length * i as f64 / n as f64).collect();
+        let u: Vec<f64> = s.iter().map(|&v| sec.point(v).x).collect();
+        if u.windows(2).any(|w| !(w[1] > w[0])) {
+            return Err(SegError::Section {
+                index: sec.index,
+                message: "the inflection-points algorithm needs sections that run steadily across the facade (u increasing along the curve)".into(),
+            });
+        }
+        let k = s.iter().map(|&v| sec.max_abs_curvature(v, v, 2)).collect();
+        let inflections = sec.inflections.iter().map(|&v| sec.point(v).x).collect();
+        Ok(Self {
+            u,
+            s,
+            k,
+            inflections,
+        })
+    }
+
+    /// Arc length at `u` (clamped to the section): bisection on `u(s)` inside the bracketing
+    /// samples, so the part ends exactly at the seam.
+    fn s_at(&self, sec: &PreparedSection, u: f64) -> f64 {
+        let i = self.u.partition_point(|&x| x < u);
+        if i == 0 {
+            return self.s[0];
+        }
+        if i >= self.u.len() {
+            return self.s[self.s.len() - 1];
+        }
+        let (mut lo, mut hi) = (self.s[i - 1], self.s[i]);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if sec.point(mid).x < u {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
+    /// The seam in the overlap `[lo, hi]` after a part that starts at `start`: the largest
+    /// |curvature| among the points that leave that part at most `k` inflections (so the
+    /// seam follows the surface's ridges and valleys and never sits on an inflection);
+    /// `lo` when there is none.
+    fn seam(&self, lo: f64, hi: f64, start: f64, k: usize) -> f64 {
+        let lo = lo.max(start);
+        // the (k+1)-th inflection after `start` bounds the part
+        let limit = self
+            .inflections
+            .iter()
+            .filter(|&&u| u > start)
+            .nth(k)
+            .copied()
+            .unwrap_or(f64::INFINITY);
+        let hi = hi.min(limit);
+        if !(hi > lo) {
+            return lo;
+        }
+        let a = self.u.partition_point(|&x| x < lo);
+        let b = self.u.partition_point(|&x| x < hi);
+        (a..b)
+            .fold(None, |best: Option<(f64, f64)>, i| match best {
+                Some((_, k)) if k >= self.k[i] => best,
+                _ => Some((self.u[i], self.k[i])),
+            })
+            .map_or(lo, |(u, _)| u)
+    }
+
+    fn count(&self, lo: f64, hi: f64) -> usize {
+        self.inflections
+            .iter()
+            .filter(|&&u| u > lo && u < hi)
+            .count()
+    }
+}
+
+/// One row's blocks (left `u` of each, increasing) over the sections `secs`; ownership and
+/// counts follow from the positions.
+struct Row<'a> {
+    secs: Vec<&'a Across>,
+    width: f64,
+    range: (f64, f64),
+    k: usize,
+}
+
+impl Row<'_> {
+    /// Per section, the seams bounding each block: `seams[j][i]..seams[j][i + 1]` is block
+    /// i's part.
+    fn seams(&self, a: &[f64]) -> Vec<Vec<f64>> {
+        self.secs
+            .iter()
+            .map(|sec| {
+                let mut v = Vec::with_capacity(a.len() + 1);
+                v.push(self.range.0.min(sec.u[0]));
+                for i in 0..a.len().saturating_sub(1) {
+                    let start = v[i];
+                    v.push(sec.seam(a[i + 1], a[i] + self.width, start, self.k));
+                }
+                v.push(self.range.1.max(sec.u[sec.u.len() - 1]));
+                v
+            })
+            .collect()
+    }
+
+    /// Largest inflection count of block `i` over the sections.
+    fn load(&self, seams: &[Vec<f64>], i: usize) -> usize {
+        self.secs
+            .iter()
+            .zip(seams)
+            .map(|(sec, s)| sec.count(s[i], s[i + 1]))
+            .max()
+            .unwrap_or(0)
+    }
+
+    fn first_violation(&self, a: &[f64], k: usize) -> Option<usize> {
+        let seams = self.seams(a);
+        (0..a.len()).find(|&i| self.load(&seams, i) > k)
+    }
+
+    fn covered(&self, a: &[f64]) -> bool {
+        a[0] <= self.range.0 + 1e-9
+            && a[a.len() - 1] + self.width >= self.range.1 - 1e-9
+            && a.windows(2)
+                .all(|w| w[1] >= w[0] && w[1] <= w[0] + self.width + 1e-9)
+    }
+}
+
+/// Arranges one row's blocks; returns their left edges.
+fn arrange(
+    row: &Row<'_>,
+    k: usize,
+    p: &InflectionParams,
+    moves: &mut usize,
+) -> Result<Vec<f64>, SegError> {
+    let w = row.width;
+    let cols = (((row.range.1 - row.range.0) / w).ceil() as usize).max(1);
+    let mut a: Vec<f64> = (0..cols).map(|i| row.range.0 + i as f64 * w).collect();
+    let steps = p.positions.max(4);
+    while let Some(b) = row.first_violation(&a, k) {
+        *moves += 1;
+        if *moves > p.max_moves {
+            return Err(SegError::TooManyPieces {
+                cap: p.max_moves,
+                why: "the inflection-points algorithm did not settle (inflections closer together than the block allows?)".into(),
+            });
+        }
+        // (b) translate b, away from the neighbour that takes over: farthest shift first
+        let mut moved = false;
+        'shift: for dir in [1.0, -1.0] {
+            for i in (1..=steps).rev() {
+                let mut t = a.clone();
+                t[b] += dir * w * i as f64 / steps as f64;
+                if !row.covered(&t) {
+                    continue;
+                }
+                let seams = row.seams(&t);
+                let nb = if dir > 0.0 {
+                    b.checked_sub(1)
+                } else {
+                    Some(b + 1)
+                };
+                // b, every block before it and the neighbour that takes over b's part
+                // within the limit afterwards: each move advances the first overloaded
+                // block, so the loop ends
+                let ok_nb = nb.is_none_or(|n| n >= t.len() || row.load(&seams, n) <= k);
+                if ok_nb && row.first_violation(&t, k).is_none_or(|v| v > b) {
+                    a = t;
+                    moved = true;
+                    break 'shift;
+                }
+            }
+        }
+        if moved {
+            continue;
+        }
+        // (a) a translated copy of b right after it, as far along as b stays within the limit
+        let mut best: Option<Vec<f64>> = None;
+        for i in (1..=steps).rev() {
+            let mut t = a.clone();
+            t.insert(b + 1, a[b] + w * i as f64 / steps as f64);
+            if !row.covered(&t) {
+                continue;
+            }
+            let seams = row.seams(&t);
+            if row.load(&seams, b) <= k {
+                best = Some(t);
+                break;
+            }
+        }
+        a = match best {
+            Some(t) => t,
+            None => {
+                let mut t = a.clone();
+                t.insert(b + 1, a[b] + w / steps as f64);
+                t
+            }
+        };
+        // drop blocks that own nothing on any section
+        loop {
+            let seams = row.seams(&a);
+            let empty = (0..a.len()).find(|&i| {
+                a.len() > 1 && seams.iter().all(|s| s[i + 1] <= s[i]) && {
+                    let mut t = a.clone();
+                    t.remove(i);
+                    row.covered(&t) && row.first_violation(&t, k).is_none_or(|v| v > b)
+                }
+            });
+            match empty {
+                Some(i) => {
+                    a.remove(i);
+                }
+                None => break,
+            }
+        }
+    }
+    Ok(a)
+}
+
+/// Runs the inflection-points algorithm. `progress` is called once per row.
+///
+/// # Errors
+/// [`SegError::Invalid`] for bad constraints; [`SegError::Section`] for a section that
+/// does not run across the facade; [`SegError::TooManyPieces`] when the moves do not
+/// settle within `max_moves`.
+pub fn inflection_points(
+    facade: &Facade,
+    c: &Constraints,
+    p: &InflectionParams,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Segmentation, SegError> {
+    c.validate()?;
+    let across: Vec<Across> = (0..facade.sections.len())
+        .map(|j| Across::new(facade, j))
+        .collect::<Result<_, _>>()?;
+    let range = across
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |r, s| {
+            (r.0.min(s.u[0]), r.1.max(s.u[s.u.len() - 1]))
+        });
+    let rows = rows_of(facade, c);
+    let n_rows = rows.iter().copied().max().map_or(0, |r| r + 1);
+    let k = c.max_inflections as usize;
+    let mut moves = 0;
+    let make_row = |r: Option<usize>| Row {
+        secs: across
+            .iter()
+            .enumerate()
+            .filter(|(j, _)| r.is_none_or(|r| rows[*j] == r))
+            .map(|(_, s)| s)
+            .collect(),
+        width: c.block[1],
+        range,
+        k,
+    };
+    let shared = if p.symmetric {
+        Some(arrange(&make_row(None), k, p, &mut moves)?)
+    } else {
+        None
+    };
+    let mut bands: Vec<Vec<Option<(f64, f64)>>> = Vec::new();
+    let mut band_of: Vec<usize> = Vec::new();
+    for r in 0..n_rows {
+        let row = make_row(Some(r));
+        let a = match &shared {
+            Some(a) => a.clone(),
+            None => arrange(&row, k, p, &mut moves)?,
+        };
+        let seams = row.seams(&a);
+        let idx: Vec<usize> = (0..facade.sections.len())
+            .filter(|&j| rows[j] == r)
+            .collect();
+        for i in 0..a.len() {
+            let mut band = vec![None; facade.sections.len()];
+            for (m, &j) in idx.iter().enumerate() {
+                let sec = &across[j];
+                let prep = &facade.sections[j];
+                let (s0, s1) = (sec.s_at(prep, seams[m][i]), sec.s_at(prep, seams[m][i + 1]));
+                if s1 > s0 {
+                    band[j] = Some((s0, s1));
+                }
+            }
+            bands.push(band);
+            band_of.push(i);
+        }
+        progress();
+    }
+    let mut pieces = pieces_from_bands(facade, c, &bands, false, p.samples);
+    // pieces_from_bands numbers bands globally; here a band is a block of its row
+    let mut kept = Vec::new();
+    for mut piece in pieces.drain(..) {
+        piece.band = band_of[piece.band];
+        piece.id = kept.len() + 1;
+        kept.push(piece);
+    }
+    Ok(Segmentation {
+        algorithm: if p.symmetric {
+            "Inflection(symmetric)".into()
+        } else {
+            "Inflection".into()
+        },
+        rows: n_rows,
+        bands: kept.iter().map(|q| q.band + 1).max().unwrap_or(0),
+        pieces: kept,
+        seams: Vec::new(),
+    })
+}
