@@ -12,9 +12,10 @@
 
 use serde::Serialize;
 
+use crate::across::Across;
 use crate::constraints::Constraints;
 use crate::piece::{pieces_from_bands, rows_of, Segmentation};
-use crate::section::{Facade, PreparedSection};
+use crate::section::Facade;
 use crate::SegError;
 
 /// Parameters of [`inflection_points`].
@@ -38,100 +39,6 @@ impl Default for InflectionParams {
             samples: 64,
             max_moves: 1000,
         }
-    }
-}
-
-/// A section seen across the facade: `u` (plane coordinate across) against arc length,
-/// sampled densely, and where its inflections lie in `u`.
-struct Across {
-    u: Vec<f64>,
-    s: Vec<f64>,
-    k: Vec<f64>,
-    inflections: Vec<f64>,
-}
-
-const ACROSS_SAMPLES: usize = 2048;
-
-impl Across {
-    fn new(facade: &Facade, j: usize) -> Result<Self, SegError> {
-        let sec = &facade.sections[j];
-        let n = ACROSS_SAMPLES;
-        let s: Vec<f64> = (0..=n).map(|i| sec.length * i as f64 / n as f64).collect();
-        let u: Vec<f64> = s.iter().map(|&v| sec.point(v).x).collect();
-        if u.windows(2).any(|w| !(w[1] > w[0])) {
-            return Err(SegError::Section {
-                index: sec.index,
-                message: "the inflection-points algorithm needs sections that run steadily across the facade (u increasing along the curve)".into(),
-            });
-        }
-        let k = s.iter().map(|&v| sec.max_abs_curvature(v, v, 2)).collect();
-        let inflections = sec.inflections.iter().map(|&v| sec.point(v).x).collect();
-        Ok(Self {
-            u,
-            s,
-            k,
-            inflections,
-        })
-    }
-
-    /// Arc length at `u` (clamped to the section): bisection on `u(s)` inside the bracketing
-    /// samples, so the part ends exactly at the seam.
-    fn s_at(&self, sec: &PreparedSection, u: f64) -> f64 {
-        let i = self.u.partition_point(|&x| x < u);
-        if i == 0 {
-            return self.s[0];
-        }
-        if i >= self.u.len() {
-            return self.s[self.s.len() - 1];
-        }
-        let (mut lo, mut hi) = (self.s[i - 1], self.s[i]);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
-                break;
-            }
-            if sec.point(mid).x < u {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        0.5 * (lo + hi)
-    }
-
-    /// The seam in the overlap `[lo, hi]` after a part that starts at `start`: the largest
-    /// |curvature| among the points that leave that part at most `k` inflections (so the
-    /// seam follows the surface's ridges and valleys and never sits on an inflection);
-    /// `lo` when there is none.
-    fn seam(&self, lo: f64, hi: f64, start: f64, k: usize) -> f64 {
-        let lo = lo.max(start);
-        // the (k+1)-th inflection after `start` bounds the part
-        let limit = self
-            .inflections
-            .iter()
-            .filter(|&&u| u > start)
-            .nth(k)
-            .copied()
-            .unwrap_or(f64::INFINITY);
-        let hi = hi.min(limit);
-        if !(hi > lo) {
-            return lo;
-        }
-        let a = self.u.partition_point(|&x| x < lo);
-        let b = self.u.partition_point(|&x| x < hi);
-        (a..b)
-            .fold(None, |best: Option<(f64, f64)>, i| match best {
-                Some((_, k)) if k >= self.k[i] => best,
-                _ => Some((self.u[i], self.k[i])),
-            })
-            .map_or(lo, |(u, _)| u)
-    }
-
-    fn count(&self, lo: f64, hi: f64) -> usize {
-        self.inflections
-            .iter()
-            .filter(|&&u| u > lo && u < hi)
-            .count()
     }
 }
 

@@ -7,6 +7,8 @@
 //! section the part each piece holds, the block it is cut from, and a verdict per
 //! constraint.
 
+/// Sections seen across the facade (`u` ↔ arc length, curvature, inflections).
+mod across;
 /// The production constraints of §5.1 and their checks on one section part.
 pub mod constraints;
 /// Why a segmentation failed.
@@ -19,6 +21,8 @@ pub mod longest;
 pub mod piece;
 /// Sections prepared for segmentation: arc length, inflections, sampling.
 pub mod section;
+/// The trace algorithm (§5.3).
+pub mod trace;
 
 pub use constraints::Constraints;
 pub use error::SegError;

@@ -7,6 +7,7 @@
 use elastica::fit::{fit_points_with_arclength, FitConstraint, FitParams};
 use facade_seg::inflection::{inflection_points, InflectionParams};
 use facade_seg::longest::{longest_elastica, LongestParams};
+use facade_seg::trace::{trace, TraceParams};
 use facade_seg::{Constraints, Facade, Segmentation};
 use geom::expr::Expr;
 use geom::heightfield::HeightField;
@@ -196,6 +197,40 @@ fn inflection_pieces_hold_at_most_two_inflections() {
             assert!(bands.windows(2).all(|w| w[0] == w[1]), "{bands:?}");
         }
     }
+}
+
+#[test]
+fn trace_pieces_hold_at_most_two_inflections() {
+    let c = constraints();
+    for facade in [wavy(60.0, 150.0, 12), wavy(10.0, 45.0, 12)] {
+        let seg = trace(&facade, &c, &TraceParams::default(), &|| {}).unwrap();
+        assert!(!seg.seams.is_empty());
+        check(&facade, &c, &seg, false);
+    }
+}
+
+/// The three algorithms cut the same wavy facade differently: their seams sit at different
+/// places on the sections.
+#[test]
+fn the_algorithms_segment_the_wavy_facade_differently() {
+    let facade = wavy(60.0, 150.0, 12);
+    let c = constraints();
+    let ends = |seg: &Segmentation| {
+        let mut v: Vec<i64> = seg
+            .pieces
+            .iter()
+            .flat_map(|p| p.parts.iter())
+            .filter(|p| p.plane == facade.sections[0].index)
+            .map(|p| p.s[1].round() as i64)
+            .collect();
+        v.sort();
+        v
+    };
+    let a = ends(&inflection_points(&facade, &c, &InflectionParams::default(), &|| {}).unwrap());
+    let b = ends(&trace(&facade, &c, &TraceParams::default(), &|| {}).unwrap());
+    let l = ends(&longest_elastica(&facade, &c, &LongestParams::default(), &|| {}).unwrap());
+    println!("part ends on the first section: inflection {a:?}, trace {b:?}, longest {l:?}");
+    assert!(a != b && b != l && a != l);
 }
 
 #[test]

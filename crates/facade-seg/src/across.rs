@@ -1,0 +1,126 @@
+//! A section seen across the facade: `u` (the plane coordinate across) against arc length,
+//! sampled densely, with its |curvature| and its inflections in `u`. Shared by the
+//! algorithms that place seams by `u` (inflection points, trace).
+
+use geom::planar::{signed_curvature, PlanarCurve};
+
+use crate::section::{Facade, PreparedSection};
+use crate::SegError;
+
+/// A section seen across the facade: `u` (plane coordinate across) against arc length,
+/// sampled densely, and where its inflections lie in `u`.
+pub(crate) struct Across {
+    pub u: Vec<f64>,
+    pub s: Vec<f64>,
+    pub k: Vec<f64>,
+    pub signed: Vec<f64>,
+    pub inflections: Vec<f64>,
+}
+
+const ACROSS_SAMPLES: usize = 2048;
+
+impl Across {
+    pub fn new(facade: &Facade, j: usize) -> Result<Self, SegError> {
+        let sec = &facade.sections[j];
+        let n = ACROSS_SAMPLES;
+        let s: Vec<f64> = (0..=n).map(|i| sec.length * i as f64 / n as f64).collect();
+        let u: Vec<f64> = s.iter().map(|&v| sec.point(v).x).collect();
+        if u.windows(2).any(|w| !(w[1] > w[0])) {
+            return Err(SegError::Section {
+                index: sec.index,
+                message: "the inflection-points algorithm needs sections that run steadily across the facade (u increasing along the curve)".into(),
+            });
+        }
+        let signed: Vec<f64> = s
+            .iter()
+            .map(|&v| signed_curvature(&sec.curve.jet(sec.t_at(v))))
+            .collect();
+        let k = signed.iter().map(|v| v.abs()).collect();
+        let inflections = sec.inflections.iter().map(|&v| sec.point(v).x).collect();
+        Ok(Self {
+            u,
+            s,
+            k,
+            signed,
+            inflections,
+        })
+    }
+
+    /// Arc length at `u` (clamped to the section): bisection on `u(s)` inside the bracketing
+    /// samples, so the part ends exactly at the seam.
+    pub fn s_at(&self, sec: &PreparedSection, u: f64) -> f64 {
+        let i = self.u.partition_point(|&x| x < u);
+        if i == 0 {
+            return self.s[0];
+        }
+        if i >= self.u.len() {
+            return self.s[self.s.len() - 1];
+        }
+        let (mut lo, mut hi) = (self.s[i - 1], self.s[i]);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if sec.point(mid).x < u {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
+    /// The seam in the overlap `[lo, hi]` after a part that starts at `start`: the largest
+    /// |curvature| among the points that leave that part at most `k` inflections (so the
+    /// seam follows the surface's ridges and valleys and never sits on an inflection);
+    /// `lo` when there is none.
+    pub fn seam(&self, lo: f64, hi: f64, start: f64, k: usize) -> f64 {
+        let lo = lo.max(start);
+        // the (k+1)-th inflection after `start` bounds the part
+        let limit = self
+            .inflections
+            .iter()
+            .filter(|&&u| u > start)
+            .nth(k)
+            .copied()
+            .unwrap_or(f64::INFINITY);
+        let hi = hi.min(limit);
+        if !(hi > lo) {
+            return lo;
+        }
+        let a = self.u.partition_point(|&x| x < lo);
+        let b = self.u.partition_point(|&x| x < hi);
+        (a..b)
+            .fold(None, |best: Option<(f64, f64)>, i| match best {
+                Some((_, k)) if k >= self.k[i] => best,
+                _ => Some((self.u[i], self.k[i])),
+            })
+            .map_or(lo, |(u, _)| u)
+    }
+
+    pub fn count(&self, lo: f64, hi: f64) -> usize {
+        self.inflections
+            .iter()
+            .filter(|&&u| u > lo && u < hi)
+            .count()
+    }
+
+    /// The sample of largest |curvature| strictly between `lo` and `hi`: its `u` and signed
+    /// curvature.
+    pub fn max_between(&self, lo: f64, hi: f64) -> Option<(f64, f64)> {
+        let a = self.u.partition_point(|&x| x <= lo);
+        let b = self.u.partition_point(|&x| x < hi);
+        (a..b)
+            .fold(None, |best: Option<usize>, i| match best {
+                Some(j) if self.k[j] >= self.k[i] => best,
+                _ => Some(i),
+            })
+            .map(|i| (self.u[i], self.signed[i]))
+    }
+
+    /// First and last `u` of the section.
+    pub fn u_range(&self) -> (f64, f64) {
+        (self.u[0], self.u[self.u.len() - 1])
+    }
+}
