@@ -123,4 +123,15 @@ impl Across {
     pub fn u_range(&self) -> (f64, f64) {
         (self.u[0], self.u[self.u.len() - 1])
     }
+
+    /// Every section of the facade seen across it, `tick` called once per section.
+    pub fn all(facade: &Facade, tick: &dyn Fn()) -> Result<Vec<Self>, SegError> {
+        (0..facade.sections.len())
+            .map(|j| {
+                let a = Self::new(facade, j);
+                tick();
+                a
+            })
+            .collect()
+    }
 }

@@ -197,9 +197,7 @@ pub fn inflection_points(
     progress: &(dyn Fn() + Sync),
 ) -> Result<Segmentation, SegError> {
     c.validate()?;
-    let across: Vec<Across> = (0..facade.sections.len())
-        .map(|j| Across::new(facade, j))
-        .collect::<Result<_, _>>()?;
+    let across = Across::all(facade, &|| {})?;
     let range = across
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |r, s| {

@@ -123,13 +123,7 @@ pub fn trace(
     progress: &(dyn Fn() + Sync),
 ) -> Result<Segmentation, SegError> {
     c.validate()?;
-    let across: Vec<Across> = (0..facade.sections.len())
-        .map(|j| {
-            let a = Across::new(facade, j);
-            progress();
-            a
-        })
-        .collect::<Result<_, _>>()?;
+    let across = Across::all(facade, progress)?;
     let n = across.len();
     let link_distance = p.link_distance.unwrap_or(0.25 * c.block[1]);
     let merge_distance = p.merge_distance.unwrap_or(0.02 * c.block[1]);
