@@ -109,6 +109,33 @@ impl SvgDoc {
         self.close("polyline", title)
     }
 
+    /// A closed polygon through page points, filled with `fill` (e.g. `#ff000080`) and
+    /// outlined with `stroke` (`none` for no outline).
+    pub fn polygon(
+        &mut self,
+        pts: &[(f64, f64)],
+        fill: &str,
+        stroke: &str,
+        width: f64,
+        title: Option<&str>,
+    ) -> &mut Self {
+        if pts.len() < 3 {
+            return self;
+        }
+        let p: Vec<String> = pts
+            .iter()
+            .map(|(x, y)| format!("{},{}", n(*x), n(*y)))
+            .collect();
+        self.body.push_str(&format!(
+            "<polygon points=\"{}\" fill=\"{}\" stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\">",
+            p.join(" "),
+            esc(fill),
+            esc(stroke),
+            n(width)
+        ));
+        self.close("polygon", title)
+    }
+
     /// A filled circle at a page point.
     pub fn circle(
         &mut self,

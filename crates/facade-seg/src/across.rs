@@ -71,11 +71,12 @@ impl Across {
         0.5 * (lo + hi)
     }
 
-    /// The seam in the overlap `[lo, hi]` after a part that starts at `start`: the largest
-    /// |curvature| among the points that leave that part at most `k` inflections (so the
-    /// seam follows the surface's ridges and valleys and never sits on an inflection);
-    /// `lo` when there is none.
-    pub fn seam(&self, lo: f64, hi: f64, start: f64, k: usize) -> f64 {
+    /// The seam in the overlap `[lo, hi]` after a part that starts at `start`, among the
+    /// points that leave that part at most `k` inflections: the local maximum of |curvature|
+    /// nearest to `prev` (the same seam on the previous section), or without `prev` the
+    /// largest |curvature| — so the seam runs along one ridge or valley of the surface
+    /// from section to section and never sits on an inflection; `lo` when there is none.
+    pub fn seam(&self, lo: f64, hi: f64, start: f64, k: usize, prev: Option<f64>) -> f64 {
         let lo = lo.max(start);
         // the (k+1)-th inflection after `start` bounds the part
         let limit = self
@@ -91,12 +92,26 @@ impl Across {
         }
         let a = self.u.partition_point(|&x| x < lo);
         let b = self.u.partition_point(|&x| x < hi);
+        if a >= b {
+            return lo;
+        }
+        let largest = (a..b).fold(a, |best, i| if self.k[i] > self.k[best] { i } else { best });
+        let Some(prev) = prev else {
+            return self.u[largest];
+        };
+        // local maxima of |κ| inside the range (ends count when the range cuts a slope)
+        let peak = |i: usize| {
+            (i == a || self.k[i] >= self.k[i - 1]) && (i + 1 == b || self.k[i] >= self.k[i + 1])
+        };
         (a..b)
-            .fold(None, |best: Option<(f64, f64)>, i| match best {
-                Some((_, k)) if k >= self.k[i] => best,
-                _ => Some((self.u[i], self.k[i])),
+            .filter(|&i| peak(i))
+            .min_by(|&i, &j| {
+                (self.u[i] - prev)
+                    .abs()
+                    .total_cmp(&(self.u[j] - prev).abs())
+                    .then(self.k[j].total_cmp(&self.k[i]))
             })
-            .map_or(lo, |(u, _)| u)
+            .map_or(self.u[largest], |i| self.u[i])
     }
 
     pub fn count(&self, lo: f64, hi: f64) -> usize {

@@ -55,19 +55,20 @@ impl Row<'_> {
     /// Per section, the seams bounding each block: `seams[j][i]..seams[j][i + 1]` is block
     /// i's part.
     fn seams(&self, a: &[f64]) -> Vec<Vec<f64>> {
-        self.secs
-            .iter()
-            .map(|sec| {
-                let mut v = Vec::with_capacity(a.len() + 1);
-                v.push(self.range.0.min(sec.u[0]));
-                for i in 0..a.len().saturating_sub(1) {
-                    let start = v[i];
-                    v.push(sec.seam(a[i + 1], a[i] + self.width, start, self.k));
-                }
-                v.push(self.range.1.max(sec.u[sec.u.len() - 1]));
-                v
-            })
-            .collect()
+        let mut out: Vec<Vec<f64>> = Vec::with_capacity(self.secs.len());
+        for sec in &self.secs {
+            let prev = out.last();
+            let mut v = Vec::with_capacity(a.len() + 1);
+            v.push(self.range.0.min(sec.u[0]));
+            for i in 0..a.len().saturating_sub(1) {
+                let start = v[i];
+                let near = prev.map(|p| p[i + 1]);
+                v.push(sec.seam(a[i + 1], a[i] + self.width, start, self.k, near));
+            }
+            v.push(self.range.1.max(sec.u[sec.u.len() - 1]));
+            out.push(v);
+        }
+        out
     }
 
     /// Largest inflection count of block `i` over the sections.

@@ -14,7 +14,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::constraints::{Constraints, PartCheck};
-use crate::piece::{pieces_from_bands, Seam, Segmentation};
+use crate::piece::{pieces_from_bands, rows_of, Seam, Segmentation};
 use crate::section::Facade;
 use crate::SegError;
 
@@ -43,6 +43,11 @@ impl Default for LongestParams {
         }
     }
 }
+
+/// Share of the blade length below which the rest of a section after a part is a sliver
+/// that the part should share instead of leaving (a blade pose on a few millimetres means
+/// nothing).
+pub const SLIVER_SHARE: f64 = 0.05;
 
 /// Whether the part `[s0, s1]` of section `j` is acceptable.
 fn accepted(facade: &Facade, c: &Constraints, j: usize, s0: f64, s1: f64, n: usize) -> bool {
@@ -89,6 +94,17 @@ fn longest_from(
         }
     }
     match best {
+        // a sliver would be left (e.g. a facade exactly as wide as whole blocks, where the
+        // search's precision stops each part a hair short): split the rest evenly with the
+        // next part instead, when the shorter part still passes
+        Some(b) if remaining - b > 0.0 && remaining - b < SLIVER_SHARE * l => {
+            let half = 0.5 * remaining;
+            if half < b && test(half) {
+                (half, true)
+            } else {
+                (b, true)
+            }
+        }
         Some(b) => (b, true),
         None => (shortest.max(p.precision).min(remaining), false),
     }
@@ -118,6 +134,35 @@ pub fn longest_elastica(
         .unwrap_or_else(|| facade.spacing().max(p.precision));
     // a part shorter than this is rounding: the section is done
     let done = |j: usize, s: f64| facade.sections[j].length - s <= 1e-9 * c.blade_length;
+    let rows = rows_of(facade, c);
+    let across_u = |j: usize, s: f64| facade.sections[j].point(s).x;
+    // longest part of section j from cur[j] whose far end stays within a block's width
+    // (across the facade) of the smallest start in its row
+    let cap = |j: usize, cur: &[f64]| -> f64 {
+        let umin = (0..n)
+            .filter(|&i| rows[i] == rows[j])
+            .map(|i| across_u(i, cur[i]))
+            .fold(f64::INFINITY, f64::min);
+        let limit = umin + c.block[1] * (1.0 - 1e-12);
+        let sec = &facade.sections[j];
+        let (mut lo, mut hi) = (cur[j], sec.length);
+        if across_u(j, hi) <= limit {
+            return f64::INFINITY;
+        }
+        // u grows along a section that runs across the facade: bisection to 1e-9 of it
+        for _ in 0..200 {
+            if hi - lo <= 1e-9 * sec.length {
+                break;
+            }
+            let mid = 0.5 * (lo + hi);
+            if across_u(j, mid) <= limit {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        lo - cur[j]
+    };
     let mut cur = vec![0.0f64; n];
     let mut bands: Vec<Vec<Option<(f64, f64)>>> = Vec::new();
     let mut seams = Vec::new();
@@ -138,6 +183,13 @@ pub fn longest_elastica(
                 progress();
                 r
             })
+            .collect();
+        // a piece is cut from one block: within a row of blocks, no part may end farther
+        // across the facade than a block's width from the row's first start
+        let found: Vec<Option<(f64, bool)>> = found
+            .into_iter()
+            .enumerate()
+            .map(|(j, f)| f.map(|(len, ok)| (len.min(cap(j, &cur)), ok)))
             .collect();
         // even the parts out: a part limited by its fit bounds its neighbours' lengths;
         // parts reaching the far edge bound nothing

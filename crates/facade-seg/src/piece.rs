@@ -4,7 +4,7 @@ use crate::constraints::{Constraints, PartCheck, Verdicts};
 use crate::section::Facade;
 
 /// The part of one section a piece holds.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct PiecePart {
     /// Plane index of the section (as numbered in the input).
     pub plane: usize,
@@ -22,7 +22,7 @@ pub struct PiecePart {
 
 /// A block placed to hold a piece: axis-aligned in the facade's frame (cutting direction,
 /// `u`, `v`), `origin` its min corner in world coordinates.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Block {
     /// Min corner (world).
     pub origin: [f64; 3],
@@ -33,7 +33,7 @@ pub struct Block {
 }
 
 /// One piece of the segmentation.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Piece {
     /// 1-based id.
     pub id: usize,
@@ -50,14 +50,14 @@ pub struct Piece {
 }
 
 /// A seam between two bands: one point per section, in plane order.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Seam {
     /// World points.
     pub points: Vec<[f64; 3]>,
 }
 
 /// What a segmentation algorithm returns.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Segmentation {
     /// The algorithm that made it.
     pub algorithm: String,

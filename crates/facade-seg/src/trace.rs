@@ -17,7 +17,7 @@ use serde::Serialize;
 
 use crate::across::Across;
 use crate::constraints::Constraints;
-use crate::piece::{pieces_from_bands, Seam, Segmentation};
+use crate::piece::{pieces_from_bands, rows_of, Seam, Segmentation};
 use crate::section::Facade;
 use crate::SegError;
 
@@ -231,16 +231,31 @@ pub fn trace(
     curves.extend(full);
     curves.push(edges[1].clone());
     let k = c.max_inflections as usize;
+    let rows = rows_of(facade, c);
+    // a piece is cut from one block: its band, within a row of blocks, must fit the block's
+    // width across the facade
+    let row_wide = |lo: &[f64], hi: &[f64]| {
+        let mut span: Vec<(f64, f64)> = Vec::new();
+        for j in 0..n {
+            let r = rows[j];
+            if span.len() <= r {
+                span.resize(r + 1, (f64::INFINITY, f64::NEG_INFINITY));
+            }
+            span[r] = (span[r].0.min(lo[j]), span[r].1.max(hi[j]));
+        }
+        span.iter().any(|(a, b)| b - a > c.block[1])
+    };
     let mut i = 0;
     while i + 1 < curves.len() {
-        let too_much = (0..n).any(|j| {
-            let (lo, hi) = (curves[i][j], curves[i + 1][j]);
-            let sec = &across[j];
-            let prep = &facade.sections[j];
-            hi - lo > c.block[1]
-                || sec.s_at(prep, hi) - sec.s_at(prep, lo) > c.blade_length
-                || sec.count(lo, hi) > k
-        });
+        let too_much = row_wide(&curves[i], &curves[i + 1])
+            || (0..n).any(|j| {
+                let (lo, hi) = (curves[i][j], curves[i + 1][j]);
+                let sec = &across[j];
+                let prep = &facade.sections[j];
+                hi - lo > c.block[1]
+                    || sec.s_at(prep, hi) - sec.s_at(prep, lo) > c.blade_length
+                    || sec.count(lo, hi) > k
+            });
         let wide_enough = (0..n).any(|j| curves[i + 1][j] - curves[i][j] > 1e-6 * c.block[1]);
         if too_much && wide_enough && curves.len() < 10_000 {
             let mid: Vec<f64> = (0..n)

@@ -326,6 +326,35 @@ pub enum TaskSpec {
         #[schemars(range(max = 100))]
         refine: u32,
     },
+    /// Facade segmentation for hot-blade cutting (thesis ch. 5): the sections of
+    /// `cutting` are split into pieces, each cut from one block, so that every part of a
+    /// section in a piece meets the production constraints (§5.1: blade length and block,
+    /// approximation, shape, blade strain); then each piece is rationalized (an elastica
+    /// per section part, extended to the blade, with its robot pose). Needs `block`. Write
+    /// `FacadeSegmentation(algorithm: Inflection(symmetric: false))`.
+    FacadeSegmentation {
+        /// The algorithm.
+        algorithm: SegAlgorithmSpec,
+        /// Points each section part is sampled at for its checks and fits (≥ 8).
+        /// Default: 64.
+        #[serde(default = "default_seg_samples")]
+        #[schemars(range(min = 8, max = 100000))]
+        samples: u32,
+        /// Fit every piece's section parts by elastica and pose the blade on them (needed
+        /// by `RobotTargets` and `Rapid`). Default: `true`.
+        #[serde(default = "default_true")]
+        rationalize: bool,
+        /// What each piece's fitted elastica keeps of its section part: `EndPoints`, or
+        /// `EndPointsAndLength`. Default: `EndPointsAndLength`.
+        #[serde(default = "default_blade_constraint")]
+        constraint: FitConstraintSpec,
+        /// Cutting speed of the blade (> 0), job units per second. Default: 7 mm/s.
+        #[serde(default)]
+        speed: Option<f64>,
+        /// Approach and retreat distance of the blade along the cut (≥ 0). Default: 50 mm.
+        #[serde(default)]
+        approach: Option<f64>,
+    },
 }
 
 impl TaskSpec {
@@ -335,8 +364,76 @@ impl TaskSpec {
             Self::Analyze { .. } => "Analyze",
             Self::FitCurves { .. } => "FitCurves",
             Self::HotBlade { .. } => "HotBlade",
+            Self::FacadeSegmentation { .. } => "FacadeSegmentation",
         }
     }
+}
+
+/// How a facade is segmented (thesis ch. 5).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub enum SegAlgorithmSpec {
+    /// §5.2: a grid of blocks per row along the cut; blocks are translated along their
+    /// row (or a translated copy inserted) until no block holds a section part with more
+    /// than `max_inflections` inflections; in overlaps the seam runs through curvature
+    /// maxima. Write `Inflection(symmetric: false)`.
+    Inflection {
+        /// Apply every move to all rows alike (one arrangement for the whole facade).
+        /// Default: `false`.
+        #[serde(default)]
+        symmetric: bool,
+    },
+    /// §5.3: curvature maxima between inflections linked across sections into traces,
+    /// extended, merged and completed by middle traces; pieces are the bands between
+    /// traces. Write `Trace()`.
+    Trace {
+        /// Farthest (across the cut) a maximum may be from a trace's last point to continue
+        /// it (> 0). Default: a quarter of the block's width.
+        #[serde(default)]
+        link_distance: Option<f64>,
+        /// Traces closer than this anywhere are merged (≥ 0). Default: 2 % of the block's
+        /// width.
+        #[serde(default)]
+        merge_distance: Option<f64>,
+        /// Traces over fewer sections are dropped (the stand-in for the thesis' smoothing
+        /// step, ≥ 1). Default: 2.
+        #[serde(default = "default_min_sections")]
+        #[schemars(range(min = 1, max = 100000))]
+        min_sections: u32,
+    },
+    /// §5.4: per section the longest part from the current seam an elastica fits within
+    /// tolerance (halving search), seams evened out, repeated until the facade is covered;
+    /// shape and blade strain enforced too. Write `LongestElastica(precision: 1.0)`.
+    LongestElastica {
+        /// Precision of the halving search (> 0), job units. Default: 1 mm.
+        #[serde(default)]
+        precision: Option<f64>,
+        /// Most a part may be longer than its neighbour's (> 0). Default: the spacing of
+        /// the sections.
+        #[serde(default)]
+        max_step: Option<f64>,
+    },
+}
+
+impl SegAlgorithmSpec {
+    /// Name as written in job files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Inflection { .. } => "Inflection",
+            Self::Trace { .. } => "Trace",
+            Self::LongestElastica { .. } => "LongestElastica",
+        }
+    }
+}
+
+fn default_min_sections() -> u32 {
+    2
+}
+fn default_true() -> bool {
+    true
+}
+fn default_seg_samples() -> u32 {
+    64
 }
 
 /// Continuity of the rationalized surface across block faces.
@@ -407,20 +504,25 @@ pub enum OutputSpec {
     /// `report.json`: the task's full result.
     Report,
     /// `sections.svg` (Analyze): plan and profile drawing of the sections; `fit.svg`
-    /// (FitCurves): every curve with its fit overlaid.
+    /// (FitCurves): every curve with its fit overlaid; `segmentation.svg`
+    /// (FacadeSegmentation): plan view of the pieces, sections, inflections and seams.
     Svg,
     /// `sections.obj`: the section curves as 3D polylines.
     Obj,
     /// `model.gltf` (HotBlade: blocks as boxes, the rationalized surfaces coloured by
-    /// deviation).
+    /// deviation; FacadeSegmentation: the pieces in colours, and their blocks).
     Gltf,
-    /// `sections.csv` (HotBlade: one row per fitted section).
+    /// `sections.csv` (HotBlade: one row per fitted section; FacadeSegmentation: one row
+    /// per section part of a piece).
     Csv,
-    /// `targets.json` and `targets.csv`: blade poses per block (HotBlade).
+    /// `targets.json` and `targets.csv`: blade poses per block (HotBlade) or per piece
+    /// (FacadeSegmentation: one pose per section the piece crosses).
     RobotTargets {
-        /// Targets per block; must equal the task's `targets_per_block`.
+        /// HotBlade: targets per block; when given, must equal the task's
+        /// `targets_per_block`. FacadeSegmentation: leave out. Default: none.
+        #[serde(default)]
         #[schemars(range(min = 2))]
-        per_block: u32,
+        per_block: Option<u32>,
     },
     /// ABB RAPID program for a MultiMove cell, one module and `.pgf` per blade robot
     /// (HotBlade).

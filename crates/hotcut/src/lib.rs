@@ -1,7 +1,7 @@
 //! # hotcut — job files, validation, the task runner and the `hotcut` CLI
 //!
 //! A job file (RON) is read in three layers ([`load`]), resolved into checked geometry, run
-//! by its task ([`analyze`], [`fit_curves`]) and written atomically ([`run`]). Schemas of the job file and
+//! by its task ([`analyze`], [`fit_curves`], [`hot_blade`], [`segmentation`]) and written atomically ([`run`]). Schemas of the job file and
 //! the report come from the types in [`job`] and [`report`].
 //!
 //! ```
@@ -39,6 +39,8 @@ pub mod load;
 pub mod report;
 /// Running a job and writing its outputs.
 pub mod run;
+/// The `FacadeSegmentation` task: facade-seg algorithms, pieces rationalized, robot data.
+pub mod segmentation;
 
 pub use error::{HotcutError, JobError, Result};
 
@@ -99,6 +101,18 @@ pub fn hot_blade_report_schema_json() -> String {
     s
 }
 
+/// The JSON Schema of a `FacadeSegmentation` run's `report.json`, as written to
+/// `schemas/facade-segmentation-report.schema.json`.
+pub fn segmentation_report_schema_json() -> String {
+    let v = serde_json::to_value(schemars::schema_for!(
+        segmentation::report::SegmentationReport
+    ))
+    .unwrap_or_default();
+    let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
+    s.push('\n');
+    s
+}
+
 /// Every schema file of `schemas/`: (file name, contents).
 pub fn schema_files() -> Vec<(&'static str, String)> {
     vec![
@@ -111,6 +125,10 @@ pub fn schema_files() -> Vec<(&'static str, String)> {
         (
             "hot-blade-report.schema.json",
             hot_blade_report_schema_json(),
+        ),
+        (
+            "facade-segmentation-report.schema.json",
+            segmentation_report_schema_json(),
         ),
     ]
 }

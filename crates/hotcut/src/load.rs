@@ -23,7 +23,10 @@ use nalgebra::Vector3;
 use serde::Deserialize;
 
 use crate::error::JobError;
-use crate::job::{BladeSpec, FitConstraintSpec, Job, OutputSpec, SurfaceSpec, TaskSpec, Units};
+use crate::job::{BladeSpec, Job, SurfaceSpec, TaskSpec, Units};
+
+/// Per-task checks and the outputs each task writes.
+mod tasks;
 
 /// Turns a `serde_path_to_error` path into a JSON pointer.
 fn pointer_of(path: &serde_path_to_error::Path) -> String {
@@ -233,7 +236,7 @@ pub struct ResolvedJob {
     pub direction: Vector3<f64>,
 }
 
-fn semantic(path: &Path, pointer: &str, message: impl Into<String>) -> JobError {
+pub(crate) fn semantic(path: &Path, pointer: &str, message: impl Into<String>) -> JobError {
     JobError::Semantic {
         path: path.to_path_buf(),
         pointer: pointer.into(),
@@ -413,94 +416,7 @@ pub fn resolve(path: &Path, job: Job) -> Result<ResolvedJob, Vec<JobError>> {
         }
     };
 
-    let allowed: &[&str] = match &job.task {
-        TaskSpec::FitCurves { input, .. } => {
-            match input {
-                Some(rel) => {
-                    if let Err(m) = crate::fit_curves::read_curves(&base.join(rel)) {
-                        errors.push(semantic(path, "/task/FitCurves/input", m));
-                    }
-                }
-                None if job.surface.is_none() => errors.push(semantic(
-                    path,
-                    "/task/FitCurves/input",
-                    "task FitCurves needs `input` (a curves file) or a surface to section",
-                )),
-                None => {}
-            }
-            &["Report", "Svg"]
-        }
-        TaskSpec::Analyze { .. } => {
-            if job.surface.is_none() {
-                errors.push(semantic(path, "/surface", "task Analyze needs a surface"));
-            }
-            &["Report", "Svg", "Obj"]
-        }
-        TaskSpec::HotBlade {
-            targets_per_block,
-            constraint,
-            speed,
-            approach,
-            max_plane_angle,
-            ..
-        } => {
-            let ptr = "/task/HotBlade";
-            if job.surface.is_none() {
-                errors.push(semantic(path, "/surface", "task HotBlade needs a surface"));
-            }
-            if job.block.is_none() {
-                errors.push(semantic(
-                    path,
-                    "/block",
-                    "task HotBlade needs `block` (the size of the blocks the surface is cut from)",
-                ));
-            }
-            if *constraint == FitConstraintSpec::Free {
-                errors.push(semantic(path, &format!("{ptr}/constraint"), "HotBlade fits keep the sections' end points so that neighbouring blocks meet: use EndPoints or EndPointsAndLength"));
-            }
-            if let Some(v) = speed {
-                if !(*v > 0.0) || !v.is_finite() {
-                    errors.push(semantic(
-                        path,
-                        &format!("{ptr}/speed"),
-                        format!("the cutting speed must be a positive number, got {v}"),
-                    ));
-                }
-            }
-            if let Some(v) = approach {
-                if !(*v >= 0.0) || !v.is_finite() {
-                    errors.push(semantic(
-                        path,
-                        &format!("{ptr}/approach"),
-                        format!("the approach distance must be ≥ 0, got {v}"),
-                    ));
-                }
-            }
-            if !(*max_plane_angle >= 0.0 && *max_plane_angle <= std::f64::consts::FRAC_PI_2) {
-                errors.push(semantic(
-                    path,
-                    &format!("{ptr}/max_plane_angle"),
-                    format!("the plane angle must be in [0, π/2], got {max_plane_angle}"),
-                ));
-            }
-            for (i, o) in job.outputs.iter().enumerate() {
-                if let OutputSpec::RobotTargets { per_block } = o {
-                    if per_block != targets_per_block {
-                        errors.push(semantic(path, &format!("/outputs/{i}/RobotTargets/per_block"), format!("per_block ({per_block}) must equal the task's targets_per_block ({targets_per_block})")));
-                    }
-                }
-            }
-            &[
-                "Report",
-                "Svg",
-                "Obj",
-                "Gltf",
-                "Csv",
-                "RobotTargets",
-                "Rapid",
-            ]
-        }
-    };
+    let allowed = tasks::check_task(path, &job, base, &mut errors);
     for (i, o) in job.outputs.iter().enumerate() {
         if !allowed.contains(&o.name()) {
             errors.push(semantic(

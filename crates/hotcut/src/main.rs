@@ -204,6 +204,40 @@ fn print_hot_blade_summary(r: &hotcut::hot_blade::report::HotBladeReport, units:
     }
 }
 
+fn print_segmentation_summary(r: &hotcut::segmentation::report::SegmentationReport, units: &str) {
+    let c = &r.counts;
+    println!(
+        "{} (FacadeSegmentation, {}): {} piece(s) from {} block(s), {} band(s) × {} row(s), {} section part(s)",
+        r.job,
+        r.settings.algorithm.name(),
+        c.pieces,
+        c.blocks,
+        c.bands,
+        c.rows,
+        c.parts
+    );
+    if r.settings.rationalized {
+        let worst = r
+            .pieces
+            .iter()
+            .filter_map(|p| p.max_blade_fit)
+            .fold(0.0, f64::max);
+        println!(
+            "  {} blade pose(s), {} sliver(s) unposed; largest blade fit distance {:.4} {units}",
+            c.poses, c.unposed, worst
+        );
+    }
+    let f = &c.failing;
+    if c.all_ok {
+        println!("  every piece meets every constraint");
+    } else {
+        println!(
+            "  warning: pieces breaking a constraint — dimension {}, approximation {}, shape {}, blade strain {}",
+            f.dimension, f.approximation, f.shape, f.blade_strain
+        );
+    }
+}
+
 /// Lists written files, folding long runs of per-block files.
 fn print_files(dir: &std::path::Path, files: &[String]) {
     if files.len() <= 12 {
@@ -281,6 +315,9 @@ fn main() -> ExitCode {
                             TaskReport::FitCurves(r) => print_fit_summary(r, j.job.units.symbol()),
                             TaskReport::HotBlade(r) => {
                                 print_hot_blade_summary(r, j.job.units.symbol())
+                            }
+                            TaskReport::FacadeSegmentation(r) => {
+                                print_segmentation_summary(r, j.job.units.symbol())
                             }
                         }
                         print_files(&o.dir, &o.files);

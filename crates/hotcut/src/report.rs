@@ -283,6 +283,8 @@ pub enum TaskReport {
     FitCurves(FitCurvesReport),
     /// From `HotBlade`.
     HotBlade(Box<crate::hot_blade::report::HotBladeReport>),
+    /// From `FacadeSegmentation`.
+    FacadeSegmentation(Box<crate::segmentation::report::SegmentationReport>),
 }
 
 impl TaskReport {
@@ -298,6 +300,14 @@ impl TaskReport {
     pub fn hot_blade(&self) -> Option<&crate::hot_blade::report::HotBladeReport> {
         match self {
             Self::HotBlade(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// The `FacadeSegmentation` report, if that task ran.
+    pub fn segmentation(&self) -> Option<&crate::segmentation::report::SegmentationReport> {
+        match self {
+            Self::FacadeSegmentation(r) => Some(r),
             _ => None,
         }
     }

@@ -19,6 +19,7 @@ use crate::hot_blade::{hot_blade, HotBladeParams};
 use crate::job::{OutputSpec, TaskSpec};
 use crate::load::ResolvedJob;
 use crate::report::TaskReport;
+use crate::segmentation::{segment_facade, SegmentationParams};
 use crate::Progress;
 
 /// What a run produced.
@@ -118,6 +119,19 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
             let name = job.job.name.clone();
             let render =
                 move |o: &OutputSpec| crate::hot_blade::outputs::render(&h, o, units, &name);
+            (report, Box::new(render))
+        }
+        TaskSpec::FacadeSegmentation { .. } => {
+            let params = SegmentationParams::from_job(job).ok_or_else(|| HotcutError::Task {
+                path: job.path.clone(),
+                message: "not a FacadeSegmentation job with a block".into(),
+            })?;
+            let s = std::rc::Rc::new(segment_facade(job, &params, progress)?);
+            let report = TaskReport::FacadeSegmentation(Box::new(s.report.clone()));
+            let units = job.job.units;
+            let name = job.job.name.clone();
+            let render =
+                move |o: &OutputSpec| crate::segmentation::outputs::render(&s, o, units, &name);
             (report, Box::new(render))
         }
     };

@@ -56,7 +56,7 @@ fn design_part(ctx: &Context<'_>, plane: usize, range: (f64, f64), n: usize) -> 
 /// nothing (at most `MAX_SWEEPS`). On long, nearly straight sections any single start
 /// lands in a poor local minimum now and then (an arc 0.6 mm off where an elastica fits
 /// to 0.003 mm); a good fit found anywhere then spreads to its neighbours.
-fn sweep_fits(
+pub(crate) fn sweep_fits(
     designs: &[Option<Clipped>],
     constraint: FitConstraint,
 ) -> std::result::Result<Vec<Option<FitResult>>, (usize, FitError)> {
@@ -264,7 +264,10 @@ fn design_tangents(
 
 /// The fit extended to the blade's length; a section longer than the blade keeps its own
 /// length (and its block is flagged).
-fn make_blade(segment: &Segment, limits: &BladeLimits) -> std::result::Result<Blade, BladeError> {
+pub(crate) fn make_blade(
+    segment: &Segment,
+    limits: &BladeLimits,
+) -> std::result::Result<Blade, BladeError> {
     let bp = BladeParams {
         length: limits.length.max(segment.length()),
         lead_in_share: 0.5,

@@ -23,7 +23,7 @@
 /// Building a block from its fitted sections: swept surface, deviation, flags.
 mod block;
 /// Fitting a part's sections: sweeps of warm-started fits, C¹ tangents, blades and poses.
-mod fit;
+pub(crate) mod fit;
 /// Block grid, cutting planes, clipping a section to a block.
 pub mod grid;
 /// Rendering of the task's files.

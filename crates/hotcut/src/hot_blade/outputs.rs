@@ -80,41 +80,14 @@ pub fn render(
 ) -> Vec<Render<'static>> {
     let r = run.clone();
     match o {
-        OutputSpec::RobotTargets { .. } => {
-            let r2 = run.clone();
-            vec![
-                file(
-                    "targets.json",
-                    Box::new(move |buf| {
-                        buf.extend(
-                            to_json_string(&targets(&r, units), TARGET_DIGITS)?.into_bytes(),
-                        );
-                        Ok(())
-                    }),
-                ),
-                file("targets.csv", Box::new(move |buf| targets_csv(&r2, buf))),
-            ]
-        }
-        OutputSpec::Rapid => {
-            let job = job.to_string();
-            let mut out = Vec::new();
-            for robot in 0..2 {
-                let task = format!("T_ROB{}", robot + 1);
-                let module = format!("HotBlade_{task}");
-                let (r, job) = (run.clone(), job.clone());
-                let m = module.clone();
-                out.push(file(
-                    format!("{module}.mod"),
-                    Box::new(move |buf| rapid(&r, units, &job, robot, &m, buf)),
-                ));
-                let mod_file = format!("{module}.mod");
-                out.push(file(
-                    format!("{module}.pgf"),
-                    Box::new(move |buf| write_pgf(&mod_file, buf)),
-                ));
-            }
-            out
-        }
+        OutputSpec::RobotTargets { .. } | OutputSpec::Rapid => robot_files(
+            Rc::new(targets(run, units)),
+            run.params.speed,
+            run.params.approach,
+            job,
+            "HotBlade",
+            o,
+        ),
         OutputSpec::Obj => per_block(run, "surface_block", "obj", |b, buf| {
             let mut w = ObjWriter::new(6);
             if let Some(m) = surface_mesh(b) {
@@ -132,6 +105,64 @@ pub fn render(
         )],
         _ => Vec::new(),
     }
+}
+
+/// The robot files of output `o` (`RobotTargets` or `Rapid`) for the poses in `t`, shared
+/// by every task that poses the blade: `targets.json` and `targets.csv`, or one RAPID
+/// module and `.pgf` per blade robot named `<prefix>_T_ROB<n>`.
+pub(crate) fn robot_files(
+    t: Rc<TargetsFile>,
+    speed: f64,
+    approach: f64,
+    job: &str,
+    prefix: &str,
+    o: &OutputSpec,
+) -> Vec<Render<'static>> {
+    match o {
+        OutputSpec::RobotTargets { .. } => {
+            let t2 = t.clone();
+            vec![
+                file(
+                    "targets.json",
+                    Box::new(move |buf| {
+                        buf.extend(to_json_string(&*t, TARGET_DIGITS)?.into_bytes());
+                        Ok(())
+                    }),
+                ),
+                file("targets.csv", Box::new(move |buf| targets_csv(&t2, buf))),
+            ]
+        }
+        OutputSpec::Rapid => {
+            let mut out = Vec::new();
+            for robot in 0..2 {
+                let module = format!("{prefix}_T_ROB{}", robot + 1);
+                let (t, job, m) = (t.clone(), job.to_string(), module.clone());
+                out.push(file(
+                    format!("{module}.mod"),
+                    Box::new(move |buf| {
+                        let motion = Motion { speed, approach };
+                        rapid(&t, motion, &job, robot, &m, buf)
+                    }),
+                ));
+                let mod_file = format!("{module}.mod");
+                out.push(file(
+                    format!("{module}.pgf"),
+                    Box::new(move |buf| write_pgf(&mod_file, buf)),
+                ));
+            }
+            out
+        }
+        _ => Vec::new(),
+    }
+}
+
+/// Blade motion settings of a RAPID program.
+#[derive(Debug, Clone, Copy)]
+struct Motion {
+    /// Cutting speed, job units per second.
+    speed: f64,
+    /// Approach and retreat distance along the cut.
+    approach: f64,
 }
 
 /// One file `<stem>_NNN.<ext>` per block, rendered by `f`.
@@ -152,23 +183,23 @@ fn per_block(
         .collect()
 }
 
-fn targets_csv(run: &HotBladeRun, buf: &mut Vec<u8>) -> export::Result<()> {
+fn targets_csv(t: &TargetsFile, buf: &mut Vec<u8>) -> export::Result<()> {
     let mut s = String::from(
         "block,pose,end,x,y,z,tangent_x,tangent_y,tangent_z,q_w,q_x,q_y,q_z,normal_x,normal_y,normal_z\n",
     );
     let f = |v: f64| fmt_float(v, 9);
-    for b in &run.blocks {
-        for (k, sec) in b.sections.iter().enumerate() {
-            for (e, end) in sec.pose.ends.iter().enumerate() {
+    for b in &t.blocks {
+        for (k, pose) in b.poses.iter().enumerate() {
+            for (e, end) in pose.ends.iter().enumerate() {
                 let mut row = vec![
-                    b.report.block.to_string(),
+                    b.block.to_string(),
                     (k + 1).to_string(),
                     (e + 1).to_string(),
                 ];
                 row.extend(end.position.iter().map(|v| f(*v)));
                 row.extend(end.tangent.iter().map(|v| f(*v)));
                 row.extend(end.rotation.iter().map(|v| f(*v)));
-                row.extend(sec.pose.plane_normal.iter().map(|v| f(*v)));
+                row.extend(pose.plane_normal.iter().map(|v| f(*v)));
                 s.push_str(&row.join(","));
                 s.push('\n');
             }
@@ -218,37 +249,37 @@ fn wxyz(q: &UnitQuaternion<f64>) -> [f64; 4] {
 }
 
 fn rapid(
-    run: &HotBladeRun,
-    units: Units,
+    t: &TargetsFile,
+    motion: Motion,
     job: &str,
     robot: usize,
     module: &str,
     buf: &mut Vec<u8>,
 ) -> export::Result<()> {
-    let mm = 1.0 / units.per_mm();
-    let approach = run.params.approach;
-    let blocks: Vec<RapidBlock> = run
+    let mm = 1.0 / t.units.per_mm();
+    let approach = motion.approach;
+    let blocks: Vec<RapidBlock> = t
         .blocks
         .iter()
-        .filter(|b| !b.sections.is_empty())
+        .filter(|b| !b.poses.is_empty())
         .map(|b| {
             let frame_q = uq(&b.rotation);
-            let origin = Vector3::from(b.report.origin);
+            let origin = Vector3::from(b.origin);
             let local = |p: Vector3<f64>, q: &[f64; 4]| RapidTarget {
                 position: (frame_q.inverse() * (p - origin) * mm).into(),
                 rotation: wxyz(&(frame_q.inverse() * uq(q))),
             };
             let at = |k: usize, shift: f64| {
-                let pose = &b.sections[k].pose;
+                let pose = &b.poses[k];
                 let e = &pose.ends[robot];
                 local(
                     Vector3::from(e.position) + Vector3::from(pose.plane_normal) * shift,
                     &e.rotation,
                 )
             };
-            let n = b.sections.len();
+            let n = b.poses.len();
             RapidBlock {
-                number: b.report.block,
+                number: b.block,
                 frame: RapidTarget {
                     position: (origin * mm).into(),
                     rotation: b.rotation,
@@ -266,15 +297,15 @@ fn rapid(
         "Targets are in that frame, in mm; orientation [q1,q2,q3,q4] = [w,x,y,z]: tool x along the".into(),
         "blade's tangent at the held end (from the blade's start to its end), tool z normal to the".into(),
         "cutting plane. Calibrate the tool (the blade holder's TCP at the blade end) before running.".into(),
-        format!("Blade length {} {}; {} block(s); both tasks must run this program's twin.", fmt_float(run.params.blade.length, 6), units.symbol(), blocks.len()),
+        format!("Blade length {} {}; {} block(s); both tasks must run this program's twin.", fmt_float(t.blade_length, 6), t.units.symbol(), blocks.len()),
     ];
     let m = RapidModule {
         name: module,
         comment: &comment,
         tasks: ["T_ROB1", "T_ROB2"],
         tool: &format!("tBladeEnd{}", robot + 1),
-        speed: run.params.speed * mm,
-        air_speed: (run.params.speed * mm * 5.0).max(20.0),
+        speed: motion.speed * mm,
+        air_speed: (motion.speed * mm * 5.0).max(20.0),
         blocks: &blocks,
     };
     write_module(&m, buf)
@@ -322,8 +353,36 @@ fn deviation_color(dev: f64, tolerance: f64) -> [f32; 4] {
     [r as f32, g as f32, b as f32, 1.0]
 }
 
-fn f32s(v: &Vector3<f64>) -> [f32; 3] {
+pub(crate) fn f32s(v: &Vector3<f64>) -> [f32; 3] {
     [v.x as f32, v.y as f32, v.z as f32]
+}
+
+/// A block as a closed box mesh: min corner `o`, edges `s` along the frame's normal, `u`
+/// and `v`.
+pub(crate) fn box_mesh(
+    frame: &geom::slice::PlaneFrame,
+    o: Vector3<f64>,
+    s: [f64; 3],
+    name: String,
+    material: usize,
+) -> Mesh {
+    let corner = |i: usize| {
+        o + frame.normal * if i & 1 != 0 { s[0] } else { 0.0 }
+            + frame.u * if i & 2 != 0 { s[1] } else { 0.0 }
+            + frame.v * if i & 4 != 0 { s[2] } else { 0.0 }
+    };
+    let positions: Vec<[f32; 3]> = (0..8).map(|i| f32s(&corner(i))).collect();
+    let indices = vec![
+        0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6,
+        1, 3, 5, 3, 7, 5,
+    ];
+    Mesh {
+        name,
+        positions,
+        colors: None,
+        indices,
+        material,
+    }
 }
 
 fn gltf(run: &HotBladeRun, buf: &mut Vec<u8>) -> export::Result<()> {
@@ -343,25 +402,13 @@ fn gltf(run: &HotBladeRun, buf: &mut Vec<u8>) -> export::Result<()> {
     let mut meshes = Vec::new();
     let g = &run.grid;
     for b in &run.blocks {
-        let o = Vector3::from(b.report.origin);
-        let s = b.report.size;
-        let corner = |i: usize| {
-            o + g.frame.normal * if i & 1 != 0 { s[0] } else { 0.0 }
-                + g.frame.u * if i & 2 != 0 { s[1] } else { 0.0 }
-                + g.frame.v * if i & 4 != 0 { s[2] } else { 0.0 }
-        };
-        let positions: Vec<[f32; 3]> = (0..8).map(|i| f32s(&corner(i))).collect();
-        let indices = vec![
-            0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4,
-            6, 1, 3, 5, 3, 7, 5,
-        ];
-        meshes.push(Mesh {
-            name: format!("block_{}", b.report.block),
-            positions,
-            colors: None,
-            indices,
-            material: 0,
-        });
+        meshes.push(box_mesh(
+            &g.frame,
+            Vector3::from(b.report.origin),
+            b.report.size,
+            format!("block_{}", b.report.block),
+            0,
+        ));
         let (verts, faces) = surface_grid(b);
         let colors = b
             .surface

@@ -1,0 +1,206 @@
+//! Layer-3 checks of each task's own fields, and which outputs each task writes.
+
+use std::path::Path;
+
+use super::semantic;
+use crate::error::JobError;
+use crate::job::{FitConstraintSpec, Job, OutputSpec, SegAlgorithmSpec, TaskSpec};
+
+/// Checks `job.task` (pushing every problem to `errors`) and returns the names of the
+/// outputs the task writes. `base` is the job file's folder.
+pub(super) fn check_task(
+    path: &Path,
+    job: &Job,
+    base: &Path,
+    errors: &mut Vec<JobError>,
+) -> &'static [&'static str] {
+    match &job.task {
+        TaskSpec::FitCurves { input, .. } => {
+            match input {
+                Some(rel) => {
+                    if let Err(m) = crate::fit_curves::read_curves(&base.join(rel)) {
+                        errors.push(semantic(path, "/task/FitCurves/input", m));
+                    }
+                }
+                None if job.surface.is_none() => errors.push(semantic(
+                    path,
+                    "/task/FitCurves/input",
+                    "task FitCurves needs `input` (a curves file) or a surface to section",
+                )),
+                None => {}
+            }
+            &["Report", "Svg"]
+        }
+        TaskSpec::Analyze { .. } => {
+            if job.surface.is_none() {
+                errors.push(semantic(path, "/surface", "task Analyze needs a surface"));
+            }
+            &["Report", "Svg", "Obj"]
+        }
+        TaskSpec::HotBlade {
+            targets_per_block,
+            constraint,
+            speed,
+            approach,
+            max_plane_angle,
+            ..
+        } => {
+            let ptr = "/task/HotBlade";
+            if job.surface.is_none() {
+                errors.push(semantic(path, "/surface", "task HotBlade needs a surface"));
+            }
+            if job.block.is_none() {
+                errors.push(semantic(
+                    path,
+                    "/block",
+                    "task HotBlade needs `block` (the size of the blocks the surface is cut from)",
+                ));
+            }
+            if *constraint == FitConstraintSpec::Free {
+                errors.push(semantic(path, &format!("{ptr}/constraint"), "HotBlade fits keep the sections' end points so that neighbouring blocks meet: use EndPoints or EndPointsAndLength"));
+            }
+            check_motion(path, ptr, *speed, *approach, errors);
+            if !(*max_plane_angle >= 0.0 && *max_plane_angle <= std::f64::consts::FRAC_PI_2) {
+                errors.push(semantic(
+                    path,
+                    &format!("{ptr}/max_plane_angle"),
+                    format!("the plane angle must be in [0, π/2], got {max_plane_angle}"),
+                ));
+            }
+            for (i, o) in job.outputs.iter().enumerate() {
+                if let OutputSpec::RobotTargets {
+                    per_block: Some(per_block),
+                } = o
+                {
+                    if per_block != targets_per_block {
+                        errors.push(semantic(path, &format!("/outputs/{i}/RobotTargets/per_block"), format!("per_block ({per_block}) must equal the task's targets_per_block ({targets_per_block})")));
+                    }
+                }
+            }
+            &[
+                "Report",
+                "Svg",
+                "Obj",
+                "Gltf",
+                "Csv",
+                "RobotTargets",
+                "Rapid",
+            ]
+        }
+        TaskSpec::FacadeSegmentation {
+            algorithm,
+            rationalize,
+            constraint,
+            speed,
+            approach,
+            ..
+        } => {
+            let ptr = "/task/FacadeSegmentation";
+            if job.surface.is_none() {
+                errors.push(semantic(
+                    path,
+                    "/surface",
+                    "task FacadeSegmentation needs a surface (the facade)",
+                ));
+            }
+            if job.block.is_none() {
+                errors.push(semantic(
+                    path,
+                    "/block",
+                    "task FacadeSegmentation needs `block` (the size of the blocks the pieces are cut from)",
+                ));
+            }
+            if *constraint == FitConstraintSpec::Free {
+                errors.push(semantic(path, &format!("{ptr}/constraint"), "a piece's fits keep its parts' end points so that neighbouring pieces meet: use EndPoints or EndPointsAndLength"));
+            }
+            check_motion(path, ptr, *speed, *approach, errors);
+            let positive =
+                |errors: &mut Vec<JobError>, field: &str, v: Option<f64>, zero_ok: bool| {
+                    if let Some(v) = v {
+                        let ok = v.is_finite() && (v > 0.0 || (zero_ok && v == 0.0));
+                        if !ok {
+                            errors.push(semantic(
+                                path,
+                                &format!("{ptr}/algorithm/{}/{field}", algorithm.name()),
+                                format!(
+                                    "{field} must be a {} number, got {v}",
+                                    if zero_ok { "non-negative" } else { "positive" }
+                                ),
+                            ));
+                        }
+                    }
+                };
+            match algorithm {
+                SegAlgorithmSpec::Inflection { .. } => {}
+                SegAlgorithmSpec::Trace {
+                    link_distance,
+                    merge_distance,
+                    ..
+                } => {
+                    positive(errors, "link_distance", *link_distance, false);
+                    positive(errors, "merge_distance", *merge_distance, true);
+                }
+                SegAlgorithmSpec::LongestElastica {
+                    precision,
+                    max_step,
+                } => {
+                    positive(errors, "precision", *precision, false);
+                    positive(errors, "max_step", *max_step, false);
+                }
+            }
+            for (i, o) in job.outputs.iter().enumerate() {
+                let robot = matches!(o, OutputSpec::RobotTargets { .. } | OutputSpec::Rapid);
+                if robot && !rationalize {
+                    errors.push(semantic(
+                        path,
+                        &format!("/outputs/{i}"),
+                        format!(
+                            "output {} needs the pieces rationalized: set `rationalize: true`",
+                            o.name()
+                        ),
+                    ));
+                }
+                if let OutputSpec::RobotTargets { per_block: Some(_) } = o {
+                    errors.push(semantic(path, &format!("/outputs/{i}/RobotTargets/per_block"), "FacadeSegmentation poses the blade on every section a piece crosses: leave per_block out"));
+                }
+            }
+            &[
+                "Report",
+                "Svg",
+                "Obj",
+                "Gltf",
+                "Csv",
+                "RobotTargets",
+                "Rapid",
+            ]
+        }
+    }
+}
+
+/// Checks a task's cutting speed (> 0) and approach distance (≥ 0), when given.
+fn check_motion(
+    path: &Path,
+    ptr: &str,
+    speed: Option<f64>,
+    approach: Option<f64>,
+    errors: &mut Vec<JobError>,
+) {
+    if let Some(v) = speed {
+        if !(v > 0.0) || !v.is_finite() {
+            errors.push(semantic(
+                path,
+                &format!("{ptr}/speed"),
+                format!("the cutting speed must be a positive number, got {v}"),
+            ));
+        }
+    }
+    if let Some(v) = approach {
+        if !(v >= 0.0) || !v.is_finite() {
+            errors.push(semantic(
+                path,
+                &format!("{ptr}/approach"),
+                format!("the approach distance must be ≥ 0, got {v}"),
+            ));
+        }
+    }
+}

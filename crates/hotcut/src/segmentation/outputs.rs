@@ -1,0 +1,328 @@
+//! The files of a `FacadeSegmentation` run: `segmentation.svg` (after thesis figs. 5.11,
+//! 5.14, 5.17), `model.gltf` (pieces in colours, their blocks), `segmentation.obj` (the
+//! section parts of every piece), `sections.csv` (one row per part) and the robot files
+//! shared with `HotBlade`.
+
+use std::rc::Rc;
+
+use export::fmt_float;
+use export::gltf::{write_gltf, Material, Mesh};
+use export::obj::ObjWriter;
+use export::svg::{SvgDoc, Viewport};
+use nalgebra::Vector3;
+
+use super::SegmentationRun;
+use crate::draw::bounds;
+use crate::hot_blade::outputs::{box_mesh, f32s, robot_files};
+use crate::job::{OutputSpec, Units};
+use crate::run::Render;
+
+/// Piece colours, cycled by piece id (a qualitative palette readable in print).
+const PALETTE: [[f32; 3]; 10] = [
+    [0.55, 0.76, 0.96],
+    [0.99, 0.75, 0.44],
+    [0.60, 0.87, 0.54],
+    [0.98, 0.60, 0.60],
+    [0.79, 0.70, 0.84],
+    [0.99, 0.99, 0.60],
+    [0.69, 0.87, 0.90],
+    [0.90, 0.75, 0.60],
+    [0.80, 0.92, 0.77],
+    [0.99, 0.80, 0.90],
+];
+
+/// Points each section part is sampled at in the drawings and meshes.
+const DRAW_SAMPLES: usize = 24;
+
+fn colour(id: usize) -> [f32; 3] {
+    PALETTE[(id + PALETTE.len() - 1) % PALETTE.len()]
+}
+
+fn hex(c: [f32; 3]) -> String {
+    let b = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+    format!("#{:02x}{:02x}{:02x}", b(c[0]), b(c[1]), b(c[2]))
+}
+
+type Boxed = Box<dyn Fn(&mut Vec<u8>) -> export::Result<()>>;
+
+fn file(name: &str, f: Boxed) -> Render<'static> {
+    (name.to_string(), f)
+}
+
+/// The files of output `o`.
+pub fn render(
+    run: &Rc<SegmentationRun>,
+    o: &OutputSpec,
+    units: Units,
+    job: &str,
+) -> Vec<Render<'static>> {
+    let r = run.clone();
+    match o {
+        OutputSpec::RobotTargets { .. } | OutputSpec::Rapid => robot_files(
+            Rc::new(run.targets(units)),
+            run.params.speed,
+            run.params.approach,
+            job,
+            "FacadeSeg",
+            o,
+        ),
+        OutputSpec::Svg => vec![file(
+            "segmentation.svg",
+            Box::new(move |buf| plan_svg(&r, units.symbol()).write(buf)),
+        )],
+        OutputSpec::Gltf => vec![file("model.gltf", Box::new(move |buf| gltf(&r, buf)))],
+        OutputSpec::Obj => vec![file("segmentation.obj", Box::new(move |buf| obj(&r, buf)))],
+        OutputSpec::Csv => vec![file("sections.csv", Box::new(move |buf| csv(&r, buf)))],
+        OutputSpec::Report | OutputSpec::GCode => Vec::new(),
+    }
+}
+
+/// World points of piece part `k` of piece `i`, `n + 1` of them.
+fn part_points(run: &SegmentationRun, i: usize, k: usize, n: usize) -> Vec<Vector3<f64>> {
+    let part = &run.segmentation.pieces[i].parts[k];
+    let Some(j) = run
+        .facade
+        .sections
+        .iter()
+        .position(|s| s.index == part.plane)
+    else {
+        return Vec::new();
+    };
+    (0..=n)
+        .map(|m| {
+            let s = part.s[0] + (part.s[1] - part.s[0]) * m as f64 / n as f64;
+            run.facade.world(j, s)
+        })
+        .collect()
+}
+
+/// Plan view in the facade frame: x along the cut, y across it (`u`); for a horizontal
+/// cut through a facade lying in plan this is the view from above. Pieces filled in
+/// colours (each reaching half a section spacing beyond its first and last section, where
+/// its row's neighbour takes over), sections grey, inflection points red, seams black,
+/// blocks dashed.
+fn plan_svg(run: &SegmentationRun, units: &str) -> SvgDoc {
+    const W: f64 = 1000.0;
+    const M: f64 = 40.0;
+    let f = &run.facade.frame;
+    let plan = |p: &Vector3<f64>| (f.normal.dot(p), f.u.dot(p));
+    let half = 0.5 * run.facade.spacing();
+    let sections: Vec<Vec<(f64, f64)>> = (0..run.facade.sections.len())
+        .map(|j| {
+            let sec = &run.facade.sections[j];
+            (0..=200)
+                .map(|m| plan(&run.facade.world(j, sec.length * m as f64 / 200.0)))
+                .collect()
+        })
+        .collect();
+    let (mut lo, mut hi) = bounds(sections.iter().flatten().copied());
+    lo.0 -= half;
+    hi.0 += half;
+    let inner = W - 2.0 * M;
+    let h = (inner * (hi.1 - lo.1) / (hi.0 - lo.0).max(1e-9)).clamp(200.0, 1400.0);
+    let mut doc = SvgDoc::new(W, h + 3.0 * M);
+    let r = &run.report;
+    doc.text(
+        (M, 22.0),
+        16.0,
+        "black",
+        &format!(
+            "{} — {}: {} pieces in {} blocks, {} bands × {} rows, {}",
+            r.job,
+            r.settings.algorithm.name(),
+            r.counts.pieces,
+            r.counts.blocks,
+            r.counts.bands,
+            r.counts.rows,
+            if r.counts.all_ok {
+                "every constraint met"
+            } else {
+                "some constraints broken (see report)"
+            }
+        ),
+    );
+    doc.text(
+        (M, M + 4.0),
+        12.0,
+        "#444",
+        &format!("plan in the facade frame ({units}): cut left to right; sections grey, inflections red, seams black, blocks blue"),
+    );
+    let page = (M, M + 14.0, inner, h);
+    let vp = Viewport::fit(lo, hi, page);
+    let map = |p: (f64, f64)| vp.map(p.0, p.1);
+    for piece in &run.segmentation.pieces {
+        let n = piece.parts.len();
+        if n == 0 {
+            continue;
+        }
+        let starts: Vec<(f64, f64)> = piece
+            .parts
+            .iter()
+            .map(|p| plan(&Vector3::from(p.start)))
+            .collect();
+        let ends: Vec<(f64, f64)> = piece
+            .parts
+            .iter()
+            .map(|p| plan(&Vector3::from(p.end)))
+            .collect();
+        let shift = |p: (f64, f64), d: f64| (p.0 + d, p.1);
+        let mut poly = vec![shift(starts[0], -half)];
+        poly.extend(starts.iter().copied());
+        poly.push(shift(starts[n - 1], half));
+        poly.push(shift(ends[n - 1], half));
+        poly.extend(ends.iter().rev().copied());
+        poly.push(shift(ends[0], -half));
+        let title = format!(
+            "piece {} (band {}, row {}): {} sections, verdicts {}",
+            piece.id,
+            piece.band,
+            piece.row,
+            n,
+            if piece.verdicts.all() {
+                "all met"
+            } else {
+                "broken"
+            }
+        );
+        let pts: Vec<(f64, f64)> = poly.into_iter().map(map).collect();
+        let stroke = if piece.verdicts.all() {
+            "none"
+        } else {
+            "#d00000"
+        };
+        doc.polygon(&pts, &hex(colour(piece.id)), stroke, 1.5, Some(&title));
+        // the part boundaries of the piece, as seams
+        for side in [&starts, &ends] {
+            let pts: Vec<(f64, f64)> = side.iter().copied().map(map).collect();
+            doc.polyline(&pts, "black", 1.2, None);
+        }
+    }
+    for (j, pts) in sections.iter().enumerate() {
+        let page: Vec<(f64, f64)> = pts.iter().copied().map(map).collect();
+        doc.polyline(&page, "#777", 0.5, Some(&format!("section {j}")));
+    }
+    for (j, sec) in run.facade.sections.iter().enumerate() {
+        for &s in &sec.inflections {
+            doc.circle(map(plan(&run.facade.world(j, s))), 2.2, "#e01010", None);
+        }
+    }
+    for piece in &run.segmentation.pieces {
+        let o = Vector3::from(piece.block.origin);
+        let s = piece.block.size;
+        let (d0, u0) = plan(&o);
+        let corners = [
+            (d0, u0),
+            (d0 + s[0], u0),
+            (d0 + s[0], u0 + s[1]),
+            (d0, u0 + s[1]),
+            (d0, u0),
+        ];
+        let pts: Vec<(f64, f64)> = corners.into_iter().map(map).collect();
+        doc.polyline(
+            &pts,
+            "#3050a0",
+            0.6,
+            Some(&format!("block of piece {}", piece.id)),
+        );
+    }
+    doc
+}
+
+/// Pieces as coloured triangle strips between their consecutive section parts, and their
+/// blocks as translucent boxes.
+fn gltf(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
+    let mut materials = vec![Material {
+        name: "block".into(),
+        color: [0.85, 0.85, 0.8, 0.15],
+        blend: true,
+    }];
+    for (k, c) in PALETTE.iter().enumerate() {
+        materials.push(Material {
+            name: format!("piece_{k}"),
+            color: [c[0], c[1], c[2], 1.0],
+            blend: false,
+        });
+    }
+    let mut meshes = Vec::new();
+    let n = DRAW_SAMPLES;
+    for (i, piece) in run.segmentation.pieces.iter().enumerate() {
+        meshes.push(box_mesh(
+            &run.facade.frame,
+            Vector3::from(piece.block.origin),
+            piece.block.size,
+            format!("block_{}", piece.id),
+            0,
+        ));
+        if piece.parts.len() < 2 {
+            continue;
+        }
+        let mut positions = Vec::new();
+        for k in 0..piece.parts.len() {
+            positions.extend(part_points(run, i, k, n).iter().map(f32s));
+        }
+        let row = (n + 1) as u32;
+        let mut indices = Vec::new();
+        for k in 0..piece.parts.len() as u32 - 1 {
+            for m in 0..n as u32 {
+                let a = k * row + m;
+                let b = a + row;
+                indices.extend([a, b, a + 1, a + 1, b, b + 1]);
+            }
+        }
+        meshes.push(Mesh {
+            name: format!("piece_{}", piece.id),
+            positions,
+            colors: None,
+            indices,
+            material: 1 + (piece.id + PALETTE.len() - 1) % PALETTE.len(),
+        });
+    }
+    write_gltf("hotcut", &meshes, &materials, buf)
+}
+
+/// Every piece's section parts as 3D polylines.
+fn obj(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
+    let mut w = ObjWriter::new(6);
+    for (i, piece) in run.segmentation.pieces.iter().enumerate() {
+        for (k, part) in piece.parts.iter().enumerate() {
+            w.polyline(
+                &format!("piece_{}_section_{}", piece.id, part.plane),
+                &part_points(run, i, k, 4 * DRAW_SAMPLES),
+            );
+        }
+    }
+    w.write(buf)
+}
+
+/// One row per section part of a piece.
+fn csv(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
+    let mut s = String::from(
+        "piece,row,band,plane,offset,s0,s1,length,inflections,max_abs_curvature,start_x,start_y,start_z,end_x,end_y,end_z,blade_fit_rms,blade_fit_max\n",
+    );
+    let f = |v: f64| fmt_float(v, 9);
+    for p in &run.report.pieces {
+        for sec in &p.sections {
+            let mut row = vec![
+                p.id.to_string(),
+                p.row.to_string(),
+                p.band.to_string(),
+                sec.plane.to_string(),
+                f(sec.offset),
+                f(sec.s[0]),
+                f(sec.s[1]),
+                f(sec.length),
+                sec.inflections.to_string(),
+                f(sec.max_abs_curvature),
+            ];
+            row.extend(sec.start.iter().chain(&sec.end).map(|v| f(*v)));
+            match &sec.blade_fit {
+                Some(b) => row.extend([f(b.rms), f(b.max)]),
+                None => row.extend([String::new(), String::new()]),
+            }
+            s.push_str(&row.join(","));
+            s.push('\n');
+        }
+    }
+    buf.extend(s.into_bytes());
+    Ok(())
+}

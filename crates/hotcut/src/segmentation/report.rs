@@ -1,0 +1,324 @@
+//! The report a `FacadeSegmentation` run writes as `report.json`; its JSON Schema is
+//! `schemas/facade-segmentation-report.schema.json`. Lengths in the job's units, positions
+//! in the job's frame.
+
+use facade_seg::constraints::{Constraints, FitCheck, Verdicts};
+use facade_seg::{Facade, Segmentation};
+use geom::surface::Surface;
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use super::{PosedPiece, SegmentationParams};
+use crate::job::{FitConstraintSpec, SegAlgorithmSpec, Units};
+use crate::load::ResolvedJob;
+use crate::report::SurfaceInfo;
+
+/// The result of the `FacadeSegmentation` task.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct SegmentationReport {
+    /// Job name.
+    pub job: String,
+    /// Task name, `FacadeSegmentation`.
+    pub task: String,
+    /// Length unit.
+    pub units: Units,
+    /// The surface as loaded.
+    pub surface: SurfaceInfo,
+    /// The settings used (defaults filled in).
+    pub settings: SegmentationSettings,
+    /// How many pieces and blocks, and how many break each constraint.
+    pub counts: SegmentationCounts,
+    /// The pieces, by band (from the facade's start edge across the cut) then by row.
+    pub pieces: Vec<PieceReport>,
+    /// Seams between bands, as 3D polylines (one point per section).
+    pub seams: Vec<Vec<[f64; 3]>>,
+}
+
+/// Settings of the run.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct SegmentationSettings {
+    /// The algorithm and its options as the job gives them.
+    pub algorithm: SegAlgorithmSpec,
+    /// Sections (planes) the facade was cut into.
+    pub sections: usize,
+    /// Points per section part for checks and fits.
+    pub samples: usize,
+    /// Block size along the cut, across it and up.
+    pub block: [f64; 3],
+    /// Blade length.
+    pub blade_length: f64,
+    /// Largest |curvature| the blade takes.
+    pub max_curvature: f64,
+    /// Most inflections a blade shape may have.
+    pub max_inflections: u32,
+    /// RMS tolerance of an elastica fit.
+    pub tolerance_rms: f64,
+    /// Largest-distance tolerance of an elastica fit.
+    pub tolerance_max: f64,
+    /// Whether the pieces were rationalized and posed.
+    pub rationalized: bool,
+    /// What each piece's fits keep.
+    pub constraint: FitConstraintSpec,
+    /// Cutting speed.
+    pub speed: f64,
+    /// Approach and retreat distance.
+    pub approach: f64,
+}
+
+/// Counts over the segmentation.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct SegmentationCounts {
+    /// Pieces.
+    pub pieces: usize,
+    /// Blocks needed: one per piece.
+    pub blocks: usize,
+    /// Bands across the cut.
+    pub bands: usize,
+    /// Rows of blocks along the cut.
+    pub rows: usize,
+    /// Sections.
+    pub sections: usize,
+    /// Section parts over all pieces.
+    pub parts: usize,
+    /// Pieces breaking each constraint.
+    pub failing: ConstraintCounts,
+    /// Every piece meets every constraint.
+    pub all_ok: bool,
+    /// Blade poses over all pieces (rationalized runs).
+    pub poses: usize,
+    /// Section parts left without a pose: slivers shorter than 5 % of the blade.
+    pub unposed: usize,
+}
+
+/// Pieces breaking each constraint of §5.1.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+pub struct ConstraintCounts {
+    /// Dimension (blade length, block).
+    pub dimension: usize,
+    /// Approximation (only measured by `LongestElastica`).
+    pub approximation: usize,
+    /// Shape (inflections).
+    pub shape: usize,
+    /// Blade strain (curvature).
+    pub blade_strain: usize,
+}
+
+/// The block a piece is cut from.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct PieceBlock {
+    /// Block number (= piece id).
+    pub number: usize,
+    /// Min corner, the work object's origin.
+    pub origin: [f64; 3],
+    /// Orientation `[w, x, y, z]` of the block axes (along the cut, across it, up).
+    pub rotation: [f64; 4],
+    /// Size along the cut, across it and up.
+    pub size: [f64; 3],
+    /// The piece's extent in the block (≤ `size` when it fits).
+    pub used: [f64; 3],
+}
+
+/// One section part of a piece.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct PieceSection {
+    /// Plane index of the section.
+    pub plane: usize,
+    /// Plane offset along the cutting direction.
+    pub offset: f64,
+    /// 3D start point of the part.
+    pub start: [f64; 3],
+    /// 3D end point of the part.
+    pub end: [f64; 3],
+    /// Arc-length range along the section from its start.
+    pub s: [f64; 2],
+    /// Arc length.
+    pub length: f64,
+    /// Inflections of the design in the part.
+    pub inflections: usize,
+    /// Largest |curvature| of the design in the part.
+    pub max_abs_curvature: f64,
+    /// The elastica fit through the part's end points the algorithm measured
+    /// (`LongestElastica`).
+    pub check_fit: Option<FitCheck>,
+    /// The rationalized part: the blade's fit (rationalized runs; `None` for a sliver).
+    pub blade_fit: Option<BladeFit>,
+}
+
+/// The fit a piece's part is cut with.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct BladeFit {
+    /// `elastica`, `arc` or `line`.
+    pub kind: String,
+    /// RMS distance to the design part.
+    pub rms: f64,
+    /// Largest distance to the design part.
+    pub max: f64,
+    /// Largest |curvature| of the blade, over its whole length (what strains it).
+    pub max_abs_curvature: f64,
+    /// Inflections of the cut: the fitted segment inside the block (the shape constraint
+    /// of §5.1.3).
+    pub inflections: usize,
+    /// Inflections of the whole blade, its extension outside the block included.
+    pub blade_inflections: usize,
+}
+
+/// One piece.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct PieceReport {
+    /// 1-based id.
+    pub id: usize,
+    /// Row of blocks along the cut.
+    pub row: usize,
+    /// Band across the cut (0 at the facade's start edge).
+    pub band: usize,
+    /// Its block.
+    pub block: PieceBlock,
+    /// Per section it crosses, its part.
+    pub sections: Vec<PieceSection>,
+    /// Per constraint of §5.1: met (true) or not. Approximation is measured by the
+    /// algorithm's own check fits (`LongestElastica`) and, in a rationalized run, by the
+    /// blade fits, whose bending (over the whole blade) and inflections (inside the block)
+    /// also count for blade strain and shape.
+    pub verdicts: Verdicts,
+    /// Largest fit distance over the rationalized parts (rationalized runs).
+    pub max_blade_fit: Option<f64>,
+}
+
+impl SegmentationReport {
+    /// The report of a run.
+    pub(super) fn new(
+        job: &ResolvedJob,
+        surface: &Surface,
+        params: &SegmentationParams,
+        facade: &Facade,
+        seg: &Segmentation,
+        posed: &[PosedPiece],
+    ) -> Self {
+        let c: &Constraints = &params.constraints;
+        let rotation = elastica::sweep::frame_quaternion(&facade.frame.normal, &facade.frame.v);
+        let pieces: Vec<PieceReport> = seg
+            .pieces
+            .iter()
+            .map(|p| {
+                let posed = posed.iter().find(|q| q.id == p.id);
+                let sections: Vec<PieceSection> = p
+                    .parts
+                    .iter()
+                    .enumerate()
+                    .map(|(k, part)| {
+                        let blade_fit = posed
+                            .and_then(|q| q.parts.iter().find(|x| x.part == k))
+                            .map(|x| BladeFit {
+                                kind: x.fit.segment.kind().to_string(),
+                                rms: x.fit.rms,
+                                max: x.fit.max,
+                                max_abs_curvature: x.blade.max_abs_curvature,
+                                inflections: x
+                                    .fit
+                                    .segment
+                                    .inflections()
+                                    .map_or(usize::MAX, |v| v.len()),
+                                blade_inflections: x.blade.inflections,
+                            });
+                        PieceSection {
+                            plane: part.plane,
+                            offset: part.offset,
+                            start: part.start,
+                            end: part.end,
+                            s: part.s,
+                            length: part.check.length,
+                            inflections: part.check.inflections,
+                            max_abs_curvature: part.check.max_abs_curvature,
+                            check_fit: part.check.fit,
+                            blade_fit,
+                        }
+                    })
+                    .collect();
+                // the blades are what is cut: in a rationalized run their fits, their bending
+                // and the inflections of the cut count against the piece's verdicts too
+                let mut verdicts = p.verdicts;
+                if posed.is_some() {
+                    let fits: Vec<&BladeFit> = sections
+                        .iter()
+                        .filter_map(|s| s.blade_fit.as_ref())
+                        .collect();
+                    let within = fits
+                        .iter()
+                        .all(|f| f.rms <= c.tolerance_rms && f.max <= c.tolerance_max);
+                    verdicts.approximation = Some(verdicts.approximation != Some(false) && within);
+                    verdicts.shape &= fits
+                        .iter()
+                        .all(|f| f.inflections <= c.max_inflections as usize);
+                    verdicts.blade_strain &=
+                        fits.iter().all(|f| f.max_abs_curvature <= c.max_curvature);
+                }
+                let max_blade_fit = posed.map(|_| {
+                    sections
+                        .iter()
+                        .filter_map(|s| s.blade_fit.as_ref().map(|f| f.max))
+                        .fold(0.0, f64::max)
+                });
+                PieceReport {
+                    id: p.id,
+                    row: p.row,
+                    band: p.band,
+                    block: PieceBlock {
+                        number: p.id,
+                        origin: p.block.origin,
+                        rotation,
+                        size: p.block.size,
+                        used: p.block.used,
+                    },
+                    sections,
+                    verdicts,
+                    max_blade_fit,
+                }
+            })
+            .collect();
+        let count =
+            |f: &dyn Fn(&Verdicts) -> bool| pieces.iter().filter(|p| f(&p.verdicts)).count();
+        let parts: usize = pieces.iter().map(|p| p.sections.len()).sum();
+        let poses: usize = posed.iter().map(|p| p.parts.len()).sum();
+        let counts = SegmentationCounts {
+            pieces: pieces.len(),
+            blocks: pieces.len(),
+            bands: seg.bands,
+            rows: seg.rows,
+            sections: facade.sections.len(),
+            parts,
+            failing: ConstraintCounts {
+                dimension: count(&|v| !v.dimension),
+                approximation: count(&|v| v.approximation == Some(false)),
+                shape: count(&|v| !v.shape),
+                blade_strain: count(&|v| !v.blade_strain),
+            },
+            all_ok: pieces.iter().all(|p| p.verdicts.all()),
+            poses,
+            unposed: if params.rationalize { parts - poses } else { 0 },
+        };
+        Self {
+            job: job.job.name.clone(),
+            task: "FacadeSegmentation".into(),
+            units: job.job.units,
+            surface: SurfaceInfo::of(job, surface),
+            settings: SegmentationSettings {
+                algorithm: params.algorithm.clone(),
+                sections: facade.sections.len(),
+                samples: params.samples,
+                block: c.block,
+                blade_length: c.blade_length,
+                max_curvature: c.max_curvature,
+                max_inflections: c.max_inflections,
+                tolerance_rms: c.tolerance_rms,
+                tolerance_max: c.tolerance_max,
+                rationalized: params.rationalize,
+                constraint: params.constraint,
+                speed: params.speed,
+                approach: params.approach,
+            },
+            counts,
+            pieces,
+            seams: seg.seams.iter().map(|s| s.points.clone()).collect(),
+        }
+    }
+}
