@@ -22,7 +22,8 @@ pub struct Constraints {
 }
 
 impl Constraints {
-    /// Checks that every size and tolerance is a positive finite number.
+    /// Checks that every size and tolerance is a positive finite number and that a part may
+    /// hold at least one inflection.
     ///
     /// # Errors
     /// [`SegError::Invalid`] naming the field.
@@ -43,6 +44,12 @@ impl Constraints {
                     message: format!("must be a positive number, got {v}"),
                 });
             }
+        }
+        if self.max_inflections == 0 {
+            return Err(SegError::Invalid {
+                what: "max inflections".into(),
+                message: "must be at least 1 for segmentation: parts meet between inflections, never exactly on one, so a section with an inflection cannot be split into parts without any".into(),
+            });
         }
         Ok(())
     }

@@ -114,6 +114,9 @@ pub(super) fn check_task(
                 errors.push(semantic(path, &format!("{ptr}/constraint"), "a piece's fits keep its parts' end points so that neighbouring pieces meet: use EndPoints or EndPointsAndLength"));
             }
             check_motion(path, ptr, *speed, *approach, errors);
+            if job.blade.as_ref().is_some_and(|b| b.max_inflections == 0) {
+                errors.push(semantic(path, "/blade/max_inflections", "FacadeSegmentation needs max_inflections ≥ 1: parts meet between inflections, never exactly on one, so a section with an inflection cannot be split into parts without any"));
+            }
             let positive =
                 |errors: &mut Vec<JobError>, field: &str, v: Option<f64>, zero_ok: bool| {
                     if let Some(v) = v {
