@@ -1,9 +1,10 @@
 //! The `FacadeSegmentation` task (thesis ch. 5): the job's sections handed to one of the
-//! [`facade_seg`] algorithms, then every piece rationalized with the `HotBlade` machinery
+//! `facade_seg` algorithms, then every piece rationalized with the `HotBlade` machinery
 //! (an elastica per section part, warm-started sweeps, extended to the blade, posed for the
 //! two robots), and the report, drawings and robot files.
 //!
-//! Entry points: [`SegmentationParams::from_job`] and [`segment_facade`].
+//! Entry points: [`SegmentationParams::from_job`](crate::segmentation::SegmentationParams::from_job)
+//! and [`segment_facade`](crate::segmentation::segment_facade).
 //!
 //! ```
 //! let dir = tempfile::tempdir().unwrap();
