@@ -60,6 +60,15 @@ fn n(x: f64) -> String {
     fmt_float(x, DECIMALS)
 }
 
+/// The `points` attribute of a polyline or polygon.
+fn points(pts: &[(f64, f64)]) -> String {
+    let p: Vec<String> = pts
+        .iter()
+        .map(|(x, y)| format!("{},{}", n(*x), n(*y)))
+        .collect();
+    p.join(" ")
+}
+
 impl SvgDoc {
     /// A white page of `width × height` user units.
     pub fn new(width: f64, height: f64) -> Self {
@@ -96,13 +105,9 @@ impl SvgDoc {
         if pts.len() < 2 {
             return self;
         }
-        let p: Vec<String> = pts
-            .iter()
-            .map(|(x, y)| format!("{},{}", n(*x), n(*y)))
-            .collect();
         self.body.push_str(&format!(
             "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\">",
-            p.join(" "),
+            points(pts),
             esc(stroke),
             n(width)
         ));
@@ -122,13 +127,9 @@ impl SvgDoc {
         if pts.len() < 3 {
             return self;
         }
-        let p: Vec<String> = pts
-            .iter()
-            .map(|(x, y)| format!("{},{}", n(*x), n(*y)))
-            .collect();
         self.body.push_str(&format!(
             "<polygon points=\"{}\" fill=\"{}\" stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\">",
-            p.join(" "),
+            points(pts),
             esc(fill),
             esc(stroke),
             n(width)

@@ -65,9 +65,11 @@ pub fn targets(run: &HotBladeRun, units: Units) -> TargetsFile {
     }
 }
 
-type Boxed = Box<dyn Fn(&mut Vec<u8>) -> export::Result<()>>;
+/// How one output file is rendered.
+pub(crate) type Boxed = Box<dyn Fn(&mut Vec<u8>) -> export::Result<()>>;
 
-fn file(name: impl Into<String>, f: Boxed) -> Render<'static> {
+/// One output file: its name and renderer.
+pub(crate) fn file(name: impl Into<String>, f: Boxed) -> Render<'static> {
     (name.into(), f)
 }
 

@@ -13,7 +13,7 @@ use nalgebra::Vector3;
 
 use super::SegmentationRun;
 use crate::draw::bounds;
-use crate::hot_blade::outputs::{box_mesh, f32s, robot_files};
+use crate::hot_blade::outputs::{box_mesh, f32s, file, robot_files};
 use crate::job::{OutputSpec, Units};
 use crate::run::Render;
 
@@ -41,12 +41,6 @@ fn colour(id: usize) -> [f32; 3] {
 fn hex(c: [f32; 3]) -> String {
     let b = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
     format!("#{:02x}{:02x}{:02x}", b(c[0]), b(c[1]), b(c[2]))
-}
-
-type Boxed = Box<dyn Fn(&mut Vec<u8>) -> export::Result<()>>;
-
-fn file(name: &str, f: Boxed) -> Render<'static> {
-    (name.to_string(), f)
 }
 
 /// The files of output `o`.
