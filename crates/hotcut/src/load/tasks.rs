@@ -46,16 +46,7 @@ pub(super) fn check_task(
             ..
         } => {
             let ptr = "/task/HotBlade";
-            if job.surface.is_none() {
-                errors.push(semantic(path, "/surface", "task HotBlade needs a surface"));
-            }
-            if job.block.is_none() {
-                errors.push(semantic(
-                    path,
-                    "/block",
-                    "task HotBlade needs `block` (the size of the blocks the surface is cut from)",
-                ));
-            }
+            require_surface_and_block(path, job, "HotBlade", "", "surface is", errors);
             if *constraint == FitConstraintSpec::Free {
                 errors.push(semantic(path, &format!("{ptr}/constraint"), "HotBlade fits keep the sections' end points so that neighbouring blocks meet: use EndPoints or EndPointsAndLength"));
             }
@@ -96,20 +87,14 @@ pub(super) fn check_task(
             ..
         } => {
             let ptr = "/task/FacadeSegmentation";
-            if job.surface.is_none() {
-                errors.push(semantic(
-                    path,
-                    "/surface",
-                    "task FacadeSegmentation needs a surface (the facade)",
-                ));
-            }
-            if job.block.is_none() {
-                errors.push(semantic(
-                    path,
-                    "/block",
-                    "task FacadeSegmentation needs `block` (the size of the blocks the pieces are cut from)",
-                ));
-            }
+            require_surface_and_block(
+                path,
+                job,
+                "FacadeSegmentation",
+                " (the facade)",
+                "pieces are",
+                errors,
+            );
             if *constraint == FitConstraintSpec::Free {
                 errors.push(semantic(path, &format!("{ptr}/constraint"), "a piece's fits keep its parts' end points so that neighbouring pieces meet: use EndPoints or EndPointsAndLength"));
             }
@@ -205,5 +190,32 @@ fn check_motion(
                 format!("the approach distance must be ≥ 0, got {v}"),
             ));
         }
+    }
+}
+
+/// A task that cuts a surface from blocks needs both: reports each missing one. `what`
+/// says what the surface is (may be empty), `cut` what is cut from the blocks, with its
+/// verb ("surface is").
+fn require_surface_and_block(
+    path: &Path,
+    job: &Job,
+    task: &str,
+    what: &str,
+    cut: &str,
+    errors: &mut Vec<JobError>,
+) {
+    if job.surface.is_none() {
+        errors.push(semantic(
+            path,
+            "/surface",
+            format!("task {task} needs a surface{what}"),
+        ));
+    }
+    if job.block.is_none() {
+        errors.push(semantic(
+            path,
+            "/block",
+            format!("task {task} needs `block` (the size of the blocks the {cut} cut from)"),
+        ));
     }
 }
