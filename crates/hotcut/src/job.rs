@@ -355,6 +355,72 @@ pub enum TaskSpec {
         #[serde(default)]
         approach: Option<f64>,
     },
+    /// Volumetric block segmentation (thesis ch. 3): cover a closed mesh
+    /// (`surface: Mesh(path: .., closed: true)`) with as few freely translated and rotated
+    /// blocks of `block.size` as possible, by the stochastic optimization of §3.3. The
+    /// job's `seed` seeds it. Write `BlockSegmentation(restarts: 4, coverage: Solid)`.
+    BlockSegmentation {
+        /// Operations used: any of `Translate`, `Rotate`, `Align` (the ablation of
+        /// Table 3.2). Default: all three.
+        #[serde(default = "default_block_operations")]
+        #[schemars(length(min = 1, max = 3))]
+        operations: Vec<blocks::Operation>,
+        /// `Solid`: the model's volume must lie in the union of blocks; `Surface`: only
+        /// its surface. Default: `Solid`.
+        #[serde(default)]
+        coverage: blocks::Coverage,
+        /// Exponent p of eq. 3.3 (≥ 1). Default: 2.
+        #[serde(default = "default_block_p")]
+        #[schemars(range(min = 1))]
+        p: f64,
+        /// ε of eq. 3.3 (> 0). Default: 1e-5.
+        #[serde(default = "default_block_epsilon")]
+        #[schemars(extend("exclusiveMinimum" = 0))]
+        epsilon: f64,
+        /// Independent runs in parallel, seeds derived from the job's `seed`; the run
+        /// with the fewest blocks is kept. Default: 1.
+        #[serde(default = "default_restarts")]
+        #[schemars(range(min = 1, max = 256))]
+        restarts: u32,
+        /// Iteration cap per run (an iteration is one cycle over the blocks, of moves or
+        /// of alignment). Default: 200.
+        #[serde(default = "default_block_iterations")]
+        #[schemars(range(min = 1))]
+        max_iterations: u32,
+        /// Wall-time cap per run, seconds (> 0). Results then depend on the machine's
+        /// speed; prefer `max_iterations`. Default: none.
+        #[serde(default)]
+        time_limit: Option<f64>,
+        /// Interior sample spacing as a fraction of the block's shortest edge, in
+        /// (0, 0.25]; blocks are shrunk by this spacing (half of it for `Surface`) when
+        /// testing coverage, so that covering the samples covers the model. Default: 0.05.
+        #[serde(default = "default_sample_spacing")]
+        #[schemars(extend("exclusiveMinimum" = 0), range(max = 0.25))]
+        sample_spacing: f64,
+    },
+}
+
+fn default_block_operations() -> Vec<blocks::Operation> {
+    vec![
+        blocks::Operation::Translate,
+        blocks::Operation::Rotate,
+        blocks::Operation::Align,
+    ]
+}
+fn default_block_p() -> f64 {
+    2.0
+}
+fn default_block_epsilon() -> f64 {
+    1e-5
+}
+fn default_restarts() -> u32 {
+    1
+}
+fn default_block_iterations() -> u32 {
+    200
+}
+fn default_sample_spacing() -> f64 {
+    0.05
 }
 
 impl TaskSpec {
@@ -365,6 +431,7 @@ impl TaskSpec {
             Self::FitCurves { .. } => "FitCurves",
             Self::HotBlade { .. } => "HotBlade",
             Self::FacadeSegmentation { .. } => "FacadeSegmentation",
+            Self::BlockSegmentation { .. } => "BlockSegmentation",
         }
     }
 }
@@ -505,12 +572,15 @@ pub enum OutputSpec {
     Report,
     /// `sections.svg` (Analyze): plan and profile drawing of the sections; `fit.svg`
     /// (FitCurves): every curve with its fit overlaid; `segmentation.svg`
-    /// (FacadeSegmentation): plan view of the pieces, sections, inflections and seams.
+    /// (FacadeSegmentation): plan view of the pieces, sections, inflections and seams;
+    /// `progress.svg` (BlockSegmentation): blocks and E per iteration.
     Svg,
-    /// `sections.obj`: the section curves as 3D polylines.
+    /// `sections.obj`: the section curves as 3D polylines (BlockSegmentation:
+    /// `blocks.obj`, the blocks as boxes).
     Obj,
     /// `model.gltf` (HotBlade: blocks as boxes, the rationalized surfaces coloured by
-    /// deviation; FacadeSegmentation: the pieces in colours, and their blocks).
+    /// deviation; FacadeSegmentation: the pieces in colours, and their blocks;
+    /// BlockSegmentation: the model and its blocks).
     Gltf,
     /// `sections.csv` (HotBlade: one row per fitted section; FacadeSegmentation: one row
     /// per section part of a piece).
@@ -529,6 +599,9 @@ pub enum OutputSpec {
     Rapid,
     /// Hot-wire G-code (pre-cut task).
     GCode,
+    /// `blocks.json` (BlockSegmentation): every block's centre, rotation `[w, x, y, z]`
+    /// (block axes to model axes) and size, in the mesh's coordinates.
+    Blocks,
 }
 
 impl OutputSpec {
@@ -543,6 +616,7 @@ impl OutputSpec {
             Self::RobotTargets { .. } => "RobotTargets",
             Self::Rapid => "Rapid",
             Self::GCode => "GCode",
+            Self::Blocks => "Blocks",
         }
     }
 }

@@ -27,6 +27,8 @@ pub mod analyze;
 pub mod draw;
 /// Error types.
 pub mod error;
+/// The `BlockSegmentation` task: a closed mesh covered by few freely placed blocks.
+pub mod block_seg;
 /// The `FitCurves` task.
 pub mod fit_curves;
 /// The `HotBlade` task: block grid, elastica fits, swept surface, robot data.
@@ -53,6 +55,8 @@ pub trait Progress: Sync {
     fn tick(&self);
     /// The step is done.
     fn finish(&self);
+    /// A status line for the current step (e.g. iteration, blocks and E). Default: ignored.
+    fn message(&self, _status: &str) {}
 }
 
 /// Reports nothing.
@@ -113,6 +117,16 @@ pub fn segmentation_report_schema_json() -> String {
     s
 }
 
+/// The JSON Schema of a `BlockSegmentation` run's `report.json`, as written to
+/// `schemas/block-segmentation-report.schema.json`.
+pub fn block_segmentation_report_schema_json() -> String {
+    let v = serde_json::to_value(schemars::schema_for!(block_seg::BlockSegReport))
+        .unwrap_or_default();
+    let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
+    s.push('\n');
+    s
+}
+
 /// Every schema file of `schemas/`: (file name, contents).
 pub fn schema_files() -> Vec<(&'static str, String)> {
     vec![
@@ -129,6 +143,10 @@ pub fn schema_files() -> Vec<(&'static str, String)> {
         (
             "facade-segmentation-report.schema.json",
             segmentation_report_schema_json(),
+        ),
+        (
+            "block-segmentation-report.schema.json",
+            block_segmentation_report_schema_json(),
         ),
     ]
 }

@@ -81,6 +81,9 @@ impl Progress for Bars {
     fn tick(&self) {
         self.bar.inc(1);
     }
+    fn message(&self, status: &str) {
+        self.bar.set_message(status.to_string());
+    }
     fn finish(&self) {
         self.bar.finish_and_clear();
         self.bar.set_draw_target(ProgressDrawTarget::hidden());
@@ -204,6 +207,22 @@ fn print_hot_blade_summary(r: &hotcut::hot_blade::report::HotBladeReport, units:
     }
 }
 
+fn print_block_summary(name: &str, r: &hotcut::block_seg::BlockSegReport) {
+    let s = &r.segmentation;
+    println!(
+        "{name} (BlockSegmentation): {} → {} block(s), {:.1} % fewer (lower bound {}); best of {} run(s), {} iteration(s); accepted {} translation(s), {} rotation(s), {} alignment(s)",
+        s.initial_blocks,
+        s.final_blocks,
+        s.reduction_percent,
+        s.lower_bound,
+        s.restarts.len(),
+        s.history.last().map_or(0, |h| h.iteration),
+        s.accepted.translations,
+        s.accepted.rotations,
+        s.accepted.alignments
+    );
+}
+
 fn print_segmentation_summary(r: &hotcut::segmentation::report::SegmentationReport, units: &str) {
     let c = &r.counts;
     println!(
@@ -318,6 +337,9 @@ fn main() -> ExitCode {
                             }
                             TaskReport::FacadeSegmentation(r) => {
                                 print_segmentation_summary(r, j.job.units.symbol())
+                            }
+                            TaskReport::BlockSegmentation(r) => {
+                                print_block_summary(&j.job.name, r)
                             }
                         }
                         print_files(&o.dir, &o.files);

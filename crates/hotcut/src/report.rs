@@ -285,6 +285,8 @@ pub enum TaskReport {
     HotBlade(Box<crate::hot_blade::report::HotBladeReport>),
     /// From `FacadeSegmentation`.
     FacadeSegmentation(Box<crate::segmentation::report::SegmentationReport>),
+    /// From `BlockSegmentation`.
+    BlockSegmentation(Box<crate::block_seg::BlockSegReport>),
 }
 
 impl TaskReport {
@@ -308,6 +310,14 @@ impl TaskReport {
     pub fn segmentation(&self) -> Option<&crate::segmentation::report::SegmentationReport> {
         match self {
             Self::FacadeSegmentation(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// The `BlockSegmentation` report, if that task ran.
+    pub fn block_segmentation(&self) -> Option<&crate::block_seg::BlockSegReport> {
+        match self {
+            Self::BlockSegmentation(r) => Some(r),
             _ => None,
         }
     }

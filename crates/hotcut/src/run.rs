@@ -134,6 +134,12 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
                 move |o: &OutputSpec| crate::segmentation::outputs::render(&s, o, units, &name);
             (report, Box::new(render))
         }
+        TaskSpec::BlockSegmentation { .. } => {
+            let b = std::rc::Rc::new(crate::block_seg::block_segmentation(job, progress)?);
+            let report = TaskReport::BlockSegmentation(Box::new(b.report.clone()));
+            let render = move |o: &OutputSpec| crate::block_seg::outputs::render(&b, o);
+            (report, Box::new(render))
+        }
     };
     let mut renders: Vec<Render<'_>> = Vec::new();
     for o in &job.job.outputs {

@@ -4,7 +4,7 @@ use std::path::Path;
 
 use super::semantic;
 use crate::error::JobError;
-use crate::job::{FitConstraintSpec, Job, OutputSpec, SegAlgorithmSpec, TaskSpec};
+use crate::job::{FitConstraintSpec, Job, OutputSpec, SegAlgorithmSpec, SurfaceSpec, TaskSpec};
 
 /// Checks `job.task` (pushing every problem to `errors`) and returns the names of the
 /// outputs the task writes. `base` is the job file's folder.
@@ -162,6 +162,80 @@ pub(super) fn check_task(
                 "Rapid",
             ]
         }
+        TaskSpec::BlockSegmentation {
+            operations,
+            p,
+            epsilon,
+            restarts,
+            max_iterations,
+            time_limit,
+            sample_spacing,
+            ..
+        } => {
+            let ptr = "/task/BlockSegmentation";
+            if !(1..=256).contains(restarts) {
+                errors.push(semantic(path, &format!("{ptr}/restarts"), format!("restarts must be 1–256, got {restarts}")));
+            }
+            if *max_iterations == 0 {
+                errors.push(semantic(path, &format!("{ptr}/max_iterations"), "max_iterations must be at least 1"));
+            }
+            check_block_segmentation(path, job, operations, *p, *epsilon, *time_limit, *sample_spacing, errors);
+            &["Report", "Blocks", "Svg", "Obj", "Gltf"]
+        }
+    }
+}
+
+/// The fields of a `BlockSegmentation` task, its closed mesh and its block.
+#[allow(clippy::too_many_arguments)]
+fn check_block_segmentation(
+    path: &Path,
+    job: &Job,
+    operations: &[blocks::Operation],
+    p: f64,
+    epsilon: f64,
+    time_limit: Option<f64>,
+    sample_spacing: f64,
+    errors: &mut Vec<JobError>,
+) {
+    let ptr = "/task/BlockSegmentation";
+    require_surface_and_block(path, job, "BlockSegmentation", " (a closed mesh)", "model is", errors);
+    match &job.surface {
+        Some(SurfaceSpec::Mesh { closed: true, .. }) | None => {}
+        Some(SurfaceSpec::Mesh { closed: false, .. }) => errors.push(semantic(
+            path,
+            "/surface/Mesh/closed",
+            "BlockSegmentation covers a solid: the mesh must be closed (`closed: true`)",
+        )),
+        Some(_) => errors.push(semantic(
+            path,
+            "/surface",
+            "BlockSegmentation needs a closed triangle mesh: `Mesh(path: .., closed: true)`",
+        )),
+    }
+    if job.block.as_ref().is_some_and(|b| b.origin.is_some()) {
+        errors.push(semantic(path, "/block/origin", "BlockSegmentation places its blocks itself: leave origin out"));
+    }
+    if operations.is_empty() {
+        errors.push(semantic(path, &format!("{ptr}/operations"), "at least one of Translate, Rotate, Align"));
+    }
+    for (i, o) in operations.iter().enumerate() {
+        if operations[..i].contains(o) {
+            errors.push(semantic(path, &format!("{ptr}/operations/{i}"), format!("{o:?} is listed twice")));
+        }
+    }
+    if !(p >= 1.0) || !p.is_finite() {
+        errors.push(semantic(path, &format!("{ptr}/p"), format!("p must be a finite number ≥ 1, got {p}")));
+    }
+    if !(epsilon > 0.0) || !epsilon.is_finite() {
+        errors.push(semantic(path, &format!("{ptr}/epsilon"), format!("epsilon must be positive, got {epsilon}")));
+    }
+    if let Some(t) = time_limit {
+        if !(t > 0.0) || !t.is_finite() {
+            errors.push(semantic(path, &format!("{ptr}/time_limit"), format!("time_limit must be positive seconds, got {t}")));
+        }
+    }
+    if !(sample_spacing > 0.0 && sample_spacing <= 0.25) {
+        errors.push(semantic(path, &format!("{ptr}/sample_spacing"), format!("sample_spacing must be in (0, 0.25] of the shortest block edge, got {sample_spacing}")));
     }
 }
 
