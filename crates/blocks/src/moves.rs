@@ -2,7 +2,9 @@
 //! alone covers and returns new poses under which those samples stay covered.
 //!
 //! "Covered" uses the block shrunk by the sampling margin, so every proposal works with
-//! the shrunk half sizes `h' = h − margin`.
+//! the shrunk half sizes `h' = h − margin`, less a rounding guard of [`GUARD`] × h so that
+//! points placed on a face stay inside after the transform is rounded. Callers still
+//! verify every proposal on the points ([`keeps`]).
 
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 
@@ -19,12 +21,25 @@ const PERMUTATIONS: [[usize; 3]; 6] = [
     [2, 1, 0],
 ];
 
+/// Relative guard subtracted from the shrunk half sizes.
+pub const GUARD: f64 = 1e-9;
+
+/// The half sizes proposals work with: `h − margin − GUARD·h`.
+fn shrunk_half(half: &Vector3<f64>, margin: f64) -> Vector3<f64> {
+    half.map(|h| h - margin - GUARD * h)
+}
+
+/// Whether every point lies in one of `blocks` shrunk by `margin`.
+pub fn keeps(blocks: &[Cuboid], pts: &[Vector3<f64>], margin: f64) -> bool {
+    pts.iter().all(|p| blocks.iter().any(|b| b.contains(p, margin)))
+}
+
 /// §3.3.2: the translation `(x⁺ − x⁻, y⁺ − y⁻, z⁺ − z⁻)` in the block's frame, where
 /// `x⁺` (`x⁻`) is the most the block can move along +x (−x) with `exclusive` still inside
 /// it. `None` when there is nothing to keep or the move is negligible.
 pub fn translation(b: &Cuboid, exclusive: &[Vector3<f64>], margin: f64) -> Option<Cuboid> {
     let (lo, hi) = local_bounds(b, exclusive)?;
-    let shrunk = b.half.add_scalar(-margin);
+    let shrunk = shrunk_half(&b.half, margin);
     // x⁺ = lo + h', x⁻ = h' − hi, so x⁺ − x⁻ = lo + hi.
     let t = Vector3::from_fn(|k, _| {
         let plus = lo[k] + shrunk[k];
@@ -43,7 +58,7 @@ pub fn rotations(b: &Cuboid, exclusive: &[Vector3<f64>], margin: f64) -> Vec<Cub
     let Some(fit) = min_box(exclusive) else {
         return Vec::new();
     };
-    let shrunk = b.half.add_scalar(-margin);
+    let shrunk = shrunk_half(&b.half, margin);
     let Some((axes, size)) = fit_axes(&fit, &shrunk) else {
         return Vec::new();
     };
@@ -82,7 +97,7 @@ pub fn alignment(
 /// tile it exactly; the block axes are assigned to the box's axes to need the fewest
 /// blocks.
 pub fn grid_over(fit: &BoxFit, half: &Vector3<f64>, margin: f64) -> Vec<Cuboid> {
-    let shrunk = half.add_scalar(-margin);
+    let shrunk = shrunk_half(half, margin);
     let fax = fit.axes();
     // The axis assignment needing the fewest blocks (ties: first permutation).
     let mut best: Option<(usize, [usize; 3], Matrix3<f64>)> = None;

@@ -28,7 +28,7 @@ impl BoxFit {
 }
 
 /// Most hull-face normals tried (the largest faces, after merging near-parallel ones).
-const MAX_NORMALS: usize = 48;
+const MAX_NORMALS: usize = 24;
 
 /// A near-minimum-volume box around `points`; `None` for no points or non-finite ones.
 pub fn min_box(points: &[Vector3<f64>]) -> Option<BoxFit> {
@@ -93,7 +93,7 @@ pub fn min_box(points: &[Vector3<f64>]) -> Option<BoxFit> {
 }
 
 /// Columns per axis of the grid [`extremes`] thins points with.
-const EXTREME_GRID: usize = 16;
+const EXTREME_GRID: usize = 10;
 
 /// A subset of the points with (nearly) the same convex hull: in every column of a
 /// coarse grid, along each axis, the lowest and highest point. Sets of fewer than
