@@ -15,11 +15,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let ops = args.get(3).map_or("tra", String::as_str);
     let max_iterations: u32 = args.get(4).map_or(Ok(200), |s| s.parse())?;
     let sample_spacing: f64 = args.get(5).map_or(Ok(0.05), |s| s.parse())?;
-    let operations = [('t', Operation::Translate), ('r', Operation::Rotate), ('a', Operation::Align)]
-        .into_iter()
-        .filter(|(c, _)| ops.contains(*c))
-        .map(|(_, o)| o)
-        .collect();
+    let operations = [
+        ('t', Operation::Translate),
+        ('r', Operation::Rotate),
+        ('a', Operation::Align),
+    ]
+    .into_iter()
+    .filter(|(c, _)| ops.contains(*c))
+    .map(|(_, o)| o)
+    .collect();
     let params = Params {
         block_size: [edge; 3],
         restarts,

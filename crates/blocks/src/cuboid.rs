@@ -70,9 +70,21 @@ impl Cuboid {
     pub fn corners(&self) -> [Vector3<f64>; 8] {
         std::array::from_fn(|i| {
             let l = Vector3::new(
-                if i & 1 == 0 { -self.half.x } else { self.half.x },
-                if i & 2 == 0 { -self.half.y } else { self.half.y },
-                if i & 4 == 0 { -self.half.z } else { self.half.z },
+                if i & 1 == 0 {
+                    -self.half.x
+                } else {
+                    self.half.x
+                },
+                if i & 2 == 0 {
+                    -self.half.y
+                } else {
+                    self.half.y
+                },
+                if i & 4 == 0 {
+                    -self.half.z
+                } else {
+                    self.half.z
+                },
             );
             self.to_model(&l)
         })
@@ -142,7 +154,8 @@ pub fn overlap_volume(a: &Cuboid, b: &Cuboid) -> f64 {
     });
     if same_axes {
         // Axis-permuted boxes: the overlap is a box; no clipping needed.
-        let hb = Vector3::from_fn(|k, _| (0..3).map(|j| rel[(k, j)].abs() * b.half[j]).sum::<f64>());
+        let hb =
+            Vector3::from_fn(|k, _| (0..3).map(|j| rel[(k, j)].abs() * b.half[j]).sum::<f64>());
         return (0..3)
             .map(|k| {
                 let lo = (-a.half[k]).max(bc[k] - hb[k]);

@@ -355,10 +355,13 @@ pub fn segment(
             stop: r.stop,
         })
         .collect();
-    let run = runs.into_iter().nth(best).ok_or_else(|| BlockError::Invalid {
-        what: "restarts",
-        message: "no run".into(),
-    })?;
+    let run = runs
+        .into_iter()
+        .nth(best)
+        .ok_or_else(|| BlockError::Invalid {
+            what: "restarts",
+            message: "no run".into(),
+        })?;
     let block_volume = 8.0 * half.x * half.y * half.z;
     let final_blocks = run.blocks.len();
     Ok(Segmentation {
@@ -395,7 +398,11 @@ pub fn segment(
 /// The grid of blocks over the model's box (§3.3, fig. 3.1): blocks whose shrunk boxes
 /// tile it, centred on it, block axes assigned to the box's axes to need the fewest
 /// blocks; blocks that cover no sample are dropped.
-pub fn initial_grid(frame: &obb::BoxFit, half: &Vector3<f64>, samples: &samples::Samples) -> Vec<Cuboid> {
+pub fn initial_grid(
+    frame: &obb::BoxFit,
+    half: &Vector3<f64>,
+    samples: &samples::Samples,
+) -> Vec<Cuboid> {
     moves::grid_over(frame, half, samples.margin)
         .into_iter()
         .filter(|b| {
@@ -409,16 +416,25 @@ pub fn initial_grid(frame: &obb::BoxFit, half: &Vector3<f64>, samples: &samples:
 fn validate(p: &Params) -> Result<()> {
     let invalid = |what: &'static str, message: String| Err(BlockError::Invalid { what, message });
     if p.block_size.iter().any(|&s| !(s > 0.0) || !s.is_finite()) {
-        return invalid("block.size", format!("edges must be positive and finite, got {:?}", p.block_size));
+        return invalid(
+            "block.size",
+            format!("edges must be positive and finite, got {:?}", p.block_size),
+        );
     }
     if p.operations.is_empty() {
-        return invalid("operations", "at least one of Translate, Rotate, Align".into());
+        return invalid(
+            "operations",
+            "at least one of Translate, Rotate, Align".into(),
+        );
     }
     if !(p.p >= 1.0) || !p.p.is_finite() {
         return invalid("p", format!("must be a finite number ≥ 1, got {}", p.p));
     }
     if !(p.epsilon > 0.0) || !p.epsilon.is_finite() {
-        return invalid("epsilon", format!("must be positive and finite, got {}", p.epsilon));
+        return invalid(
+            "epsilon",
+            format!("must be positive and finite, got {}", p.epsilon),
+        );
     }
     if p.restarts == 0 || p.restarts > 256 {
         return invalid("restarts", format!("must be 1–256, got {}", p.restarts));
@@ -434,7 +450,10 @@ fn validate(p: &Params) -> Result<()> {
     if !(p.sample_spacing > 0.0 && p.sample_spacing <= 0.25) {
         return invalid(
             "sample_spacing",
-            format!("must be in (0, 0.25] of the shortest block edge, got {}", p.sample_spacing),
+            format!(
+                "must be in (0, 0.25] of the shortest block edge, got {}",
+                p.sample_spacing
+            ),
         );
     }
     Ok(())

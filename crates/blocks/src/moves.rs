@@ -31,7 +31,8 @@ fn shrunk_half(half: &Vector3<f64>, margin: f64) -> Vector3<f64> {
 
 /// Whether every point lies in one of `blocks` shrunk by `margin`.
 pub fn keeps(blocks: &[Cuboid], pts: &[Vector3<f64>], margin: f64) -> bool {
-    pts.iter().all(|p| blocks.iter().any(|b| b.contains(p, margin)))
+    pts.iter()
+        .all(|p| blocks.iter().any(|b| b.contains(p, margin)))
 }
 
 /// §3.3.2: the translation `(x⁺ − x⁻, y⁺ − y⁻, z⁺ − z⁻)` in the block's frame, where
@@ -62,8 +63,7 @@ pub fn rotations(b: &Cuboid, exclusive: &[Vector3<f64>], margin: f64) -> Vec<Cub
     let Some((axes, size)) = fit_axes(&fit, &shrunk) else {
         return Vec::new();
     };
-    let rotation =
-        UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(axes));
+    let rotation = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(axes));
     (0..8)
         .map(|corner| {
             let offset = Vector3::from_fn(|k, _| {
@@ -111,16 +111,14 @@ pub fn grid_over(fit: &BoxFit, half: &Vector3<f64>, margin: f64) -> Vec<Cuboid> 
     let Some((total, n, axes)) = best else {
         return Vec::new();
     };
-    let rotation =
-        UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(axes));
+    let rotation = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(axes));
     let mut out = Vec::with_capacity(total);
     for i in 0..n[0] {
         for j in 0..n[1] {
             for k in 0..n[2] {
                 let idx = [i, j, k];
-                let offset = Vector3::from_fn(|a, _| {
-                    (2.0 * idx[a] as f64 + 1.0 - n[a] as f64) * shrunk[a]
-                });
+                let offset =
+                    Vector3::from_fn(|a, _| (2.0 * idx[a] as f64 + 1.0 - n[a] as f64) * shrunk[a]);
                 out.push(Cuboid::new(fit.center + axes * offset, rotation, *half));
             }
         }
@@ -175,7 +173,10 @@ mod tests {
     use proptest::prelude::*;
 
     fn arb_block() -> impl Strategy<Value = Cuboid> {
-        (prop::array::uniform3(-2.0..2.0f64), prop::array::uniform3(-3.0..3.0f64))
+        (
+            prop::array::uniform3(-2.0..2.0f64),
+            prop::array::uniform3(-3.0..3.0f64),
+        )
             .prop_map(|(c, r)| {
                 Cuboid::new(
                     Vector3::from(c),
@@ -237,7 +238,11 @@ mod tests {
 
     #[test]
     fn translation_exact_value() {
-        let b = Cuboid::new(Vector3::zeros(), UnitQuaternion::identity(), Vector3::repeat(1.0));
+        let b = Cuboid::new(
+            Vector3::zeros(),
+            UnitQuaternion::identity(),
+            Vector3::repeat(1.0),
+        );
         // Exclusive points in x ∈ [0.2, 0.9] (shrunk half 1.0): x⁺ = 1.2, x⁻ = 0.1 → +1.1.
         let pts = vec![Vector3::new(0.2, 0.0, 0.0), Vector3::new(0.9, 0.0, 0.0)];
         let t = translation(&b, &pts, 0.0).unwrap();

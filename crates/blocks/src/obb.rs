@@ -157,7 +157,10 @@ fn frame_for(n: &Vector3<f64>, pts: &[Vector3<f64>]) -> Matrix3<f64> {
     }
     .normalize();
     let v = n.cross(&u);
-    let flat: Vec<Vector2<f64>> = pts.iter().map(|p| Vector2::new(p.dot(&u), p.dot(&v))).collect();
+    let flat: Vec<Vector2<f64>> = pts
+        .iter()
+        .map(|p| Vector2::new(p.dot(&u), p.dot(&v)))
+        .collect();
     let hull = hull_2d(flat);
     let mut best = (f64::INFINITY, Vector2::new(1.0, 0.0));
     for i in 0..hull.len() {
@@ -238,13 +241,21 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
-    fn box_points(r: &UnitQuaternion<f64>, size: Vector3<f64>, c: Vector3<f64>) -> Vec<Vector3<f64>> {
+    fn box_points(
+        r: &UnitQuaternion<f64>,
+        size: Vector3<f64>,
+        c: Vector3<f64>,
+    ) -> Vec<Vector3<f64>> {
         let mut pts = Vec::new();
         for i in 0..5 {
             for j in 0..5 {
                 for k in 0..5 {
-                    let l = Vector3::new(i as f64 / 4.0 - 0.5, j as f64 / 4.0 - 0.5, k as f64 / 4.0 - 0.5)
-                        .component_mul(&size);
+                    let l = Vector3::new(
+                        i as f64 / 4.0 - 0.5,
+                        j as f64 / 4.0 - 0.5,
+                        k as f64 / 4.0 - 0.5,
+                    )
+                    .component_mul(&size);
                     pts.push(c + r * l);
                 }
             }
@@ -275,7 +286,11 @@ mod tests {
 
     #[test]
     fn flat_and_tiny_sets() {
-        let pts = vec![Vector3::new(0.0, 0.0, 1.0), Vector3::new(2.0, 0.0, 1.0), Vector3::new(0.0, 1.0, 1.0)];
+        let pts = vec![
+            Vector3::new(0.0, 0.0, 1.0),
+            Vector3::new(2.0, 0.0, 1.0),
+            Vector3::new(0.0, 1.0, 1.0),
+        ];
         let b = min_box(&pts).unwrap();
         let mut s: Vec<f64> = b.size.iter().copied().collect();
         s.sort_by(f64::total_cmp);

@@ -279,7 +279,14 @@ mod tests {
     /// An L-shaped closed mesh (two boxes fused), 3 × 2 × 1 with a 1 × 1 notch.
     fn l_shape() -> geom::mesh::TriMesh {
         // Extruded L polygon: (0,0) (3,0) (3,1) (1,1) (1,2) (0,2), z ∈ [0, 1].
-        let poly = [(0.0, 0.0), (3.0, 0.0), (3.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)];
+        let poly = [
+            (0.0, 0.0),
+            (3.0, 0.0),
+            (3.0, 1.0),
+            (1.0, 1.0),
+            (1.0, 2.0),
+            (0.0, 2.0),
+        ];
         let mut v = Vec::new();
         for z in [0.0, 1.0] {
             for (x, y) in poly {
@@ -326,7 +333,12 @@ mod tests {
             assert_eq!(state.uncovered(), 0);
             let run = run(&mut state, &params, ops, seed, 0, Instant::now(), &|_| {});
             assert_eq!(state.uncovered(), 0);
-            assert!(run.blocks.len() < init.len(), "{} of {}", run.blocks.len(), init.len());
+            assert!(
+                run.blocks.len() < init.len(),
+                "{} of {}",
+                run.blocks.len(),
+                init.len()
+            );
             assert!(run.accepted.translations + run.accepted.rotations > 0);
             // Blocks are never added.
             for w in run.history.windows(2) {

@@ -21,7 +21,17 @@ use crate::error::{BlockError, Result};
 use crate::obb::BoxFit;
 
 /// What the blocks must cover.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
 pub enum Coverage {
     /// The model's volume lies in the union of blocks.
     #[default]
@@ -135,7 +145,9 @@ impl Samples {
     /// Whether some sample block `b` covers satisfies `pred` (stops at the first).
     pub fn any_covered(&self, b: &Cuboid, mut pred: impl FnMut(usize) -> bool) -> bool {
         let (lo, hi) = b.aabb();
-        self.try_each_near(&lo, &hi, |id| b.contains(&self.points[id], self.margin) && pred(id))
+        self.try_each_near(&lo, &hi, |id| {
+            b.contains(&self.points[id], self.margin) && pred(id)
+        })
     }
 
     /// Calls `f` with every sample index whose index cell meets the box `lo..hi`.
@@ -147,12 +159,20 @@ impl Samples {
     }
 
     /// Like [`Samples::for_each_near`], stopping when `f` returns true; whether it did.
-    fn try_each_near(&self, lo: &Vector3<f64>, hi: &Vector3<f64>, mut f: impl FnMut(usize) -> bool) -> bool {
+    fn try_each_near(
+        &self,
+        lo: &Vector3<f64>,
+        hi: &Vector3<f64>,
+        mut f: impl FnMut(usize) -> bool,
+    ) -> bool {
         let ix = &self.index;
         let cell = |p: &Vector3<f64>, k: usize| -> usize {
             (((p[k] - ix.origin[k]) / ix.cell).floor().max(0.0) as usize).min(ix.dims[k] - 1)
         };
-        let (a, b) = ([0, 1, 2].map(|k| cell(lo, k)), [0, 1, 2].map(|k| cell(hi, k)));
+        let (a, b) = (
+            [0, 1, 2].map(|k| cell(lo, k)),
+            [0, 1, 2].map(|k| cell(hi, k)),
+        );
         for z in a[2]..=b[2] {
             for y in a[1]..=b[1] {
                 let row = (z * ix.dims[1] + y) * ix.dims[0];
@@ -188,7 +208,8 @@ impl Index {
             (c[2] * dims[1] + c[1]) * dims[0] + c[0]
         };
         let ncell = dims[0] * dims[1] * dims[2];
-        let mut keyed: Vec<(usize, Vector3<f64>)> = points.into_iter().map(|p| (key(&p), p)).collect();
+        let mut keyed: Vec<(usize, Vector3<f64>)> =
+            points.into_iter().map(|p| (key(&p), p)).collect();
         // Stable: samples in a cell keep their generation order (deterministic).
         keyed.sort_by_key(|(k, _)| *k);
         let mut start = vec![0u32; ncell + 1];
@@ -306,7 +327,8 @@ fn interior_samples(mesh: &TriMesh, frame: &BoxFit, g: f64, out: &mut Vec<Vector
 
 /// Where the vertical line through `(x, y)` meets triangle `abc`, if it does.
 fn ray_hit(a: &Vector3<f64>, b: &Vector3<f64>, c: &Vector3<f64>, x: f64, y: f64) -> Option<f64> {
-    let orient = |p: &Vector3<f64>, q: &Vector3<f64>| (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x);
+    let orient =
+        |p: &Vector3<f64>, q: &Vector3<f64>| (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x);
     let (w0, w1, w2) = (orient(b, c), orient(c, a), orient(a, b));
     let sum = w0 + w1 + w2;
     let inside = (w0 >= 0.0 && w1 >= 0.0 && w2 >= 0.0) || (w0 <= 0.0 && w1 <= 0.0 && w2 <= 0.0);
@@ -327,8 +349,18 @@ mod tests {
             .map(|i| Vector3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64) * e)
             .collect();
         let f = vec![
-            [0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4],
-            [2, 6, 7], [2, 7, 3], [0, 4, 6], [0, 6, 2], [1, 3, 7], [1, 7, 5],
+            [0, 2, 3],
+            [0, 3, 1],
+            [4, 5, 7],
+            [4, 7, 6],
+            [0, 1, 5],
+            [0, 5, 4],
+            [2, 6, 7],
+            [2, 7, 3],
+            [0, 4, 6],
+            [0, 6, 2],
+            [1, 3, 7],
+            [1, 7, 5],
         ];
         TriMesh::try_new(v, f).unwrap()
     }
@@ -344,7 +376,10 @@ mod tests {
         let s = sample(&mesh, &frame, 0.1, Coverage::Solid, 1_000_000, 0.25).unwrap();
         assert_eq!(s.counts.interior, 1000);
         assert_eq!(s.counts.vertices, 8);
-        assert!(s.points.iter().all(|p| p.iter().all(|&c| (-1e-12..=1.0 + 1e-12).contains(&c))));
+        assert!(s
+            .points
+            .iter()
+            .all(|p| p.iter().all(|&c| (-1e-12..=1.0 + 1e-12).contains(&c))));
         // Surface samples at most 0.05 apart: each face has its diagonal and edges cut into 20–29 parts.
         assert!(s.counts.surface > 6 * 19 * 19 / 2, "{}", s.counts.surface);
         let mut n = 0;

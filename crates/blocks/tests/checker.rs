@@ -56,7 +56,12 @@ fn inside_points(mesh: &TriMesh, n: usize, rng: &mut Rng) -> Vec<Vector3<f64>> {
     }
     let mut out = Vec::with_capacity(n);
     while out.len() < n {
-        let p = bb.min + Vector3::new(rng.next() * size.x, rng.next() * size.y, rng.next() * size.z);
+        let p = bb.min
+            + Vector3::new(
+                rng.next() * size.x,
+                rng.next() * size.y,
+                rng.next() * size.z,
+            );
         let mut crossings = 0;
         for &f in &grid[bin(p.y, p.z)] {
             let [a, b, c] = mesh.triangle(f);
@@ -109,11 +114,7 @@ fn surface_points(mesh: &TriMesh, n: usize, rng: &mut Rng) -> Vec<Vector3<f64>> 
 /// Points of `pts` in no block (exact containment, rounding slack 1e-9 of the block).
 fn uncovered(blocks: &[Cuboid], pts: &[Vector3<f64>]) -> usize {
     pts.iter()
-        .filter(|p| {
-            !blocks
-                .iter()
-                .any(|b| b.contains(p, -1e-9 * b.half.norm()))
-        })
+        .filter(|p| !blocks.iter().any(|b| b.contains(p, -1e-9 * b.half.norm())))
         .count()
 }
 

@@ -23,12 +23,12 @@
 
 /// The `Analyze` task.
 pub mod analyze;
+/// The `BlockSegmentation` task: a closed mesh covered by few freely placed blocks.
+pub mod block_seg;
 /// The `sections.svg` and `fit.svg` drawings.
 pub mod draw;
 /// Error types.
 pub mod error;
-/// The `BlockSegmentation` task: a closed mesh covered by few freely placed blocks.
-pub mod block_seg;
 /// The `FitCurves` task.
 pub mod fit_curves;
 /// The `HotBlade` task: block grid, elastica fits, swept surface, robot data.
@@ -120,8 +120,8 @@ pub fn segmentation_report_schema_json() -> String {
 /// The JSON Schema of a `BlockSegmentation` run's `report.json`, as written to
 /// `schemas/block-segmentation-report.schema.json`.
 pub fn block_segmentation_report_schema_json() -> String {
-    let v = serde_json::to_value(schemars::schema_for!(block_seg::BlockSegReport))
-        .unwrap_or_default();
+    let v =
+        serde_json::to_value(schemars::schema_for!(block_seg::BlockSegReport)).unwrap_or_default();
     let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
     s.push('\n');
     s

@@ -338,9 +338,7 @@ fn main() -> ExitCode {
                             TaskReport::FacadeSegmentation(r) => {
                                 print_segmentation_summary(r, j.job.units.symbol())
                             }
-                            TaskReport::BlockSegmentation(r) => {
-                                print_block_summary(&j.job.name, r)
-                            }
+                            TaskReport::BlockSegmentation(r) => print_block_summary(&j.job.name, r),
                         }
                         print_files(&o.dir, &o.files);
                     }

@@ -103,10 +103,12 @@ pub fn block_segmentation(job: &ResolvedJob, progress: &dyn Progress) -> Result<
         path: job.path.clone(),
         message,
     };
-    let params = params_from_job(job)
-        .ok_or_else(|| fail("task BlockSegmentation needs a block".into()))?;
+    let params =
+        params_from_job(job).ok_or_else(|| fail("task BlockSegmentation needs a block".into()))?;
     let Some(Surface::Mesh(mesh)) = &job.surface else {
-        return Err(fail("task BlockSegmentation needs a closed mesh surface".into()));
+        return Err(fail(
+            "task BlockSegmentation needs a closed mesh surface".into(),
+        ));
     };
     let total = params.max_iterations as u64 * params.restarts as u64;
     progress.start("block segmentation", total);

@@ -8,7 +8,7 @@ use blocks::{Phase, Placement};
 use export::gltf::{write_gltf, Material, Mesh};
 use export::json::{to_json_string, REPORT_DIGITS};
 use export::obj::ObjWriter;
-use export::svg::{SvgDoc, Viewport};
+use export::svg::SvgDoc;
 use geom::mesh::TriMesh;
 use serde::Serialize;
 
@@ -114,16 +114,23 @@ fn progress_svg(run: &BlockSegRun) -> SvgDoc {
     let last = seg.history.last().map_or(1, |r| r.iteration.max(1)) as f64;
     let top = seg.initial_blocks.max(1) as f64;
     let bottom = (seg.lower_bound as f64).min(seg.final_blocks as f64);
-    let vp = Viewport::fit((0.0, bottom), (last, top), (60.0, 30.0, w - 20.0, h - 50.0));
+    // Independent scales on the two axes (a chart, not a drawing).
+    let span = (top - bottom).max(1.0);
+    let map = |it: f64, n: f64| {
+        (
+            60.0 + it / last * (w - 80.0),
+            30.0 + (top - n) / span * (h - 80.0),
+        )
+    };
     let pts: Vec<(f64, f64)> = seg
         .history
         .windows(2)
         .flat_map(|p| {
             let (a, b) = (p[0], p[1]);
             [
-                vp.map(a.iteration as f64, a.blocks as f64),
-                vp.map(b.iteration as f64, a.blocks as f64),
-                vp.map(b.iteration as f64, b.blocks as f64),
+                map(a.iteration as f64, a.blocks as f64),
+                map(b.iteration as f64, a.blocks as f64),
+                map(b.iteration as f64, b.blocks as f64),
             ]
         })
         .collect();
@@ -131,20 +138,50 @@ fn progress_svg(run: &BlockSegRun) -> SvgDoc {
     if pts.len() >= 2 {
         doc.polyline(&pts, "#1f5fa8", 2.0, Some("blocks"));
     } else if let Some(r) = seg.history.first() {
-        doc.circle(vp.map(0.0, r.blocks as f64), 3.0, "#1f5fa8", Some("blocks"));
+        doc.circle(map(0.0, r.blocks as f64), 3.0, "#1f5fa8", Some("blocks"));
     }
     for r in seg.history.iter().filter(|r| r.phase == Phase::Align) {
         let title = format!("alignment, iteration {}: {} blocks", r.iteration, r.blocks);
-        doc.circle(vp.map(r.iteration as f64, r.blocks as f64), 3.0, "#d95f02", Some(&title));
+        doc.circle(
+            map(r.iteration as f64, r.blocks as f64),
+            3.0,
+            "#d95f02",
+            Some(&title),
+        );
     }
     let lb = seg.lower_bound as f64;
-    doc.polyline(&[vp.map(0.0, lb), vp.map(last, lb)], "#888888", 1.0, Some("lower bound"));
-    doc.text((60.0, 20.0), 12.0, "#000000", &format!(
-        "blocks per iteration: {} → {} ({:.1} % fewer); lower bound {}",
-        seg.initial_blocks, seg.final_blocks, seg.reduction_percent, seg.lower_bound
-    ));
-    doc.text((60.0, h - 30.0), 11.0, "#000000", &format!("iteration (0 – {last}); orange: alignment passes"));
-    doc.text((6.0, vp.map(0.0, top).1 + 4.0), 11.0, "#000000", &format!("{}", seg.initial_blocks));
-    doc.text((6.0, vp.map(0.0, bottom).1 + 4.0), 11.0, "#000000", &format!("{}", bottom));
+    doc.polyline(
+        &[map(0.0, lb), map(last, lb)],
+        "#888888",
+        1.0,
+        Some("lower bound"),
+    );
+    doc.text(
+        (60.0, 20.0),
+        12.0,
+        "#000000",
+        &format!(
+            "blocks per iteration: {} → {} ({:.1} % fewer); lower bound {}",
+            seg.initial_blocks, seg.final_blocks, seg.reduction_percent, seg.lower_bound
+        ),
+    );
+    doc.text(
+        (60.0, h - 30.0),
+        11.0,
+        "#000000",
+        &format!("iteration (0 – {last}); orange: alignment passes"),
+    );
+    doc.text(
+        (6.0, map(0.0, top).1 + 4.0),
+        11.0,
+        "#000000",
+        &format!("{}", seg.initial_blocks),
+    );
+    doc.text(
+        (6.0, map(0.0, bottom).1 + 4.0),
+        11.0,
+        "#000000",
+        &format!("{}", bottom),
+    );
     doc
 }

@@ -174,12 +174,29 @@ pub(super) fn check_task(
         } => {
             let ptr = "/task/BlockSegmentation";
             if !(1..=256).contains(restarts) {
-                errors.push(semantic(path, &format!("{ptr}/restarts"), format!("restarts must be 1–256, got {restarts}")));
+                errors.push(semantic(
+                    path,
+                    &format!("{ptr}/restarts"),
+                    format!("restarts must be 1–256, got {restarts}"),
+                ));
             }
             if *max_iterations == 0 {
-                errors.push(semantic(path, &format!("{ptr}/max_iterations"), "max_iterations must be at least 1"));
+                errors.push(semantic(
+                    path,
+                    &format!("{ptr}/max_iterations"),
+                    "max_iterations must be at least 1",
+                ));
             }
-            check_block_segmentation(path, job, operations, *p, *epsilon, *time_limit, *sample_spacing, errors);
+            check_block_segmentation(
+                path,
+                job,
+                operations,
+                *p,
+                *epsilon,
+                *time_limit,
+                *sample_spacing,
+                errors,
+            );
             &["Report", "Blocks", "Svg", "Obj", "Gltf"]
         }
     }
@@ -198,7 +215,14 @@ fn check_block_segmentation(
     errors: &mut Vec<JobError>,
 ) {
     let ptr = "/task/BlockSegmentation";
-    require_surface_and_block(path, job, "BlockSegmentation", " (a closed mesh)", "model is", errors);
+    require_surface_and_block(
+        path,
+        job,
+        "BlockSegmentation",
+        " (a closed mesh)",
+        "model is",
+        errors,
+    );
     match &job.surface {
         Some(SurfaceSpec::Mesh { closed: true, .. }) | None => {}
         Some(SurfaceSpec::Mesh { closed: false, .. }) => errors.push(semantic(
@@ -213,25 +237,49 @@ fn check_block_segmentation(
         )),
     }
     if job.block.as_ref().is_some_and(|b| b.origin.is_some()) {
-        errors.push(semantic(path, "/block/origin", "BlockSegmentation places its blocks itself: leave origin out"));
+        errors.push(semantic(
+            path,
+            "/block/origin",
+            "BlockSegmentation places its blocks itself: leave origin out",
+        ));
     }
     if operations.is_empty() {
-        errors.push(semantic(path, &format!("{ptr}/operations"), "at least one of Translate, Rotate, Align"));
+        errors.push(semantic(
+            path,
+            &format!("{ptr}/operations"),
+            "at least one of Translate, Rotate, Align",
+        ));
     }
     for (i, o) in operations.iter().enumerate() {
         if operations[..i].contains(o) {
-            errors.push(semantic(path, &format!("{ptr}/operations/{i}"), format!("{o:?} is listed twice")));
+            errors.push(semantic(
+                path,
+                &format!("{ptr}/operations/{i}"),
+                format!("{o:?} is listed twice"),
+            ));
         }
     }
     if !(p >= 1.0) || !p.is_finite() {
-        errors.push(semantic(path, &format!("{ptr}/p"), format!("p must be a finite number ≥ 1, got {p}")));
+        errors.push(semantic(
+            path,
+            &format!("{ptr}/p"),
+            format!("p must be a finite number ≥ 1, got {p}"),
+        ));
     }
     if !(epsilon > 0.0) || !epsilon.is_finite() {
-        errors.push(semantic(path, &format!("{ptr}/epsilon"), format!("epsilon must be positive, got {epsilon}")));
+        errors.push(semantic(
+            path,
+            &format!("{ptr}/epsilon"),
+            format!("epsilon must be positive, got {epsilon}"),
+        ));
     }
     if let Some(t) = time_limit {
         if !(t > 0.0) || !t.is_finite() {
-            errors.push(semantic(path, &format!("{ptr}/time_limit"), format!("time_limit must be positive seconds, got {t}")));
+            errors.push(semantic(
+                path,
+                &format!("{ptr}/time_limit"),
+                format!("time_limit must be positive seconds, got {t}"),
+            ));
         }
     }
     if !(sample_spacing > 0.0 && sample_spacing <= 0.25) {

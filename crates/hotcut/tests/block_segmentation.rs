@@ -1,0 +1,218 @@
+//! The `BlockSegmentation` task end to end: files and their format, identical
+//! `blocks.json` for 1 and 2 threads, and bad jobs rejected with a pointer.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{expect_invalid, hotcut, stderr, write};
+use hotcut::load::load_job;
+use hotcut::run::run_job;
+use hotcut::NoProgress;
+
+fn torus() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/meshes/torus.obj")
+        .canonicalize()
+        .unwrap()
+}
+
+fn job(task: &str, extra: &str) -> String {
+    format!(
+        r#"Job(
+    name: "t",
+    units: Metre,
+    surface: Mesh(path: "{}", closed: true),
+    block: Block(size: (0.8, 0.8, 0.8)),
+    task: {task},
+    outputs: [Report, Blocks, Svg, Obj, Gltf],
+    seed: 5,
+    {extra}
+)"#,
+        torus().display()
+    )
+}
+
+const SMALL: &str = "BlockSegmentation(restarts: 3, max_iterations: 6, sample_spacing: 0.125)";
+
+#[test]
+fn runs_and_writes_every_file() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "job.ron", &job(SMALL, ""));
+    let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("(BlockSegmentation):"), "{stdout}");
+    let out = dir.path().join("out/t");
+    for f in [
+        "report.json",
+        "blocks.json",
+        "progress.svg",
+        "blocks.obj",
+        "model.gltf",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    let blocks: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("blocks.json")).unwrap()).unwrap();
+    let list = blocks["blocks"].as_array().unwrap();
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let seg = &report["segmentation"];
+    assert_eq!(list.len() as u64, seg["final_blocks"].as_u64().unwrap());
+    assert!(seg["final_blocks"].as_u64() <= seg["initial_blocks"].as_u64());
+    assert_eq!(seg["seed"].as_u64(), Some(5));
+    assert_eq!(seg["restarts"].as_array().unwrap().len(), 3);
+    assert!(seg["history"].as_array().unwrap().len() >= 2);
+    for b in list {
+        let q: Vec<f64> = b["rotation"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        let norm = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+        assert!((norm - 1.0).abs() < 1e-6 && q[0] >= 0.0, "{q:?}");
+        assert_eq!(b["center"].as_array().unwrap().len(), 3);
+        for s in b["size"].as_array().unwrap() {
+            assert!((s.as_f64().unwrap() - 0.8).abs() < 1e-9);
+        }
+    }
+    let obj = std::fs::read_to_string(out.join("blocks.obj")).unwrap();
+    assert_eq!(
+        obj.lines().filter(|l| l.starts_with("v ")).count(),
+        8 * list.len()
+    );
+    let svg = std::fs::read_to_string(out.join("progress.svg")).unwrap();
+    assert!(svg.contains("blocks per iteration"));
+}
+
+/// Same job and seed: identical `blocks.json` (and report) with 1 and with 2 threads.
+#[test]
+fn one_and_two_threads_give_identical_blocks() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "job.ron", &job(SMALL, ""));
+    let job = load_job(&path).unwrap();
+    let run = |threads: usize| -> (Vec<u8>, Vec<u8>) {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let out = dir.path().join(format!("out{threads}"));
+        let o = pool.install(|| run_job(&job, &out, &NoProgress)).unwrap();
+        (
+            std::fs::read(o.dir.join("blocks.json")).unwrap(),
+            std::fs::read(o.dir.join("report.json")).unwrap(),
+        )
+    };
+    let (b1, r1) = run(1);
+    let (b2, r2) = run(2);
+    assert!(b1 == b2, "blocks.json differs between 1 and 2 threads");
+    assert!(r1 == r2, "report.json differs between 1 and 2 threads");
+    assert!(b1.len() > 100);
+}
+
+#[test]
+fn bad_block_segmentation_jobs_are_rejected_with_a_pointer() {
+    let cases: &[(&str, &str, &[&str])] = &[
+        (
+            "BlockSegmentation(p: 0.5)",
+            "",
+            &["/task/BlockSegmentation/p"],
+        ),
+        (
+            "BlockSegmentation(epsilon: 0)",
+            "",
+            &["/task/BlockSegmentation/epsilon"],
+        ),
+        (
+            "BlockSegmentation(epsilon: NaN)",
+            "",
+            &["/task/BlockSegmentation/epsilon"],
+        ),
+        (
+            "BlockSegmentation(restarts: 0)",
+            "",
+            &["/task/BlockSegmentation/restarts"],
+        ),
+        (
+            "BlockSegmentation(max_iterations: 0)",
+            "",
+            &["/task/BlockSegmentation/max_iterations"],
+        ),
+        (
+            "BlockSegmentation(time_limit: Some(-1))",
+            "",
+            &["/task/BlockSegmentation/time_limit"],
+        ),
+        (
+            "BlockSegmentation(sample_spacing: 0.5)",
+            "",
+            &["/task/BlockSegmentation/sample_spacing"],
+        ),
+        (
+            "BlockSegmentation(operations: [])",
+            "",
+            &["/task/BlockSegmentation/operations"],
+        ),
+        (
+            "BlockSegmentation(operations: [Translate, Translate])",
+            "",
+            &["/task/BlockSegmentation/operations/1", "twice"],
+        ),
+        ("BlockSegmentation(operations: [Shear])", "", &["Shear"]),
+        ("BlockSegmentation(colour: 1)", "", &["colour"]),
+    ];
+    for (task, extra, needles) in cases {
+        expect_invalid(&job(task, extra), needles);
+    }
+    // An open mesh, a height field, no block, a placed block, a negative size.
+    let t = torus().display().to_string();
+    expect_invalid(
+        &format!(
+            r#"Job(name: "t", surface: Mesh(path: "{t}"), block: Block(size: (1, 1, 1)), task: BlockSegmentation())"#
+        ),
+        &["/surface/Mesh/closed"],
+    );
+    expect_invalid(
+        r#"Job(name: "t", surface: HeightField(z: "x", x: (0, 1), y: (0, 1)), block: Block(size: (1, 1, 1)), task: BlockSegmentation())"#,
+        &["/surface", "closed triangle mesh"],
+    );
+    expect_invalid(
+        &format!(
+            r#"Job(name: "t", surface: Mesh(path: "{t}", closed: true), task: BlockSegmentation())"#
+        ),
+        &["/block"],
+    );
+    expect_invalid(
+        &format!(
+            r#"Job(name: "t", surface: Mesh(path: "{t}", closed: true), block: Block(size: (1, 1, 1), origin: Some((0, 0, 0))), task: BlockSegmentation())"#
+        ),
+        &["/block/origin"],
+    );
+    expect_invalid(
+        &format!(
+            r#"Job(name: "t", surface: Mesh(path: "{t}", closed: true), block: Block(size: (1, -1, 1)), task: BlockSegmentation())"#
+        ),
+        &["/block/size/1"],
+    );
+    // Outputs of other tasks.
+    expect_invalid(
+        &format!(
+            r#"Job(name: "t", surface: Mesh(path: "{t}", closed: true), block: Block(size: (1, 1, 1)), task: BlockSegmentation(), outputs: [Rapid])"#
+        ),
+        &["/outputs/0"],
+    );
+}
+
+/// A block far too small for the model: a clear error, no output folder.
+#[test]
+fn too_small_blocks_fail_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = job(SMALL, "").replace("(0.8, 0.8, 0.8)", "(0.002, 0.002, 0.002)");
+    write(dir.path(), "job.ron", &text);
+    let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("samples needed"), "{}", stderr(&o));
+    assert!(!dir.path().join("out/t").exists());
+}
