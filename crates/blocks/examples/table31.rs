@@ -56,6 +56,18 @@ fn edge_for(mesh: &TriMesh, target: usize) -> Result<(f64, usize), blocks::Block
         }
         edge *= (n as f64 / target as f64).powf(0.4);
     }
+    // The count jumps with the edge (grid layers appear and vanish); scan around.
+    let err = |n: usize| (n as f64 / target as f64 - 1.0).abs();
+    if err(best.1) > 0.05 {
+        let centre = best.0;
+        for k in 0..=40 {
+            let e = centre * (0.8 + 0.01 * k as f64);
+            let n = initial(mesh, e)?;
+            if err(n) < err(best.1) {
+                best = (e, n);
+            }
+        }
+    }
     Ok(best)
 }
 

@@ -7,7 +7,8 @@
 //! //   surface: Mesh(path: "../../shared/data/meshes/torus.obj", closed: true),
 //! //   block: Block(size: (0.55, 0.55, 0.55)),
 //! //   task: BlockSegmentation(restarts: 2, coverage: Solid),
-//! let job = hotcut::load::load_job(std::path::Path::new("jobs/blocks-torus.ron"))?;
+//! let job = hotcut::load::load_job(std::path::Path::new("jobs/blocks-torus.ron"))
+//!     .map_err(|errors| format!("{errors:?}"))?;
 //! let outcome = hotcut::run::run_job(&job, std::path::Path::new("out"), &hotcut::NoProgress)?;
 //! println!("{:?}", outcome.files);
 //! # Ok(()) }
