@@ -2,9 +2,9 @@
 //! alone covers and returns new poses under which those samples stay covered.
 //!
 //! "Covered" uses the block shrunk by the sampling margin, so every proposal works with
-//! the shrunk half sizes `h' = h − margin`, less a rounding guard of [`GUARD`] × h so that
+//! the shrunk half sizes `h' = h − margin`, less a rounding guard of [`GUARD`](crate::moves::GUARD) × h so that
 //! points placed on a face stay inside after the transform is rounded. Callers still
-//! verify every proposal on the points ([`keeps`]).
+//! verify every proposal on the points ([`keeps`](crate::moves::keeps)).
 
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 

@@ -1,7 +1,7 @@
 //! A segmentation in progress: the blocks, how many blocks cover each sample, and the
 //! objective E of eq. 3.3.
 //!
-//! Every change goes through [`State::place`] or [`State::remove`], which keep the cover
+//! Every change goes through [`State::place`](crate::state::State::place) or [`State::remove`](crate::state::State::remove), which keep the cover
 //! counts exact and (in debug builds) assert that every sample the change touched is
 //! still covered: the invariant "every sample covered" holds after every operation.
 
