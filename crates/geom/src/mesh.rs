@@ -11,6 +11,23 @@ use nalgebra::Vector3;
 use crate::bbox::Aabb;
 use crate::error::{GeomError, Result};
 
+/// Outward-facing triangles of a box whose corners are numbered by bits (bit 0: +x,
+/// bit 1: +y, bit 2: +z side), for boxes in a right-handed frame.
+pub const BOX_FACES: [[u32; 3]; 12] = [
+    [0, 2, 1],
+    [1, 2, 3],
+    [4, 5, 6],
+    [5, 7, 6],
+    [0, 1, 4],
+    [1, 5, 4],
+    [2, 6, 3],
+    [3, 6, 7],
+    [0, 4, 2],
+    [2, 4, 6],
+    [1, 3, 5],
+    [3, 7, 5],
+];
+
 /// An indexed triangle mesh.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TriMesh {

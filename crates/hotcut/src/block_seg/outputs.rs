@@ -45,27 +45,13 @@ pub fn render(run: &Rc<BlockSegRun>, o: &OutputSpec) -> Vec<Render<'static>> {
     }
 }
 
-/// Triangles of a box whose corners are numbered as [`blocks::Cuboid::corners`],
-/// outward-facing.
-const BOX_FACES: [[u32; 3]; 12] = [
-    [0, 2, 1],
-    [1, 2, 3],
-    [4, 5, 6],
-    [5, 7, 6],
-    [0, 1, 4],
-    [1, 5, 4],
-    [2, 6, 3],
-    [3, 6, 7],
-    [0, 4, 2],
-    [2, 4, 6],
-    [1, 3, 5],
-    [3, 7, 5],
-];
-
 /// A block as a closed box mesh.
 fn block_mesh(p: &Placement) -> export::Result<TriMesh> {
-    TriMesh::try_new(p.cuboid().corners().to_vec(), BOX_FACES.to_vec())
-        .map_err(|e| export::ExportError::Io(std::io::Error::other(e.to_string())))
+    TriMesh::try_new(
+        p.cuboid().corners().to_vec(),
+        geom::mesh::BOX_FACES.to_vec(),
+    )
+    .map_err(|e| export::ExportError::Io(std::io::Error::other(e.to_string())))
 }
 
 fn obj(run: &BlockSegRun, buf: &mut Vec<u8>) -> export::Result<()> {

@@ -374,10 +374,7 @@ pub(crate) fn box_mesh(
             + frame.v * if i & 4 != 0 { s[2] } else { 0.0 }
     };
     let positions: Vec<[f32; 3]> = (0..8).map(|i| f32s(&corner(i))).collect();
-    let indices = vec![
-        0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6,
-        1, 3, 5, 3, 7, 5,
-    ];
+    let indices = geom::mesh::BOX_FACES.iter().flatten().copied().collect();
     Mesh {
         name,
         positions,
