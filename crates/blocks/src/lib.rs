@@ -403,7 +403,8 @@ pub fn initial_grid(
     half: &Vector3<f64>,
     samples: &samples::Samples,
 ) -> Vec<Cuboid> {
-    moves::grid_over(frame, half, samples.margin)
+    moves::Grid::over(frame, half, samples.margin)
+        .blocks()
         .into_iter()
         .filter(|b| {
             let mut any = false;

@@ -9,7 +9,7 @@
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 
 use crate::cuboid::Cuboid;
-use crate::obb::{min_box, BoxFit};
+use crate::obb::{box_in_frame, min_box, BoxFit};
 
 /// The six permutations of three axes, identity first.
 const PERMUTATIONS: [[usize; 3]; 6] = [
@@ -79,51 +79,142 @@ pub fn rotations(b: &Cuboid, exclusive: &[Vector3<f64>], margin: f64) -> Vec<Cub
         .collect()
 }
 
-/// §3.3.4: a regular grid of blocks over the minimal box of `group_exclusive`, or `None`
-/// when it needs more than `available` blocks. The grid is centred on the box; its shrunk
-/// blocks tile it exactly.
+/// §3.3.4: a regular grid of blocks over the minimal box of `group_exclusive`, keeping
+/// only the grid blocks that cover some of those points, or `None` when that needs more
+/// than `available` blocks. The grid is centred on the box; its shrunk blocks tile it
+/// exactly.
+///
+/// Two refinements of the thesis, which counts every cell of a grid over the minimal box:
+/// cells holding none of the points are not counted (they would be removed at once), and
+/// besides the minimal box, the boxes of the points in the orientations `frames` (the
+/// group's blocks) are tried, the grid needing the fewest blocks winning (ties: the
+/// minimal box, then `frames` in order) — the box of least volume is not always the one
+/// of fewest cells, and an aligned neighbourhood can stay aligned.
 pub fn alignment(
     half: &Vector3<f64>,
     group_exclusive: &[Vector3<f64>],
     margin: f64,
     available: usize,
+    frames: &[UnitQuaternion<f64>],
 ) -> Option<Vec<Cuboid>> {
-    let fit = min_box(group_exclusive)?;
-    let grid = grid_over(&fit, half, margin);
+    let min = min_box(group_exclusive)?;
+    // Candidate orientations, each once (aligned neighbourhoods share them).
+    let mut candidates = vec![min.rotation];
+    for r in frames {
+        if candidates.iter().all(|t| t.angle_to(r) >= 1e-9) {
+            candidates.push(*r);
+        }
+    }
+    // The orientation is chosen on an evenly thinned subset (the choice is a heuristic;
+    // the grid of the chosen one is then built and counted on every point).
+    let stride = group_exclusive.len().div_ceil(SELECTION_POINTS).max(1);
+    let subset: Vec<Vector3<f64>> = group_exclusive.iter().step_by(stride).copied().collect();
+    let grid_in = |pts: &[Vector3<f64>], k: usize| {
+        let fit = if k == 0 && pts.len() == group_exclusive.len() {
+            min
+        } else {
+            box_in_frame(pts, candidates[k])
+        };
+        Grid::over(&fit, half, margin).occupied(pts)
+    };
+    let mut best = (usize::MAX, 0);
+    for k in 0..candidates.len() {
+        let n = grid_in(&subset, k).len();
+        if n < best.0 {
+            best = (n, k);
+        }
+    }
+    let grid = grid_in(group_exclusive, best.1);
     (grid.len() <= available).then_some(grid)
 }
 
-/// A regular grid of blocks over a box, centred on it, whose blocks shrunk by `margin`
-/// tile it exactly; the block axes are assigned to the box's axes to need the fewest
-/// blocks.
-pub fn grid_over(fit: &BoxFit, half: &Vector3<f64>, margin: f64) -> Vec<Cuboid> {
-    let shrunk = shrunk_half(half, margin);
-    let fax = fit.axes();
-    // The axis assignment needing the fewest blocks (ties: first permutation).
-    let mut best: Option<(usize, [usize; 3], Matrix3<f64>)> = None;
-    for perm in PERMUTATIONS {
-        let n = [0, 1, 2].map(|k| cells(fit.size[perm[k]], 2.0 * shrunk[k]));
-        let total = n[0] * n[1] * n[2];
-        if best.as_ref().is_none_or(|(t, ..)| total < *t) {
-            best = Some((total, n, permuted(&fax, perm)));
-        }
-    }
-    let Some((total, n, axes)) = best else {
-        return Vec::new();
-    };
-    let rotation = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(axes));
-    let mut out = Vec::with_capacity(total);
-    for i in 0..n[0] {
-        for j in 0..n[1] {
-            for k in 0..n[2] {
-                let idx = [i, j, k];
-                let offset =
-                    Vector3::from_fn(|a, _| (2.0 * idx[a] as f64 + 1.0 - n[a] as f64) * shrunk[a]);
-                out.push(Cuboid::new(fit.center + axes * offset, rotation, *half));
+/// Most points the alignment's choice of orientation looks at.
+const SELECTION_POINTS: usize = 4096;
+
+/// A regular grid of blocks over a box, centred on it, whose blocks shrunk by the margin
+/// tile it exactly.
+#[derive(Debug, Clone, Copy)]
+pub struct Grid {
+    center: Vector3<f64>,
+    axes: Matrix3<f64>,
+    rotation: UnitQuaternion<f64>,
+    cells: [usize; 3],
+    half: Vector3<f64>,
+    shrunk: Vector3<f64>,
+}
+
+impl Grid {
+    /// The grid over `fit` with the block axes assigned to the box's axes so it needs the
+    /// fewest blocks (ties: the first permutation).
+    pub fn over(fit: &BoxFit, half: &Vector3<f64>, margin: f64) -> Self {
+        let shrunk = shrunk_half(half, margin);
+        let fax = fit.axes();
+        let mut best: Option<(usize, [usize; 3], [usize; 3])> = None;
+        for perm in PERMUTATIONS {
+            let n = [0, 1, 2].map(|k| cells(fit.size[perm[k]], 2.0 * shrunk[k]));
+            let total = n[0] * n[1] * n[2];
+            if best.as_ref().is_none_or(|(t, ..)| total < *t) {
+                best = Some((total, n, perm));
             }
         }
+        let (_, cells, perm) = best.unwrap_or((1, [1; 3], PERMUTATIONS[0]));
+        let axes = permuted(&fax, perm);
+        Self {
+            center: fit.center,
+            axes,
+            rotation: UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(axes)),
+            cells,
+            half: *half,
+            shrunk,
+        }
     }
-    out
+
+    /// The block of cell `idx`.
+    fn block(&self, idx: [usize; 3]) -> Cuboid {
+        let offset = Vector3::from_fn(|a, _| {
+            (2.0 * idx[a] as f64 + 1.0 - self.cells[a] as f64) * self.shrunk[a]
+        });
+        Cuboid::new(self.center + self.axes * offset, self.rotation, self.half)
+    }
+
+    /// Every block of the grid.
+    pub fn blocks(&self) -> Vec<Cuboid> {
+        let n = self.cells;
+        let mut out = Vec::with_capacity(n[0] * n[1] * n[2]);
+        for i in 0..n[0] {
+            for j in 0..n[1] {
+                for k in 0..n[2] {
+                    out.push(self.block([i, j, k]));
+                }
+            }
+        }
+        out
+    }
+
+    /// The blocks of the cells holding some of `pts` (each point in the cell its
+    /// coordinates fall in, clamped to the grid), in cell order.
+    pub fn occupied(&self, pts: &[Vector3<f64>]) -> Vec<Cuboid> {
+        let n = self.cells;
+        let mut used = vec![false; n[0] * n[1] * n[2]];
+        let scale = self.shrunk.map(|s| 0.5 / s);
+        let shift = Vector3::new(n[0] as f64, n[1] as f64, n[2] as f64) / 2.0;
+        let cell = |x: f64, a: usize| (x.max(0.0) as usize).min(n[a] - 1);
+        for p in pts {
+            let f = (self.axes.tr_mul(&(p - self.center))).component_mul(&scale) + shift;
+            used[(cell(f.x, 0) * n[1] + cell(f.y, 1)) * n[2] + cell(f.z, 2)] = true;
+        }
+        let mut out = Vec::new();
+        for i in 0..n[0] {
+            for j in 0..n[1] {
+                for k in 0..n[2] {
+                    if used[(i * n[1] + j) * n[2] + k] {
+                        out.push(self.block([i, j, k]));
+                    }
+                }
+            }
+        }
+        out
+    }
 }
 
 /// Blocks of pitch `pitch` needed to span `length` (at least one).
@@ -228,12 +319,47 @@ mod tests {
             let half = Vector3::new(0.5, 0.5, 0.5);
             let m = 0.05;
             let pts: Vec<Vector3<f64>> = fr.iter().map(|f| Vector3::new(f[0] * ext[0], f[1] * ext[1] - f[0], f[2] * ext[2])).collect();
-            let grid = alignment(&half, &pts, m, usize::MAX).unwrap();
+            let grid = alignment(&half, &pts, m, usize::MAX, &[]).unwrap();
             for p in &pts {
                 prop_assert!(grid.iter().any(|g| g.contains(p, m - 1e-9)));
             }
-            prop_assert!(alignment(&half, &pts, m, grid.len() - 1).is_none());
+            prop_assert!(alignment(&half, &pts, m, grid.len() - 1, &[]).is_none());
         }
+    }
+
+    /// Cells holding no point are not counted: an L of points over a 2 × 2 grid needs 3.
+    #[test]
+    fn alignment_counts_occupied_cells_only() {
+        let half = Vector3::repeat(0.5);
+        let mut pts = Vec::new();
+        for (x, y) in [(0.1, 0.1), (1.9, 0.1), (0.1, 1.9), (0.9, 0.2), (0.2, 0.9)] {
+            pts.push(Vector3::new(x, y, 0.0));
+            pts.push(Vector3::new(x, y, 0.9));
+        }
+        let frame = UnitQuaternion::identity();
+        let grid = alignment(&half, &pts, 0.0, 3, &[frame]).unwrap();
+        assert_eq!(grid.len(), 3);
+        assert!(keeps(&grid, &pts, 0.0));
+        assert!(alignment(&half, &pts, 0.0, 2, &[frame]).is_none());
+    }
+
+    /// A block-aligned orientation among the frames wins over a tilted minimal box when
+    /// it needs fewer blocks.
+    #[test]
+    fn alignment_tries_the_given_frames() {
+        let half = Vector3::repeat(0.5);
+        // A 2 × 1 × 1 slab of points (exactly two blocks axis-aligned).
+        let mut pts = Vec::new();
+        for i in 0..=20 {
+            for j in 0..=10 {
+                for k in 0..=10 {
+                    pts.push(Vector3::new(i as f64, j as f64, k as f64) * 0.0999);
+                }
+            }
+        }
+        let grid = alignment(&half, &pts, 0.0, usize::MAX, &[UnitQuaternion::identity()]).unwrap();
+        assert_eq!(grid.len(), 2);
+        assert!(keeps(&grid, &pts, 0.0));
     }
 
     #[test]

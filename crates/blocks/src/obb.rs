@@ -82,14 +82,32 @@ pub fn min_box(points: &[Vector3<f64>]) -> Option<BoxFit> {
     }
     let (_, frame) = best?;
     // The frame was chosen on a subset; the box bounds every point.
-    let (lo, hi) = local_bounds(&frame, points);
-    let center = frame * ((lo + hi) / 2.0);
     let rotation = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(frame));
-    Some(BoxFit {
-        center,
+    Some(box_with(points, &frame, rotation))
+}
+
+/// The box around `points` with the given orientation (its axes are `rotation`'s columns).
+/// Points must be non-empty and finite.
+pub fn box_in_frame(points: &[Vector3<f64>], rotation: UnitQuaternion<f64>) -> BoxFit {
+    box_with(
+        points,
+        &rotation.to_rotation_matrix().into_inner(),
+        rotation,
+    )
+}
+
+/// The box around `points` along the columns of `frame` (`rotation` as a matrix).
+fn box_with(
+    points: &[Vector3<f64>],
+    frame: &Matrix3<f64>,
+    rotation: UnitQuaternion<f64>,
+) -> BoxFit {
+    let (lo, hi) = local_bounds(frame, points);
+    BoxFit {
+        center: frame * ((lo + hi) / 2.0),
         rotation,
         size: hi - lo,
-    })
+    }
 }
 
 /// Columns per axis of the grid [`extremes`] thins points with.

@@ -62,6 +62,9 @@ pub fn run(
     }];
     let mut iteration = 0usize;
     let mut quiet_alignments = 0;
+    // Blocks after the previous alignment pass: a round (alignment and the move cycles
+    // after it) that removed nothing counts as a quiet alignment.
+    let mut after_last_alignment = usize::MAX;
     let capped = |iteration: usize| -> Option<StopReason> {
         if iteration >= params.max_iterations as usize {
             Some(StopReason::IterationCap)
@@ -110,8 +113,10 @@ pub fn run(
             break s;
         }
         iteration += 1;
-        let removed = align_pass(state, &mut rng, &mut accepted);
+        align_pass(state, &mut rng, &mut accepted);
         record(state, iteration, Phase::Align);
+        let removed = after_last_alignment.saturating_sub(state.len());
+        after_last_alignment = state.len();
         if removed == 0 {
             quiet_alignments += 1;
             if quiet_alignments >= 2 {
@@ -252,7 +257,8 @@ fn align_pass(state: &mut State<'_>, rng: &mut ChaCha8Rng, acc: &mut Acceptance)
             continue;
         }
         let pts = state.points(&exclusive);
-        let Some(poses) = moves::alignment(&b.half, &pts, margin, group.len())
+        let frames: Vec<_> = group.iter().map(|&j| state.blocks[j].rotation).collect();
+        let Some(poses) = moves::alignment(&b.half, &pts, margin, group.len(), &frames)
             .filter(|poses| moves::keeps(poses, &pts, margin))
         else {
             continue;
