@@ -309,6 +309,21 @@ fn spline_grid_points(s: &BSplineSurface, n: usize) -> (Vec<Vector3<f64>>, Vec<(
     (pts, uv)
 }
 
+impl BSplineSurface {
+    /// The surface tessellated on an `n × n` grid of its parameter domain (`n ≥ 2`).
+    ///
+    /// # Errors
+    /// [`GeomError::InvalidDomain`] for `n < 2`; mesh errors for a degenerate grid.
+    pub fn to_mesh(&self, n: usize) -> Result<TriMesh> {
+        if n < 2 {
+            return Err(GeomError::InvalidDomain(format!(
+                "a tessellation needs at least 2 samples per side, got {n}"
+            )));
+        }
+        Ok(spline_grid_mesh(self, n)?.0)
+    }
+}
+
 pub(crate) fn spline_grid_mesh(s: &BSplineSurface, n: usize) -> Result<(TriMesh, Vec<(f64, f64)>)> {
     let (pts, uv) = spline_grid_points(s, n);
     let mut faces = Vec::with_capacity(2 * (n - 1) * (n - 1));

@@ -1,0 +1,415 @@
+//! Hot-wire pre-cuts before milling (thesis ch. 2).
+//!
+//! A block with a design surface inside is to be milled down to the surface. Before
+//! milling, a hot wire removes the bulk: a few straight through-cuts per cutting
+//! direction, each sweeping a ruled surface, that together leave a piecewise ruled cap
+//! above the design surface — never below it. [`pre_cut`] finds the cuts that leave the
+//! least material (eq. 2.11) and reports the volumes of Table 2.1.
+//!
+//! ```
+//! use geom::{expr::Expr, heightfield::HeightField, surface::Surface};
+//! use ruled::{pre_cut, Block, Params};
+//!
+//! let bump = HeightField::try_new(Expr::parse("0.5 + 0.3*exp(-8*(x*x + y*y))")?, (-1.0, 1.0), (-1.0, 1.0))?;
+//! let block = Block { min: [-1.0, -1.0, 0.0], max: [1.0, 1.0, 1.0] };
+//! let params = Params { sections: 12, samples: 12, ..Params::default() };
+//! let cut = pre_cut(&Surface::HeightField(bump), &block, &params, &|_| {})?;
+//! assert!(cut.volumes.ruled < cut.volumes.convex_hull);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! Modules:
+//! - [`error`]: the error type.
+//! - [`frame`]: the block and a cutting direction's `(u, w, z)` frame.
+//! - [`height`]: the design surface as a height function (exact or by mesh).
+//! - [`legs`]: the moving polygon by its legs' lines, B-splines along the cut.
+//! - [`solve`]: the alternating convex-QP optimization with constraint exchange.
+//! - [`volume`]: the volumes of Table 2.1.
+
+pub mod error;
+pub mod frame;
+pub mod height;
+pub mod legs;
+pub mod solve;
+pub mod volume;
+
+use schemars::JsonSchema;
+use serde::Serialize;
+
+pub use error::{PreCutError, Result};
+pub use frame::{Block, CutFrame};
+pub use height::Height;
+pub use volume::Volumes;
+
+use geom::surface::Surface;
+use legs::Legs;
+use solve::{Point, SolveOptions};
+
+/// Parameters of [`pre_cut`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Params {
+    /// Cuts (legs of the moving polygon) per direction (≥ 1).
+    pub legs: usize,
+    /// Cutting directions in the `xy` plane (any, not only the axes).
+    pub directions: Vec<[f64; 2]>,
+    /// B-spline degree of the legs along the cut (thesis `p`).
+    pub degree: usize,
+    /// Control values per leg coefficient along the cut (thesis `k`, ≥ degree + 1).
+    pub controls: usize,
+    /// Section planes along the cut (thesis `N`).
+    pub sections: usize,
+    /// Samples per section across the block (thesis `M`).
+    pub samples: usize,
+    /// Most assignment rounds.
+    pub max_rounds: usize,
+    /// Density factor of the check grid against the samples, per direction.
+    pub check_density: usize,
+    /// Clearance kept above the constraint points, relative to the block's longest edge.
+    pub margin: f64,
+    /// Grid cells per side for the volumes.
+    pub volume_grid: usize,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Self {
+            legs: 4,
+            directions: vec![[1.0, 0.0]],
+            degree: 3,
+            controls: 8,
+            sections: 30,
+            samples: 30,
+            max_rounds: 40,
+            check_density: 8,
+            margin: 1e-5,
+            volume_grid: 200,
+        }
+    }
+}
+
+/// The cut polygon in one section plane.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct SectionPolygon {
+    /// Plane offset `u` along the cutting direction.
+    pub offset: f64,
+    /// Vertices in model coordinates, from one side of the block to the other.
+    pub polygon: Vec<[f64; 3]>,
+    /// The leg (cut) of each edge.
+    pub legs: Vec<usize>,
+}
+
+/// One leg's line in a section: `z = a + m·s`, `s = (w − w_mid)/w_half`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+pub struct LegLine {
+    /// Height at the block's middle `w`.
+    pub a: f64,
+    /// Rise over half the block's width.
+    pub m: f64,
+}
+
+/// The cuts of one direction.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct DirectionCut {
+    /// Unit cutting direction `[dx, dy, 0]`.
+    pub direction: [f64; 3],
+    /// Unit direction across the block `[−dy, dx, 0]`.
+    pub across: [f64; 3],
+    /// `u` range of the block.
+    pub u: (f64, f64),
+    /// `w` range of the block.
+    pub w: (f64, f64),
+    /// The polygon at `sections + 1` equally spaced planes from block end to block end.
+    pub sections: Vec<SectionPolygon>,
+    /// Every leg's line at the same planes: `lines[section][leg]`.
+    pub lines: Vec<Vec<LegLine>>,
+    /// Assignment rounds.
+    pub rounds: usize,
+    /// QPs solved.
+    pub qps: usize,
+    /// Constraint points at the end.
+    pub constraint_points: usize,
+    /// `Σ (cut − f)²` over the samples, per round (block-scale units).
+    pub objective_history: Vec<f64>,
+    /// Least height of a leg above the design on the check grid (model units, > 0).
+    pub clearance: f64,
+}
+
+/// The result of [`pre_cut`].
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct PreCut {
+    /// Per direction.
+    pub directions: Vec<DirectionCut>,
+    /// Table 2.1.
+    pub volumes: Volumes,
+    /// Design samples used per direction (inside the block and over the surface).
+    pub samples: usize,
+}
+
+/// Progress of [`pre_cut`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Progress {
+    /// Direction index.
+    pub direction: usize,
+    /// Assignment round.
+    pub round: usize,
+    /// Objective after it.
+    pub objective: f64,
+}
+
+/// Finds the pre-cuts of `surface` in `block`.
+///
+/// # Errors
+/// [`PreCutError::InvalidParameter`] for bad parameters; [`PreCutError::Placement`] when
+/// the surface leaves the block or nothing of it is over the block;
+/// [`PreCutError::Solver`] / [`PreCutError::NotVerified`] from the optimization.
+pub fn pre_cut(
+    surface: &Surface,
+    block: &Block,
+    params: &Params,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> Result<PreCut> {
+    validate(block, params)?;
+    let height = Height::new(surface)?;
+    let scale = block.scale();
+    let z_top = block.max[2];
+    let mut directions = Vec::new();
+    let mut samples_used = 0;
+    for (di, &dir) in params.directions.iter().enumerate() {
+        let frame = CutFrame::new(dir, block)?;
+        // Normalised heights: (z − z_top)/scale, so the numbers the QP sees are O(1).
+        let norm = |z: f64| (z - z_top) / scale;
+        let samples = grid_points(
+            &frame,
+            &height,
+            params.sections,
+            params.samples,
+            false,
+            block,
+        )?;
+        let check = grid_points(
+            &frame,
+            &height,
+            params.sections * params.check_density,
+            params.samples * params.check_density,
+            true,
+            block,
+        )?;
+        if samples.is_empty() {
+            return Err(PreCutError::Placement(
+                "no part of the surface lies over the block".into(),
+            ));
+        }
+        samples_used = samples.len();
+        let to_norm = |p: &Point| Point { f: norm(p.f), ..*p };
+        let samples: Vec<Point> = samples.iter().map(to_norm).collect();
+        let check: Vec<Point> = check.iter().map(to_norm).collect();
+        let legs = Legs::new(
+            params.legs,
+            params.degree,
+            params.controls,
+            frame.u,
+            frame.w,
+        );
+        let solved = solve::solve(
+            &legs,
+            &samples,
+            &check,
+            &SolveOptions {
+                margin: params.margin,
+                max_rounds: params.max_rounds,
+                max_exchanges: 50,
+                proximal: 1e-8,
+                direction: di,
+            },
+            &|round, objective| {
+                progress(Progress {
+                    direction: di,
+                    round,
+                    objective,
+                })
+            },
+        )?;
+        // Back to model units: a = z_top + scale·a', m = scale·m'.
+        let x: Vec<f64> = solved
+            .x
+            .iter()
+            .enumerate()
+            .map(|(i, v)| {
+                let is_a = (i / params.controls) % 2 == 0;
+                if is_a {
+                    z_top + scale * v
+                } else {
+                    scale * v
+                }
+            })
+            .collect();
+        let mut sections = Vec::new();
+        let mut lines = Vec::new();
+        for s in 0..=params.sections {
+            let u = frame.u.0 + (frame.u.1 - frame.u.0) * s as f64 / params.sections as f64;
+            let Some((w0, w1)) = frame.chord(u) else {
+                continue;
+            };
+            let (verts, which) = legs.polygon(&x, u, w0, w1);
+            let polygon = verts
+                .iter()
+                .map(|&(w, z)| {
+                    let p = frame.xy(u, w);
+                    [p.x, p.y, z]
+                })
+                .collect();
+            let basis = legs.basis(u);
+            lines.push(
+                (0..params.legs)
+                    .map(|j| {
+                        let (a, m) = legs.line(&x, &basis, j);
+                        LegLine { a, m }
+                    })
+                    .collect(),
+            );
+            sections.push(SectionPolygon {
+                offset: u,
+                polygon,
+                legs: which,
+            });
+        }
+        directions.push((
+            frame,
+            legs,
+            x,
+            DirectionCut {
+                direction: [frame.along.x, frame.along.y, 0.0],
+                across: [frame.across.x, frame.across.y, 0.0],
+                u: frame.u,
+                w: frame.w,
+                sections,
+                lines,
+                rounds: solved.rounds,
+                qps: solved.qps,
+                constraint_points: solved.constraint_points,
+                objective_history: solved.history.iter().map(|o| o * scale * scale).collect(),
+                clearance: solved.clearance * scale,
+            },
+        ));
+    }
+    let cut = |x: f64, y: f64| -> f64 {
+        directions
+            .iter()
+            .map(|(frame, legs, coef, _)| {
+                let p = nalgebra::Vector2::new(x, y);
+                let (u, w) = (frame.along.dot(&p), frame.across.dot(&p));
+                legs.envelope(coef, &legs.basis(u.clamp(frame.u.0, frame.u.1)), w)
+                    .0
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let volumes = volume::volumes(&height, block, params.volume_grid, &cut)?;
+    Ok(PreCut {
+        directions: directions.into_iter().map(|d| d.3).collect(),
+        volumes,
+        samples: samples_used,
+    })
+}
+
+/// Design points on an `n × m` grid of the frame: slab centres (or, with `ends`, evenly
+/// from end to end) along the cut and across each chord, where the surface is over the
+/// block. Checks the surface stays inside the block.
+fn grid_points(
+    frame: &CutFrame,
+    height: &Height,
+    n: usize,
+    m: usize,
+    ends: bool,
+    block: &Block,
+) -> Result<Vec<Point>> {
+    let at = |i: usize, count: usize, lo: f64, hi: f64| {
+        if ends {
+            lo + (hi - lo) * i as f64 / (count - 1).max(1) as f64
+        } else {
+            lo + (hi - lo) * (i as f64 + 0.5) / count as f64
+        }
+    };
+    let count = |c: usize| if ends { c + 1 } else { c };
+    let tol = 1e-9 * block.scale();
+    let mut out = Vec::new();
+    for i in 0..count(n) {
+        let u = at(i, count(n), frame.u.0, frame.u.1);
+        let Some((w0, w1)) = frame.chord(u) else {
+            continue;
+        };
+        for k in 0..count(m) {
+            let w = at(k, count(m), w0, w1);
+            let p = frame.xy(u, w);
+            let Some(f) = height.at(p.x, p.y) else {
+                continue;
+            };
+            if !f.is_finite() || f > block.max[2] + tol || f < block.min[2] - tol {
+                return Err(PreCutError::Placement(format!(
+                    "the surface is at z = {f} over ({:.6}, {:.6}), outside the block's z range [{}, {}]",
+                    p.x, p.y, block.min[2], block.max[2]
+                )));
+            }
+            out.push(Point { u, w, f });
+        }
+    }
+    Ok(out)
+}
+
+fn validate(block: &Block, p: &Params) -> Result<()> {
+    let bad =
+        |name: &'static str, reason: String| Err(PreCutError::InvalidParameter { name, reason });
+    let size = block.size();
+    if !(size.iter().all(|s| s.is_finite() && *s > 0.0) && block.min.iter().all(|v| v.is_finite()))
+    {
+        return bad(
+            "block",
+            format!("size {:?} must be finite and positive", size.as_slice()),
+        );
+    }
+    if p.legs == 0 || p.legs > 32 {
+        return bad("legs", format!("{} must be in 1..=32", p.legs));
+    }
+    if p.directions.is_empty() {
+        return bad("directions", "at least one direction is needed".into());
+    }
+    if p.degree == 0 || p.degree > 5 {
+        return bad("degree", format!("{} must be in 1..=5", p.degree));
+    }
+    if p.controls < p.degree + 1 || p.controls > 64 {
+        return bad(
+            "controls",
+            format!("{} must be in degree + 1 ..= 64", p.controls),
+        );
+    }
+    if p.sections < 2 || p.samples < 2 {
+        return bad(
+            "sections",
+            format!(
+                "N × M = {} × {} must be at least 2 × 2",
+                p.sections, p.samples
+            ),
+        );
+    }
+    if p.sections * p.samples > 250_000 {
+        return bad("sections", "N × M above 250 000".into());
+    }
+    if p.check_density < 2 || p.check_density > 32 {
+        return bad(
+            "check_density",
+            format!("{} must be in 2..=32", p.check_density),
+        );
+    }
+    if !(p.margin.is_finite() && p.margin > 0.0 && p.margin < 0.01) {
+        return bad("margin", format!("{} must be in (0, 0.01)", p.margin));
+    }
+    if p.max_rounds == 0 {
+        return bad("max_rounds", "must be at least 1".into());
+    }
+    if p.volume_grid < 10 || p.volume_grid > 4000 {
+        return bad(
+            "volume_grid",
+            format!("{} must be in 10..=4000", p.volume_grid),
+        );
+    }
+    Ok(())
+}

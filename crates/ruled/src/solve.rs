@@ -1,0 +1,292 @@
+//! The optimization of eq. 2.11 for one cutting direction, in the legs' line form.
+//!
+//! Minimise `Σ (S(u_k, w_k) − f_k)²` over the samples, `S` the lower envelope of the legs,
+//! subject to every leg lying on or above every design point (plus a margin). The only
+//! non-convex part is which leg is lowest where, so the solver alternates (as k-means
+//! does): with each sample assigned to a leg, the problem is a convex QP — solved by
+//! `clarabel`'s interior-point method, the thesis' own solver family ([WB05]) — and then
+//! each sample is reassigned to the leg that is lowest over it. Every iterate is feasible
+//! and the objective never increases (a sample's lowest leg is at most its assigned one,
+//! and all lie above it). A small proximal term keeps legs that no sample is assigned to
+//! where they were, so the QP stays strictly convex.
+//!
+//! The constraint is imposed on a set of points that starts as the samples and grows by
+//! exchange: after each solve the legs are checked on a grid `check_density` times
+//! denser in both directions; points where a leg comes closer than half the margin are
+//! added and the QP is solved again, until none is left.
+
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
+};
+
+use crate::error::{PreCutError, Result};
+use crate::legs::Legs;
+
+/// A design point in frame coordinates (`f` normalised as the caller chose).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Point {
+    /// Along the cut.
+    pub u: f64,
+    /// Across the block.
+    pub w: f64,
+    /// Height of the design surface.
+    pub f: f64,
+}
+
+/// Options of [`solve`] (lengths in the caller's normalised units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolveOptions {
+    /// Clearance every leg keeps above the constraint points.
+    pub margin: f64,
+    /// Most assignment rounds.
+    pub max_rounds: usize,
+    /// Most exchange rounds per assignment round.
+    pub max_exchanges: usize,
+    /// Weight of the proximal term.
+    pub proximal: f64,
+    /// Index of the direction (for errors).
+    pub direction: usize,
+}
+
+/// What [`solve`] found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Solved {
+    /// The unknowns (see [`Legs`]).
+    pub x: Vec<f64>,
+    /// Assignment rounds run.
+    pub rounds: usize,
+    /// QPs solved.
+    pub qps: usize,
+    /// Constraint points at the end (samples and exchanged points).
+    pub constraint_points: usize,
+    /// `Σ (S − f)²` over the samples at the end.
+    pub objective: f64,
+    /// Objective after each round.
+    pub history: Vec<f64>,
+    /// Smallest `leg − f` over the check grid (≥ margin/2 > 0 on success).
+    pub clearance: f64,
+}
+
+/// Runs the alternation from an assignment of the samples to legs by equal `w` strips.
+///
+/// # Errors
+/// [`PreCutError::Solver`] when the QP solver fails; [`PreCutError::NotVerified`] when
+/// the exchange rounds run out with a leg below a check point.
+pub fn solve(
+    legs: &Legs,
+    samples: &[Point],
+    check: &[Point],
+    opt: &SolveOptions,
+    progress: &dyn Fn(usize, f64),
+) -> Result<Solved> {
+    let sample_basis: Vec<Vec<f64>> = samples.iter().map(|p| legs.basis(p.u)).collect();
+    let check_basis: Vec<Vec<f64>> = check.iter().map(|p| legs.basis(p.u)).collect();
+    let mut assign: Vec<usize> = samples
+        .iter()
+        .map(|p| {
+            let t = (legs.s(p.w) + 1.0) / 2.0;
+            ((t * legs.legs as f64).floor().max(0.0) as usize).min(legs.legs - 1)
+        })
+        .collect();
+    let mut constraints: Vec<usize> = Vec::new(); // indices into `check`, beyond the samples
+    let mut x = vec![0.0; legs.unknowns()];
+    let mut history = Vec::new();
+    let mut qps = 0;
+    let mut clearance = f64::NEG_INFINITY;
+    let mut rounds = 0;
+    for round in 0..opt.max_rounds {
+        rounds = round + 1;
+        // Solve with exchange until the check grid is clear.
+        let mut exchanges = 0;
+        loop {
+            x = qp(
+                legs,
+                samples,
+                &sample_basis,
+                &assign,
+                check,
+                &check_basis,
+                &constraints,
+                &x,
+                opt,
+                round,
+            )?;
+            qps += 1;
+            let (worst, low) = check_grid(legs, &x, check, &check_basis, opt.margin / 2.0);
+            clearance = worst;
+            if low.is_empty() {
+                break;
+            }
+            exchanges += 1;
+            if exchanges > opt.max_exchanges {
+                let (excess, leg) = deepest(legs, &x, check, &check_basis);
+                return Err(PreCutError::NotVerified {
+                    direction: opt.direction,
+                    leg,
+                    excess,
+                    tolerance: 0.0,
+                });
+            }
+            constraints.extend(low);
+            constraints.sort_unstable();
+            constraints.dedup();
+        }
+        let objective = objective(legs, &x, samples, &sample_basis);
+        history.push(objective);
+        progress(round, objective);
+        let next: Vec<usize> = samples
+            .iter()
+            .zip(&sample_basis)
+            .map(|(p, b)| legs.envelope(&x, b, p.w).1)
+            .collect();
+        if next == assign {
+            break;
+        }
+        assign = next;
+    }
+    Ok(Solved {
+        objective: history.last().copied().unwrap_or(f64::NAN),
+        x,
+        rounds,
+        qps,
+        constraint_points: samples.len() + constraints.len(),
+        history,
+        clearance,
+    })
+}
+
+/// `Σ (S − f)²` over the samples.
+fn objective(legs: &Legs, x: &[f64], samples: &[Point], basis: &[Vec<f64>]) -> f64 {
+    samples
+        .iter()
+        .zip(basis)
+        .map(|(p, b)| (legs.envelope(x, b, p.w).0 - p.f).powi(2))
+        .sum()
+}
+
+/// The smallest `leg − f` over the check grid and the points where it is below `limit`
+/// for some leg.
+fn check_grid(
+    legs: &Legs,
+    x: &[f64],
+    check: &[Point],
+    basis: &[Vec<f64>],
+    limit: f64,
+) -> (f64, Vec<usize>) {
+    let mut worst = f64::INFINITY;
+    let mut low = Vec::new();
+    for (i, (p, b)) in check.iter().zip(basis).enumerate() {
+        let (h, _) = legs.envelope(x, b, p.w);
+        let gap = h - p.f;
+        worst = worst.min(gap);
+        if gap < limit {
+            low.push(i);
+        }
+    }
+    (worst, low)
+}
+
+/// The deepest violation on the check grid: `(f − leg, leg)`.
+fn deepest(legs: &Legs, x: &[f64], check: &[Point], basis: &[Vec<f64>]) -> (f64, usize) {
+    check
+        .iter()
+        .zip(basis)
+        .map(|(p, b)| {
+            let (h, j) = legs.envelope(x, b, p.w);
+            (p.f - h, j)
+        })
+        .fold((f64::NEG_INFINITY, 0), |a, c| if c.0 > a.0 { c } else { a })
+}
+
+/// One convex QP: least squares of the assigned legs to the samples, proximal term,
+/// every leg above every sample and every exchanged check point by the margin.
+#[allow(clippy::too_many_arguments)]
+fn qp(
+    legs: &Legs,
+    samples: &[Point],
+    sample_basis: &[Vec<f64>],
+    assign: &[usize],
+    check: &[Point],
+    check_basis: &[Vec<f64>],
+    constraints: &[usize],
+    prev: &[f64],
+    opt: &SolveOptions,
+    round: usize,
+) -> Result<Vec<f64>> {
+    let n = legs.unknowns();
+    // P = RᵀR + ρI (dense: n is a few hundred at most), q = −(Rᵀf + ρ·prev).
+    let mut p = vec![0.0; n * n];
+    let mut q: Vec<f64> = prev.iter().map(|v| -opt.proximal * v).collect();
+    for ((pt, b), &j) in samples.iter().zip(sample_basis).zip(assign) {
+        let row = legs.row(b, pt.w, j);
+        for &(c1, v1) in &row {
+            q[c1] -= pt.f * v1;
+            for &(c2, v2) in &row {
+                p[c1 * n + c2] += v1 * v2;
+            }
+        }
+    }
+    for i in 0..n {
+        p[i * n + i] += opt.proximal;
+    }
+    // Upper triangle in CSC.
+    let (mut colptr, mut rowval, mut nzval) = (vec![0], Vec::new(), Vec::new());
+    for c in 0..n {
+        for r in 0..=c {
+            let v = p[r * n + c];
+            if v != 0.0 {
+                rowval.push(r);
+                nzval.push(v);
+            }
+        }
+        colptr.push(rowval.len());
+    }
+    let pm = CscMatrix::new(n, n, colptr, rowval, nzval);
+    // −leg ≤ −(f + margin) for every leg at every constraint point.
+    let points = samples
+        .iter()
+        .zip(sample_basis)
+        .chain(constraints.iter().map(|&i| (&check[i], &check_basis[i])));
+    let mut cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
+    let mut b = Vec::new();
+    for (pt, basis) in points {
+        for j in 0..legs.legs {
+            let r = b.len();
+            for (c, v) in legs.row(basis, pt.w, j) {
+                cols[c].push((r, -v));
+            }
+            b.push(-(pt.f + opt.margin));
+        }
+    }
+    let m = b.len();
+    let (mut colptr, mut rowval, mut nzval) = (vec![0], Vec::new(), Vec::new());
+    for col in &cols {
+        for &(r, v) in col {
+            rowval.push(r);
+            nzval.push(v);
+        }
+        colptr.push(rowval.len());
+    }
+    let am = CscMatrix::new(m, n, colptr, rowval, nzval);
+    let settings = DefaultSettingsBuilder::default()
+        .verbose(false)
+        .build()
+        .map_err(|e| solver_error(format!("{e:?}"), opt, round))?;
+    let cones = [NonnegativeConeT(m)];
+    let mut solver = DefaultSolver::new(&pm, &q, &am, &b, &cones, settings)
+        .map_err(|e| solver_error(format!("{e:?}"), opt, round))?;
+    solver.solve();
+    match solver.solution.status {
+        SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(solver.solution.x.clone()),
+        s => Err(solver_error(format!("{s:?}"), opt, round)),
+    }
+}
+
+fn solver_error(status: String, opt: &SolveOptions, round: usize) -> PreCutError {
+    PreCutError::Solver {
+        status,
+        direction: opt.direction,
+        round,
+    }
+}
