@@ -43,6 +43,11 @@ impl Legs {
         }
     }
 
+    /// The knot vector along the cut (clamped, uniform).
+    pub fn knots(&self) -> &[f64] {
+        &self.knots
+    }
+
     /// Number of unknowns.
     pub fn unknowns(&self) -> usize {
         2 * self.controls * self.legs

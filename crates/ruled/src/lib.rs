@@ -107,6 +107,16 @@ pub struct LegLine {
     pub m: f64,
 }
 
+/// One leg's coefficient functions along the cut as B-spline control values:
+/// `a(u) = Σ B_c(u)·a[c]`, `m(u) = Σ B_c(u)·m[c]` on the direction's knots.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct LegSpline {
+    /// Control values of `a` (model units).
+    pub a: Vec<f64>,
+    /// Control values of `m` (model units).
+    pub m: Vec<f64>,
+}
+
 /// The cuts of one direction.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct DirectionCut {
@@ -118,6 +128,16 @@ pub struct DirectionCut {
     pub u: (f64, f64),
     /// `w` range of the block.
     pub w: (f64, f64),
+    /// B-spline degree of the legs along the cut.
+    pub degree: usize,
+    /// Knots along the cut (`u`), clamped.
+    pub knots: Vec<f64>,
+    /// Middle of the `w` range (`s = (w − w_mid)/w_half`).
+    pub w_mid: f64,
+    /// Half the `w` range.
+    pub w_half: f64,
+    /// Every leg's line as B-splines along the cut: the exact cut surface.
+    pub legs: Vec<LegSpline>,
     /// The polygon at `sections + 1` equally spaced planes from block end to block end.
     pub sections: Vec<SectionPolygon>,
     /// Every leg's line at the same planes: `lines[section][leg]`.
@@ -273,24 +293,33 @@ pub fn pre_cut(
                 legs: which,
             });
         }
-        directions.push((
-            frame,
-            legs,
-            x,
-            DirectionCut {
-                direction: [frame.along.x, frame.along.y, 0.0],
-                across: [frame.across.x, frame.across.y, 0.0],
-                u: frame.u,
-                w: frame.w,
-                sections,
-                lines,
-                rounds: solved.rounds,
-                qps: solved.qps,
-                constraint_points: solved.constraint_points,
-                objective_history: solved.history.iter().map(|o| o * scale * scale).collect(),
-                clearance: solved.clearance * scale,
-            },
-        ));
+        let result = DirectionCut {
+            degree: legs.degree,
+            knots: legs.knots().to_vec(),
+            w_mid: legs.w_mid,
+            w_half: legs.w_half,
+            legs: (0..params.legs)
+                .map(|j| {
+                    let k = params.controls;
+                    LegSpline {
+                        a: x[2 * j * k..(2 * j + 1) * k].to_vec(),
+                        m: x[(2 * j + 1) * k..(2 * j + 2) * k].to_vec(),
+                    }
+                })
+                .collect(),
+            direction: [frame.along.x, frame.along.y, 0.0],
+            across: [frame.across.x, frame.across.y, 0.0],
+            u: frame.u,
+            w: frame.w,
+            sections,
+            lines,
+            rounds: solved.rounds,
+            qps: solved.qps,
+            constraint_points: solved.constraint_points,
+            objective_history: solved.history.iter().map(|o| o * scale * scale).collect(),
+            clearance: solved.clearance * scale,
+        };
+        directions.push((frame, legs, x, result));
     }
     let cut = |x: f64, y: f64| -> f64 {
         directions

@@ -1,0 +1,173 @@
+//! Independent check of the no-over-cut guarantee: on a sampling 4× denser than the
+//! optimizer's in each direction, jittered with its own seed, every design point lies on
+//! or below every leg's line extended across the whole block (so below the cut surface
+//! too) up to 1e-6 of the block size. The cut surface is rebuilt from the result's
+//! B-spline data with `geom`'s de Boor evaluation, and mesh heights by brute force over
+//! all triangles — not the optimizer's code paths.
+
+use geom::bspline::BSplineCurve;
+use geom::{expr::Expr, heightfield::HeightField, mesh::TriMesh, surface::Surface};
+use nalgebra::{Vector2, Vector3};
+use ruled::{pre_cut, Block, DirectionCut, Params, PreCut};
+
+const SURFACES: [(&str, &str); 5] = [
+    ("bump", "0.35 + 0.35*exp(-3*(x*x + y*y))"),
+    ("saddle", "0.5 + 0.25*(x*x - y*y)"),
+    ("depression", "0.45 + 0.3*exp(-6*((abs(x)-0.6)^2 + y*y)) + 0.3*exp(-6*(x*x + (abs(y)-0.6)^2)) - 0.25*exp(-8*(x*x + y*y))"),
+    ("ridge", "0.2 + 0.55*exp(-6*(x - 0.3*y)^2)"),
+    ("wavy", "0.5 + 0.12*sin(3*x)*cos(2*y) + 0.1*x"),
+];
+
+fn block() -> Block {
+    Block {
+        min: [-1.0, -1.0, 0.0],
+        max: [1.0, 1.0, 1.0],
+    }
+}
+
+/// SplitMix64 in [0, 1).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Every leg's `(a, m)` curve along the cut, rebuilt from the result.
+fn leg_curves(d: &DirectionCut) -> Vec<BSplineCurve<2>> {
+    d.legs
+        .iter()
+        .map(|l| {
+            let ctrl =
+                l.a.iter()
+                    .zip(&l.m)
+                    .map(|(a, m)| nalgebra::Vector2::new(*a, *m))
+                    .collect();
+            BSplineCurve::try_new(d.degree, d.knots.clone(), ctrl).unwrap()
+        })
+        .collect()
+}
+
+/// Checks `cut` against `design` on a jittered grid 4N × 4M per direction over the whole
+/// block; returns (points checked, largest excess of design over a leg).
+fn check(cut: &PreCut, params: &Params, design: &dyn Fn(f64, f64) -> Option<f64>) -> (usize, f64) {
+    let b = block();
+    let mut rng = Rng(0xC0FFEE);
+    let (n, m) = (4 * params.sections, 4 * params.samples);
+    let mut worst = f64::NEG_INFINITY;
+    let mut count = 0;
+    for d in &cut.directions {
+        let curves = leg_curves(d);
+        let along = Vector2::new(d.direction[0], d.direction[1]);
+        let across = Vector2::new(d.across[0], d.across[1]);
+        for i in 0..n {
+            let u = d.u.0 + (d.u.1 - d.u.0) * (i as f64 + rng.next()) / n as f64;
+            for k in 0..m {
+                let w = d.w.0 + (d.w.1 - d.w.0) * (k as f64 + rng.next()) / m as f64;
+                let p = along * u + across * w;
+                if !(b.covers(p.x, p.y)) {
+                    continue;
+                }
+                let Some(f) = design(p.x, p.y) else { continue };
+                count += 1;
+                for c in &curves {
+                    let am = c.eval(u);
+                    let z = am[0] + am[1] * (w - d.w_mid) / d.w_half;
+                    if f - z > 1e-6 && std::env::var_os("CHECKER_DEBUG").is_some() {
+                        eprintln!("u {u:.4} w {w:.4} p ({:.4}, {:.4}) f {f:.6} z {z:.6} u-range {:?} chord-ish", p.x, p.y, d.u);
+                    }
+                    worst = worst.max(f - z);
+                }
+            }
+        }
+    }
+    (count, worst)
+}
+
+fn params(directions: Vec<[f64; 2]>) -> Params {
+    Params {
+        directions,
+        sections: 16,
+        samples: 16,
+        controls: 6,
+        ..Params::default()
+    }
+}
+
+#[test]
+fn no_design_point_above_any_extended_ruling() {
+    let tol = 1e-6 * block().scale();
+    for (name, z) in SURFACES {
+        let expr = Expr::parse(z).unwrap();
+        let h = HeightField::try_new(expr.clone(), (-1.0, 1.0), (-1.0, 1.0)).unwrap();
+        for dirs in [vec![[1.0, 0.0]], vec![[1.0, 0.6]]] {
+            let p = params(dirs.clone());
+            let cut = pre_cut(&Surface::HeightField(h.clone()), &block(), &p, &|_| {}).unwrap();
+            let (count, worst) = check(&cut, &p, &|x, y| Some(expr.eval(x, y)));
+            println!(
+                "{name} {dirs:?}: {count} points, largest excess {worst:.3e}, hull {:.0} % more",
+                cut.volumes.more_than_hull_percent
+            );
+            assert!(count >= 16 * 16 * 16 / 2, "{name}: {count}");
+            assert!(
+                worst <= tol,
+                "{name} {dirs:?}: design {worst:.3e} above a ruling"
+            );
+            // The cuts do remove material.
+            assert!(cut.volumes.ruled < cut.volumes.bounding_box, "{name}");
+        }
+    }
+}
+
+/// Brute-force highest triangle over (x, y).
+fn mesh_height(mesh: &TriMesh, x: f64, y: f64) -> Option<f64> {
+    let p = Vector2::new(x, y);
+    (0..mesh.faces().len())
+        .filter_map(|f| {
+            let [a, b, c]: [Vector3<f64>; 3] = mesh.triangle(f);
+            let d = (b - a).xy().perp(&(c - a).xy());
+            if d.abs() < 1e-300 {
+                return None;
+            }
+            let l1 = (p - a.xy()).perp(&(c - a).xy()) / d;
+            let l2 = (b - a).xy().perp(&(p - a.xy())) / d;
+            let l0 = 1.0 - l1 - l2;
+            (l0 >= -1e-12 && l1 >= -1e-12 && l2 >= -1e-12).then(|| l0 * a.z + l1 * b.z + l2 * c.z)
+        })
+        .reduce(f64::max)
+}
+
+#[test]
+fn mesh_surface_is_never_overcut() {
+    let expr = Expr::parse(SURFACES[0].1).unwrap();
+    let mesh = HeightField::try_new(expr, (-1.0, 1.0), (-1.0, 1.0))
+        .unwrap()
+        .to_mesh(24, 24)
+        .unwrap();
+    let p = params(vec![[1.0, 0.0], [0.0, 1.0]]);
+    let cut = pre_cut(&Surface::Mesh(mesh.clone()), &block(), &p, &|_| {}).unwrap();
+    let (count, worst) = check(&cut, &p, &|x, y| mesh_height(&mesh, x, y));
+    println!("mesh bump: {count} points, largest excess {worst:.3e}");
+    assert!(count > 0);
+    assert!(worst <= 1e-6 * block().scale(), "{worst:.3e}");
+}
+
+/// The check can fail: lowering every leg by 1 % of the block puts design points above.
+#[test]
+fn checker_detects_a_lowered_cut() {
+    let expr = Expr::parse(SURFACES[0].1).unwrap();
+    let h = HeightField::try_new(expr.clone(), (-1.0, 1.0), (-1.0, 1.0)).unwrap();
+    let p = params(vec![[1.0, 0.0]]);
+    let mut cut = pre_cut(&Surface::HeightField(h), &block(), &p, &|_| {}).unwrap();
+    for leg in &mut cut.directions[0].legs {
+        for a in &mut leg.a {
+            *a -= 0.01;
+        }
+    }
+    let (_, worst) = check(&cut, &p, &|x, y| Some(expr.eval(x, y)));
+    assert!(worst > 0.005, "{worst}");
+}
