@@ -230,10 +230,30 @@ pub fn pre_cut(
             frame.u,
             frame.w,
         );
+        let design = |u: f64, w: f64| -> Option<f64> {
+            let p = frame.xy(u, w);
+            if !block.covers(p.x, p.y) {
+                return None;
+            }
+            height.at(p.x, p.y).map(norm)
+        };
+        let chord = |u: f64| frame.chord(u);
+        let n_check = (params.sections * params.check_density) as f64;
+        let m_check = (params.samples * params.check_density) as f64;
+        let domain = solve::Domain {
+            design: &design,
+            chord: &chord,
+            u: frame.u,
+            step: (
+                (frame.u.1 - frame.u.0) / n_check,
+                (frame.w.1 - frame.w.0) / m_check,
+            ),
+        };
         let solved = solve::solve(
             &legs,
             &samples,
             &check,
+            &domain,
             &SolveOptions {
                 margin: params.margin,
                 max_rounds: params.max_rounds,

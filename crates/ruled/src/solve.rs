@@ -77,6 +77,7 @@ pub fn solve(
     legs: &Legs,
     samples: &[Point],
     check: &[Point],
+    domain: &Domain<'_>,
     opt: &SolveOptions,
     progress: &dyn Fn(usize, f64),
 ) -> Result<Solved> {
@@ -89,7 +90,7 @@ pub fn solve(
             ((t * legs.legs as f64).floor().max(0.0) as usize).min(legs.legs - 1)
         })
         .collect();
-    let mut constraints: Vec<usize> = Vec::new(); // indices into `check`, beyond the samples
+    let mut constraints: Vec<Point> = Vec::new(); // beyond the samples
     let mut x = vec![0.0; legs.unknowns()];
     let mut history = Vec::new();
     let mut qps = 0;
@@ -105,15 +106,13 @@ pub fn solve(
                 samples,
                 &sample_basis,
                 &assign,
-                check,
-                &check_basis,
                 &constraints,
                 &x,
                 opt,
                 round,
             )?;
             qps += 1;
-            let (worst, low) = check_grid(legs, &x, check, &check_basis, opt.margin / 2.0);
+            let (worst, low) = exchange_points(legs, &x, check, &check_basis, domain, opt.margin);
             clearance = worst;
             if low.is_empty() {
                 break;
@@ -129,8 +128,6 @@ pub fn solve(
                 });
             }
             constraints.extend(low);
-            constraints.sort_unstable();
-            constraints.dedup();
         }
         let objective = objective(legs, &x, samples, &sample_basis);
         history.push(objective);
@@ -165,26 +162,98 @@ fn objective(legs: &Legs, x: &[f64], samples: &[Point], basis: &[Vec<f64>]) -> f
         .sum()
 }
 
-/// The smallest `leg − f` over the check grid and the points where it is below `limit`
-/// for some leg.
-fn check_grid(
+/// Where the design is at or above a leg, for the exchange: the design function over
+/// the block's footprint in frame coordinates.
+pub struct Domain<'a> {
+    /// `f(u, w)` (normalised), `None` off the surface.
+    pub design: &'a (dyn Fn(f64, f64) -> Option<f64> + Sync),
+    /// The `w` chord of the block at `u`.
+    pub chord: &'a (dyn Fn(f64) -> Option<(f64, f64)> + Sync),
+    /// `u` range of the block.
+    pub u: (f64, f64),
+    /// Spacing of the check grid along `u` and `w` (the search's first step).
+    pub step: (f64, f64),
+}
+
+/// Candidates (check points closest to a leg) searched per exchange round.
+const SEARCH_STARTS: usize = 256;
+
+/// The smallest `leg − f` seen, and the points to add as constraints: from the check
+/// points where some leg comes within `margin` of the design, the closest ones are
+/// taken as starts of a local search for the maximum of `f − leg` (compass search,
+/// shrinking from the grid step to 1e-7 of it), and every point found with
+/// `f − leg > −margin/2` is returned.
+fn exchange_points(
     legs: &Legs,
     x: &[f64],
     check: &[Point],
     basis: &[Vec<f64>],
-    limit: f64,
-) -> (f64, Vec<usize>) {
+    domain: &Domain<'_>,
+    margin: f64,
+) -> (f64, Vec<Point>) {
     let mut worst = f64::INFINITY;
-    let mut low = Vec::new();
+    let mut near: Vec<(f64, usize, usize)> = Vec::new();
     for (i, (p, b)) in check.iter().zip(basis).enumerate() {
-        let (h, _) = legs.envelope(x, b, p.w);
-        let gap = h - p.f;
-        worst = worst.min(gap);
-        if gap < limit {
-            low.push(i);
+        for j in 0..legs.legs {
+            let gap = legs.height(x, b, p.w, j) - p.f;
+            worst = worst.min(gap);
+            if gap < 4.0 * margin {
+                near.push((gap, i, j));
+            }
         }
     }
-    (worst, low)
+    near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+    let gap_at = |u: f64, w: f64, j: usize| -> Option<(f64, f64)> {
+        let (w0, w1) = (domain.chord)(u)?;
+        if u < domain.u.0 || u > domain.u.1 || w < w0 || w > w1 {
+            return None;
+        }
+        let f = (domain.design)(u, w)?;
+        Some((legs.height(x, &legs.basis(u), w, j) - f, f))
+    };
+    let mut out: Vec<Point> = Vec::new();
+    for &(gap, i, j) in near.iter().take(SEARCH_STARTS) {
+        let (mut u, mut w, mut g) = (check[i].u, check[i].w, gap);
+        let mut f = check[i].f;
+        let (mut hu, mut hw) = domain.step;
+        let stop = 1e-7 * domain.step.0.max(domain.step.1);
+        while hu.max(hw) > stop {
+            let mut moved = false;
+            for (du, dw) in [
+                (1.0, 0.0),
+                (-1.0, 0.0),
+                (0.0, 1.0),
+                (0.0, -1.0),
+                (1.0, 1.0),
+                (-1.0, -1.0),
+                (1.0, -1.0),
+                (-1.0, 1.0),
+            ] {
+                if let Some((g2, f2)) = gap_at(u + du * hu, w + dw * hw, j) {
+                    if g2 < g {
+                        (u, w, g, f) = (u + du * hu, w + dw * hw, g2, f2);
+                        moved = true;
+                    }
+                }
+            }
+            if !moved {
+                hu /= 2.0;
+                hw /= 2.0;
+            }
+        }
+        worst = worst.min(g);
+        if gap < margin / 2.0 {
+            out.push(check[i]);
+        }
+        if g < margin / 2.0
+            && out
+                .iter()
+                .all(|p| (p.u - u).abs() + (p.w - w).abs() > 1e-12)
+        {
+            out.push(Point { u, w, f });
+        }
+    }
+    (worst, out)
 }
 
 /// The deepest violation on the check grid: `(f − leg, leg)`.
@@ -207,9 +276,7 @@ fn qp(
     samples: &[Point],
     sample_basis: &[Vec<f64>],
     assign: &[usize],
-    check: &[Point],
-    check_basis: &[Vec<f64>],
-    constraints: &[usize],
+    constraints: &[Point],
     prev: &[f64],
     opt: &SolveOptions,
     round: usize,
@@ -247,13 +314,14 @@ fn qp(
     let points = samples
         .iter()
         .zip(sample_basis)
-        .chain(constraints.iter().map(|&i| (&check[i], &check_basis[i])));
+        .map(|(p, b)| (*p, b.clone()))
+        .chain(constraints.iter().map(|p| (*p, legs.basis(p.u))));
     let mut cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
     let mut b = Vec::new();
     for (pt, basis) in points {
         for j in 0..legs.legs {
             let r = b.len();
-            for (c, v) in legs.row(basis, pt.w, j) {
+            for (c, v) in legs.row(&basis, pt.w, j) {
                 cols[c].push((r, -v));
             }
             b.push(-(pt.f + opt.margin));

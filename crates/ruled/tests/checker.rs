@@ -77,9 +77,6 @@ fn check(cut: &PreCut, params: &Params, design: &dyn Fn(f64, f64) -> Option<f64>
                 for c in &curves {
                     let am = c.eval(u);
                     let z = am[0] + am[1] * (w - d.w_mid) / d.w_half;
-                    if f - z > 1e-6 && std::env::var_os("CHECKER_DEBUG").is_some() {
-                        eprintln!("u {u:.4} w {w:.4} p ({:.4}, {:.4}) f {f:.6} z {z:.6} u-range {:?} chord-ish", p.x, p.y, d.u);
-                    }
                     worst = worst.max(f - z);
                 }
             }
