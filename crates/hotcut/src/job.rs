@@ -398,6 +398,90 @@ pub enum TaskSpec {
         #[schemars(extend("exclusiveMinimum" = 0), range(max = 0.25))]
         sample_spacing: f64,
     },
+    /// Hot-wire pre-cuts before milling (thesis ch. 2): per cutting direction, `legs`
+    /// straight wire cuts across the block whose lower envelope stays on or above the
+    /// design surface (never cutting into it) while leaving as little material as
+    /// possible for milling. The design surface's outward normal is roughly +z; the block
+    /// is `block` (origin defaults to the surface's bounding-box minimum). Write
+    /// `PreCut(legs: 4, directions: [X])`.
+    PreCut {
+        /// Cuts per direction (the moving polygon's legs), 1–32. Default: 4.
+        #[serde(default = "default_legs")]
+        #[schemars(range(min = 1, max = 32))]
+        legs: u32,
+        /// Cutting directions in the xy plane: `X`, `Y`, `Degrees(a)` (from +x towards
+        /// +y) or `Vector(dx, dy)`. Default: `[X]`.
+        #[serde(default = "default_cut_directions")]
+        #[schemars(length(min = 1, max = 8))]
+        directions: Vec<CutDirection>,
+        /// B-spline degree of the cuts along the cutting direction (thesis p), 1–5.
+        /// Default: 3.
+        #[serde(default = "default_cut_degree")]
+        #[schemars(range(min = 1, max = 5))]
+        degree: u32,
+        /// Control values per cut along the cutting direction (thesis k), degree + 1 to
+        /// 64. Default: 8.
+        #[serde(default = "default_cut_controls")]
+        #[schemars(range(min = 2, max = 64))]
+        controls: u32,
+        /// Section planes along the cut (thesis N), ≥ 2. Default: 30.
+        #[serde(default = "default_cut_samples")]
+        #[schemars(range(min = 2, max = 500))]
+        sections: u32,
+        /// Samples per section across the block (thesis M), ≥ 2. Default: 30.
+        #[serde(default = "default_cut_samples")]
+        #[schemars(range(min = 2, max = 500))]
+        samples: u32,
+        /// Most assignment rounds of the optimizer. Default: 40.
+        #[serde(default = "default_cut_rounds")]
+        #[schemars(range(min = 1))]
+        max_rounds: u32,
+    },
+}
+
+/// A cutting direction in the xy plane.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub enum CutDirection {
+    /// Along +x.
+    X,
+    /// Along +y.
+    Y,
+    /// At this angle from +x towards +y, degrees.
+    Degrees(f64),
+    /// Along `(dx, dy)` (normalised; must not be zero).
+    Vector(f64, f64),
+}
+
+impl CutDirection {
+    /// The direction as an `[x, y]` vector (not normalised for `Vector`).
+    pub fn vector(&self) -> [f64; 2] {
+        match *self {
+            Self::X => [1.0, 0.0],
+            Self::Y => [0.0, 1.0],
+            Self::Degrees(a) => [a.to_radians().cos(), a.to_radians().sin()],
+            Self::Vector(x, y) => [x, y],
+        }
+    }
+}
+
+fn default_legs() -> u32 {
+    4
+}
+fn default_cut_directions() -> Vec<CutDirection> {
+    vec![CutDirection::X]
+}
+fn default_cut_degree() -> u32 {
+    3
+}
+fn default_cut_controls() -> u32 {
+    8
+}
+fn default_cut_samples() -> u32 {
+    30
+}
+fn default_cut_rounds() -> u32 {
+    40
 }
 
 fn default_block_operations() -> Vec<blocks::Operation> {
@@ -432,6 +516,7 @@ impl TaskSpec {
             Self::HotBlade { .. } => "HotBlade",
             Self::FacadeSegmentation { .. } => "FacadeSegmentation",
             Self::BlockSegmentation { .. } => "BlockSegmentation",
+            Self::PreCut { .. } => "PreCut",
         }
     }
 }
@@ -602,6 +687,9 @@ pub enum OutputSpec {
     /// `blocks.json` (BlockSegmentation): every block's centre, rotation `[w, x, y, z]`
     /// (block axes to model axes) and size, in the mesh's coordinates.
     Blocks,
+    /// `precut.json` (PreCut): per direction, per section along the cut, the polygon of
+    /// rulings as 3D points, so anyone can re-check the cut.
+    PreCut,
 }
 
 impl OutputSpec {
@@ -617,6 +705,7 @@ impl OutputSpec {
             Self::Rapid => "Rapid",
             Self::GCode => "GCode",
             Self::Blocks => "Blocks",
+            Self::PreCut => "PreCut",
         }
     }
 }

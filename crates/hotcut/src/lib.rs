@@ -37,6 +37,8 @@ pub mod hot_blade;
 pub mod job;
 /// Reading, validating and resolving job files.
 pub mod load;
+/// The `PreCut` task: hot-wire cuts removing the bulk above a design surface.
+pub mod pre_cut;
 /// Report types (serde + JSON Schema).
 pub mod report;
 /// Running a job and writing its outputs.
@@ -127,6 +129,15 @@ pub fn block_segmentation_report_schema_json() -> String {
     s
 }
 
+/// The JSON Schema of a `PreCut` run's `report.json`, as written to
+/// `schemas/pre-cut-report.schema.json`.
+pub fn pre_cut_report_schema_json() -> String {
+    let v = serde_json::to_value(schemars::schema_for!(pre_cut::PreCutReport)).unwrap_or_default();
+    let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
+    s.push('\n');
+    s
+}
+
 /// Every schema file of `schemas/`: (file name, contents).
 pub fn schema_files() -> Vec<(&'static str, String)> {
     vec![
@@ -148,5 +159,6 @@ pub fn schema_files() -> Vec<(&'static str, String)> {
             "block-segmentation-report.schema.json",
             block_segmentation_report_schema_json(),
         ),
+        ("pre-cut-report.schema.json", pre_cut_report_schema_json()),
     ]
 }

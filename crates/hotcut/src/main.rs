@@ -207,6 +207,21 @@ fn print_hot_blade_summary(r: &hotcut::hot_blade::report::HotBladeReport, units:
     }
 }
 
+fn print_pre_cut_summary(name: &str, r: &hotcut::pre_cut::PreCutReport) {
+    let v = &r.volumes;
+    println!(
+        "{name} (PreCut): {} direction(s) × {} cut(s); left for milling {:.4} of the block (convex hull {:.4}, block {:.4}): {:.0} % more removed than the hull, {:.0} % more than the block; model {:.4}",
+        r.directions.len(),
+        r.params.legs,
+        v.ruled,
+        v.convex_hull,
+        v.bounding_box,
+        v.more_than_hull_percent,
+        v.more_than_box_percent,
+        v.model
+    );
+}
+
 fn print_block_summary(name: &str, r: &hotcut::block_seg::BlockSegReport) {
     let s = &r.segmentation;
     println!(
@@ -339,6 +354,7 @@ fn main() -> ExitCode {
                                 print_segmentation_summary(r, j.job.units.symbol())
                             }
                             TaskReport::BlockSegmentation(r) => print_block_summary(&j.job.name, r),
+                            TaskReport::PreCut(r) => print_pre_cut_summary(&j.job.name, r),
                         }
                         print_files(&o.dir, &o.files);
                     }

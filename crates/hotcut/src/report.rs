@@ -287,6 +287,8 @@ pub enum TaskReport {
     FacadeSegmentation(Box<crate::segmentation::report::SegmentationReport>),
     /// From `BlockSegmentation`.
     BlockSegmentation(Box<crate::block_seg::BlockSegReport>),
+    /// From `PreCut`.
+    PreCut(Box<crate::pre_cut::PreCutReport>),
 }
 
 impl TaskReport {
@@ -318,6 +320,14 @@ impl TaskReport {
     pub fn block_segmentation(&self) -> Option<&crate::block_seg::BlockSegReport> {
         match self {
             Self::BlockSegmentation(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// The `PreCut` report, if that task ran.
+    pub fn pre_cut(&self) -> Option<&crate::pre_cut::PreCutReport> {
+        match self {
+            Self::PreCut(r) => Some(r),
             _ => None,
         }
     }

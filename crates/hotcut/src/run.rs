@@ -140,6 +140,12 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
             let render = move |o: &OutputSpec| crate::block_seg::outputs::render(&b, o);
             (report, Box::new(render))
         }
+        TaskSpec::PreCut { .. } => {
+            let c = std::rc::Rc::new(crate::pre_cut::pre_cut(job, progress)?);
+            let report = TaskReport::PreCut(Box::new(c.report.clone()));
+            let render = move |o: &OutputSpec| crate::pre_cut::outputs::render(&c, o);
+            (report, Box::new(render))
+        }
     };
     let mut renders: Vec<Render<'_>> = Vec::new();
     for o in &job.job.outputs {

@@ -47,23 +47,7 @@ pub fn volumes(
     let (dx, dy) = (size.x / grid as f64, size.y / grid as f64);
     let (z0, z1) = (block.min[2], block.max[2]);
     let clip = |z: f64| z.clamp(z0, z1);
-    let mut points = Vec::new();
-    let mut cells = Vec::with_capacity(grid * grid);
-    for i in 0..grid {
-        for j in 0..grid {
-            let (x, y) = (
-                block.min[0] + (i as f64 + 0.5) * dx,
-                block.min[1] + (j as f64 + 0.5) * dy,
-            );
-            let f = height.at(x, y).map(clip);
-            if let Some(f) = f {
-                points.push(Vector3::new(x, y, f));
-                points.push(Vector3::new(x, y, z0));
-            }
-            cells.push((x, y, f.unwrap_or(z0)));
-        }
-    }
-    let hull = MeshHeight::new(&convex_hull(&points)?)?;
+    let (cells, hull) = hull_top(height, block, grid)?;
     let (mut model, mut ruled, mut chull, mut bbox) = (0.0, 0.0, 0.0, 0.0);
     for &(x, y, f) in &cells {
         model += f - z0;
@@ -88,4 +72,38 @@ pub fn volumes(
         more_than_hull_percent: pct(chull, ruled),
         more_than_box_percent: pct(bbox, ruled),
     })
+}
+
+/// A volume-grid cell centre `(x, y)` and the design height `f` there.
+pub type Cell = (f64, f64, f64);
+
+/// The design heights on the volume grid's cell centres (`(x, y, f)`, `f` the block's
+/// floor where the surface is not over the block) and the top of the model's convex
+/// hull (of the solid between the floor and the surface, sampled on that grid).
+///
+/// # Errors
+/// Hull errors for a degenerate model.
+pub fn hull_top(height: &Height, block: &Block, grid: usize) -> Result<(Vec<Cell>, MeshHeight)> {
+    let size = block.size();
+    let (dx, dy) = (size.x / grid as f64, size.y / grid as f64);
+    let (z0, z1) = (block.min[2], block.max[2]);
+    let clip = |z: f64| z.clamp(z0, z1);
+    let mut points = Vec::new();
+    let mut cells = Vec::with_capacity(grid * grid);
+    for i in 0..grid {
+        for j in 0..grid {
+            let (x, y) = (
+                block.min[0] + (i as f64 + 0.5) * dx,
+                block.min[1] + (j as f64 + 0.5) * dy,
+            );
+            let f = height.at(x, y).map(clip);
+            if let Some(f) = f {
+                points.push(Vector3::new(x, y, f));
+                points.push(Vector3::new(x, y, z0));
+            }
+            cells.push((x, y, f.unwrap_or(z0)));
+        }
+    }
+    let hull = MeshHeight::new(&convex_hull(&points)?)?;
+    Ok((cells, hull))
 }

@@ -199,6 +199,78 @@ pub(super) fn check_task(
             );
             &["Report", "Blocks", "Svg", "Obj", "Gltf"]
         }
+        TaskSpec::PreCut {
+            legs,
+            directions,
+            degree,
+            controls,
+            sections,
+            samples,
+            max_rounds,
+        } => {
+            check_pre_cut(
+                path,
+                job,
+                (*legs, *degree, *controls, *sections, *samples, *max_rounds),
+                directions,
+                errors,
+            );
+            &["Report", "PreCut", "Svg"]
+        }
+    }
+}
+
+/// The fields of a `PreCut` task: counts `(legs, degree, controls, sections, samples,
+/// max_rounds)` and directions; it needs a surface and a block.
+fn check_pre_cut(
+    path: &Path,
+    job: &Job,
+    (legs, degree, controls, sections, samples, max_rounds): (u32, u32, u32, u32, u32, u32),
+    directions: &[crate::job::CutDirection],
+    errors: &mut Vec<JobError>,
+) {
+    let ptr = "/task/PreCut";
+    require_surface_and_block(path, job, "PreCut", "", "cuts are", errors);
+    let mut range = |field: &str, v: u32, lo: u32, hi: u32| {
+        if !(lo..=hi).contains(&v) {
+            errors.push(semantic(
+                path,
+                &format!("{ptr}/{field}"),
+                format!("{field} must be {lo}–{hi}, got {v}"),
+            ));
+        }
+    };
+    range("legs", legs, 1, 32);
+    range("degree", degree, 1, 5);
+    range("controls", controls, degree + 1, 64);
+    range("sections", sections, 2, 500);
+    range("samples", samples, 2, 500);
+    range("max_rounds", max_rounds, 1, 10_000);
+    if directions.is_empty() {
+        errors.push(semantic(
+            path,
+            &format!("{ptr}/directions"),
+            "at least one cutting direction, e.g. [X]",
+        ));
+    }
+    for (i, d) in directions.iter().enumerate() {
+        let [x, y] = d.vector();
+        if !(x.is_finite() && y.is_finite()) || x.hypot(y) < 1e-9 {
+            errors.push(semantic(
+                path,
+                &format!("{ptr}/directions/{i}"),
+                format!("{d:?} is not a direction in the xy plane (finite, not zero)"),
+            ));
+        } else if directions[..i].iter().any(|e| {
+            let [a, b] = e.vector();
+            (a * y - b * x).abs() < 1e-9 * x.hypot(y) * a.hypot(b) && a * x + b * y > 0.0
+        }) {
+            errors.push(semantic(
+                path,
+                &format!("{ptr}/directions/{i}"),
+                format!("{d:?} repeats an earlier direction"),
+            ));
+        }
     }
 }
 

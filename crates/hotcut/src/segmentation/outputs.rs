@@ -67,7 +67,9 @@ pub fn render(
         OutputSpec::Gltf => vec![file("model.gltf", Box::new(move |buf| gltf(&r, buf)))],
         OutputSpec::Obj => vec![file("segmentation.obj", Box::new(move |buf| obj(&r, buf)))],
         OutputSpec::Csv => vec![file("sections.csv", Box::new(move |buf| csv(&r, buf)))],
-        OutputSpec::Report | OutputSpec::GCode | OutputSpec::Blocks => Vec::new(),
+        OutputSpec::Report | OutputSpec::GCode | OutputSpec::Blocks | OutputSpec::PreCut => {
+            Vec::new()
+        }
     }
 }
 

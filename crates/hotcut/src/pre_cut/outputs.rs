@@ -1,0 +1,127 @@
+//! The files of a `PreCut` run: `precut.json` (the polygons of rulings per section, and
+//! the legs' B-splines) and `sections.svg` (cross sections with the design curve, the
+//! cut polygon and the convex hull, after thesis fig. 2.4).
+
+use std::rc::Rc;
+
+use export::json::{to_json_string, REPORT_DIGITS};
+use export::svg::{SvgDoc, Viewport};
+use serde::Serialize;
+
+use super::PreCutRun;
+use crate::hot_blade::outputs::file;
+use crate::job::OutputSpec;
+use crate::run::Render;
+
+/// The files of output `o`.
+pub fn render(run: &Rc<PreCutRun>, o: &OutputSpec) -> Vec<Render<'static>> {
+    let r = run.clone();
+    match o {
+        OutputSpec::PreCut => vec![file(
+            "precut.json",
+            Box::new(move |buf| {
+                #[derive(Serialize)]
+                struct PreCutFile<'a> {
+                    directions: &'a [ruled::DirectionCut],
+                }
+                let f = PreCutFile {
+                    directions: &r.cut.directions,
+                };
+                buf.extend(to_json_string(&f, REPORT_DIGITS)?.into_bytes());
+                Ok(())
+            }),
+        )],
+        OutputSpec::Svg => vec![file(
+            "sections.svg",
+            Box::new(move |buf| sections_svg(&r, buf)),
+        )],
+        _ => Vec::new(),
+    }
+}
+
+/// Sections drawn per direction (evenly spread along the cut).
+const PANELS: usize = 5;
+
+/// One row per direction, `PANELS` cross sections each: block outline, design curve
+/// (black), convex hull (grey, dashed look by colour), the cut polygon (red).
+fn sections_svg(run: &PreCutRun, buf: &mut Vec<u8>) -> export::Result<()> {
+    let to_err =
+        |e: ruled::PreCutError| export::ExportError::Io(std::io::Error::other(e.to_string()));
+    let height = ruled::Height::new(&run.surface).map_err(to_err)?;
+    let block = run.report.block;
+    let (_, hull) = ruled::volume::hull_top(&height, &block, 100).map_err(to_err)?;
+    let (pw, ph, pad) = (260.0, 180.0, 16.0);
+    let rows = run.cut.directions.len();
+    let mut doc = SvgDoc::new(PANELS as f64 * pw, rows as f64 * ph + 24.0);
+    doc.text(
+        (8.0, 16.0),
+        11.0,
+        "#000",
+        "pre-cut sections: design (black), convex hull (grey), cut polygon (red), block (blue)",
+    );
+    let (z0, z1) = (block.min[2], block.max[2]);
+    for (row, d) in run.cut.directions.iter().enumerate() {
+        let n = d.sections.len();
+        for k in 0..PANELS.min(n) {
+            let s = &d.sections[(k * (n - 1)) / (PANELS - 1).max(1)];
+            let along = nalgebra::Vector2::new(d.direction[0], d.direction[1]);
+            let across = nalgebra::Vector2::new(d.across[0], d.across[1]);
+            let w_of = |p: &[f64; 3]| across.dot(&nalgebra::Vector2::new(p[0], p[1]));
+            let (Some(first), Some(last)) = (s.polygon.first(), s.polygon.last()) else {
+                continue;
+            };
+            let (w0, w1) = (w_of(first), w_of(last));
+            let top = 24.0 + row as f64 * ph;
+            let vp = Viewport::fit(
+                (w0, z0),
+                (w1, z1),
+                (
+                    k as f64 * pw + pad,
+                    top + pad,
+                    pw - 2.0 * pad,
+                    ph - 2.0 * pad,
+                ),
+            );
+            doc.polygon(
+                &[
+                    vp.map(w0, z0),
+                    vp.map(w1, z0),
+                    vp.map(w1, z1),
+                    vp.map(w0, z1),
+                ],
+                "none",
+                "#1060e0",
+                0.8,
+                Some("block"),
+            );
+            let samples = 200;
+            let mut design = Vec::new();
+            let mut hull_line = Vec::new();
+            for i in 0..=samples {
+                let w = w0 + (w1 - w0) * i as f64 / samples as f64;
+                let p = along * s.offset + across * w;
+                if let Some(f) = height.at(p.x, p.y) {
+                    design.push(vp.map(w, f));
+                }
+                if let Some(h) = hull.at(p.x, p.y) {
+                    hull_line.push(vp.map(w, h.min(z1)));
+                }
+            }
+            doc.polyline(&hull_line, "#909090", 1.0, Some("convex hull"));
+            doc.polyline(&design, "#000000", 1.2, Some("design surface"));
+            let poly: Vec<(f64, f64)> = s
+                .polygon
+                .iter()
+                .map(|p| vp.map(w_of(p), p[2].min(z1)))
+                .collect();
+            doc.polyline(&poly, "#d02020", 1.4, Some("cut polygon"));
+            doc.text(
+                (k as f64 * pw + pad, top + ph - 4.0),
+                9.0,
+                "#333",
+                &format!("direction {} · u = {:.4}", row + 1, s.offset),
+            );
+        }
+    }
+    doc.write(buf)
+}
