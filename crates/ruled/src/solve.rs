@@ -4,7 +4,7 @@
 //! subject to every leg lying on or above every design point (plus a margin). The only
 //! non-convex part is which leg is lowest where, so the solver alternates (as k-means
 //! does): with each sample assigned to a leg, the problem is a convex QP — solved by
-//! `clarabel`'s interior-point method, the thesis' own solver family ([WB05]) — and then
+//! `clarabel`'s interior-point method, the thesis' own solver family (Wächter & Biegler 2005) — and then
 //! each sample is reassigned to the leg that is lowest over it. Every iterate is feasible
 //! and the objective never increases (a sample's lowest leg is at most its assigned one,
 //! and all lie above it). A small proximal term keeps legs that no sample is assigned to
