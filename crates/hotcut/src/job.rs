@@ -31,6 +31,9 @@ pub struct Job {
     /// (converted when `units: Metre`).
     #[serde(default)]
     pub blade: Option<BladeSpec>,
+    /// The hot-wire machine (PreCut's `GCode` and `Csv` outputs need it).
+    #[serde(default)]
+    pub wire: Option<WireSpec>,
     /// Cutting direction and number of sections. Default: `Cutting(direction: (1, 0, 0), sections: 26)`.
     #[serde(default)]
     pub cutting: CuttingSpec,
@@ -123,6 +126,27 @@ pub struct BlockSpec {
     /// block. Default: not placed (only the size is checked).
     #[serde(default)]
     pub origin: Option<(f64, f64, f64)>,
+}
+
+/// A 4-axis hot-wire machine: two towers `tower_distance` apart across the block.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename = "Wire")]
+pub struct WireSpec {
+    /// Distance between the tower planes (> the block's width across the cut).
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub tower_distance: f64,
+    /// Kerf width (≥ 0): the wire's cut is offset by half of it into the removed material.
+    #[schemars(range(min = 0))]
+    pub kerf: f64,
+    /// Wire speed through the foam, job units per minute (> 0). Default: 300 mm/min.
+    #[serde(default)]
+    pub speed: Option<f64>,
+    /// Lead-in and lead-out along the cut outside the block (≥ 0). Default: 20 mm.
+    #[serde(default)]
+    pub lead: Option<f64>,
+    /// Clearance above the block for rapid moves (> 0). Default: 50 mm.
+    #[serde(default)]
+    pub clearance: Option<f64>,
 }
 
 /// The hot blade.

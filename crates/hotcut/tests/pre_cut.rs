@@ -139,6 +139,30 @@ fn bad_jobs_are_refused_with_their_field() {
 }
 
 #[test]
+fn wire_outputs_need_a_fitting_machine() {
+    expect_invalid(
+        &job("PreCut()", "").replace("outputs: [Report, PreCut, Svg]", "outputs: [Report, GCode]"),
+        &["/outputs/1", "wire"],
+    );
+    expect_invalid(
+        &job("PreCut()", "wire: Wire(tower_distance: -5, kerf: 1),"),
+        &["/wire/tower_distance"],
+    );
+    // Towers closer than the block is wide: refused when the cut is known.
+    let dir = tempfile::tempdir().unwrap();
+    let text = job(
+        "PreCut(sections: 6, samples: 6, controls: 4)",
+        "wire: Wire(tower_distance: 900, kerf: 1),",
+    )
+    .replace("outputs: [Report, PreCut, Svg]", "outputs: [Report, GCode]");
+    write(dir.path(), "job.ron", &text);
+    let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
+    assert_ne!(o.status.code(), Some(0));
+    assert!(stderr(&o).contains("tower_distance"), "{}", stderr(&o));
+    assert!(!dir.path().join("out/t").exists());
+}
+
+#[test]
 fn surface_outside_the_block_fails_at_run_time() {
     let dir = tempfile::tempdir().unwrap();
     let text = job("PreCut(sections: 6, samples: 6, controls: 4)", "")

@@ -25,6 +25,7 @@
 //! - [`legs`]: the moving polygon by its legs' lines, B-splines along the cut.
 //! - [`solve`]: the alternating convex-QP optimization with constraint exchange.
 //! - [`volume`]: the volumes of Table 2.1.
+//! - [`wire`]: wire paths to the tower planes, G-code and CSV.
 
 pub mod error;
 pub mod frame;
@@ -32,6 +33,7 @@ pub mod height;
 pub mod legs;
 pub mod solve;
 pub mod volume;
+pub mod wire;
 
 use schemars::JsonSchema;
 use serde::Serialize;

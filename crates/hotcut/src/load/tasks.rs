@@ -215,7 +215,42 @@ pub(super) fn check_task(
                 directions,
                 errors,
             );
-            &["Report", "PreCut", "Svg"]
+            for (i, o) in job.outputs.iter().enumerate() {
+                if matches!(o, OutputSpec::GCode | OutputSpec::Csv) && job.wire.is_none() {
+                    errors.push(semantic(
+                        path,
+                        &format!("/outputs/{i}"),
+                        format!("{} writes wire programs: the job needs `wire: Wire(tower_distance: .., kerf: ..)`", o.name()),
+                    ));
+                }
+            }
+            if let Some(w) = &job.wire {
+                let positive = |v: Option<f64>| v.is_none_or(|v| v.is_finite() && v > 0.0);
+                if !(w.tower_distance.is_finite() && w.tower_distance > 0.0) {
+                    errors.push(semantic(
+                        path,
+                        "/wire/tower_distance",
+                        "tower_distance must be positive",
+                    ));
+                }
+                if !(w.kerf.is_finite() && w.kerf >= 0.0) {
+                    errors.push(semantic(path, "/wire/kerf", "kerf must be at least 0"));
+                }
+                if !positive(w.speed) {
+                    errors.push(semantic(path, "/wire/speed", "speed must be positive"));
+                }
+                if !w.lead.is_none_or(|v| v.is_finite() && v >= 0.0) {
+                    errors.push(semantic(path, "/wire/lead", "lead must be at least 0"));
+                }
+                if !positive(w.clearance) {
+                    errors.push(semantic(
+                        path,
+                        "/wire/clearance",
+                        "clearance must be positive",
+                    ));
+                }
+            }
+            &["Report", "PreCut", "Svg", "GCode", "Csv"]
         }
     }
 }

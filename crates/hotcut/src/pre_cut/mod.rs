@@ -89,6 +89,25 @@ pub struct PreCutRun {
     pub cut: ruled::PreCut,
     /// The design surface.
     pub surface: Surface,
+    /// The wire machine, when the job has one (`GCode`, `Csv`).
+    pub wire: Option<ruled::wire::WireParams>,
+    /// The job's name.
+    pub name: String,
+}
+
+/// The wire machine's settings of a job, in job units (`None` without `wire`).
+pub fn wire_params(job: &ResolvedJob) -> Option<ruled::wire::WireParams> {
+    let w = job.job.wire.as_ref()?;
+    let unit = job.job.units.per_mm();
+    Some(ruled::wire::WireParams {
+        tower_distance: w.tower_distance,
+        kerf: w.kerf,
+        speed: w.speed.unwrap_or(300.0 * unit),
+        lead: w.lead.unwrap_or(20.0 * unit),
+        clearance: w.clearance.unwrap_or(50.0 * unit),
+        steps: 0,
+        mm_per_unit: 1.0 / unit,
+    })
 }
 
 /// The optimizer's parameters and block for a resolved `PreCut` job (`None` for other
@@ -196,9 +215,21 @@ pub fn pre_cut(job: &ResolvedJob, progress: &dyn Progress) -> Result<PreCutRun> 
             })
             .collect(),
     };
+    let wire = wire_params(job).map(|w| ruled::wire::WireParams {
+        steps: params.sections + 1,
+        ..w
+    });
+    if let Some(w) = &wire {
+        // Refuse bad machine settings now rather than while writing files.
+        for (i, d) in cut.directions.iter().enumerate() {
+            ruled::wire::paths(d, i, block.min[2], w).map_err(|e| fail(e.to_string()))?;
+        }
+    }
     Ok(PreCutRun {
         report,
         cut,
         surface: surface.clone(),
+        wire,
+        name: job.job.name.clone(),
     })
 }

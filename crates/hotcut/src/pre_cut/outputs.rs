@@ -35,8 +35,40 @@ pub fn render(run: &Rc<PreCutRun>, o: &OutputSpec) -> Vec<Render<'static>> {
             "sections.svg",
             Box::new(move |buf| sections_svg(&r, buf)),
         )],
+        OutputSpec::GCode | OutputSpec::Csv => wire_files(run, matches!(o, OutputSpec::GCode)),
         _ => Vec::new(),
     }
+}
+
+/// One file per cut: `wire_d{direction}_c{cut}.gcode` (or `.csv`), 1-based.
+fn wire_files(run: &Rc<PreCutRun>, gcode: bool) -> Vec<Render<'static>> {
+    let Some(w) = run.wire else {
+        return Vec::new();
+    };
+    let block = run.report.block;
+    let mut out = Vec::new();
+    for (i, d) in run.cut.directions.iter().enumerate() {
+        let Ok(paths) = ruled::wire::paths(d, i, block.min[2], &w) else {
+            continue;
+        };
+        for path in paths {
+            let name = run.name.clone();
+            let ext = if gcode { "gcode" } else { "csv" };
+            out.push(file(
+                format!("wire_d{}_c{}.{ext}", i + 1, path.leg + 1),
+                Box::new(move |buf| {
+                    let text = if gcode {
+                        ruled::wire::gcode(&path, &w, block.max[2], block.min[2], &name)
+                    } else {
+                        ruled::wire::csv(&path)
+                    };
+                    buf.extend(text.into_bytes());
+                    Ok(())
+                }),
+            ));
+        }
+    }
+    out
 }
 
 /// Sections drawn per direction (evenly spread along the cut).

@@ -1,0 +1,281 @@
+//! Wire paths of the cuts for a 4-axis hot-wire machine, and their G-code.
+//!
+//! The machine has two towers `tower_distance` apart, on either side of the block along
+//! the across direction `w` and centred on the block; each tower moves the wire's end in
+//! its plane: horizontally along the cut (`X` for tower A at the low-`w` side, `U` for
+//! tower B) and vertically (`Y`, `V`). Machine coordinates are the frame's `u − u0` and
+//! `z − z_floor` of the block, in millimetres.
+//!
+//! Per cut (leg) the wire follows the leg's rulings from `lead` before the block to `lead`
+//! after it. The kerf is applied first: each ruling's two points at the block's sides are
+//! moved by half the kerf along the cut surface's upward normal there (into the removed
+//! material), and the wire is the line through them, extended to both tower planes.
+//! G-code is absolute (`G90`), millimetres (`G21`), inverse-time feed (`G93`): every
+//! `G1` gives `F = 1 / minutes` for the move, so both towers start and finish each move
+//! together.
+
+use std::fmt::Write as _;
+
+use nalgebra::Vector3;
+use serde::Serialize;
+
+use crate::error::{PreCutError, Result};
+use crate::DirectionCut;
+
+/// The machine and the cut's settings (lengths in the job's unit, `mm_per_unit` to mm).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WireParams {
+    /// Distance between the tower planes (> the block's width across the cut).
+    pub tower_distance: f64,
+    /// Kerf width (≥ 0): material the wire burns away.
+    pub kerf: f64,
+    /// Wire speed through the material, job units per minute (> 0).
+    pub speed: f64,
+    /// Lead-in and lead-out length along the cut outside the block (≥ 0).
+    pub lead: f64,
+    /// Clearance above the block for rapid moves (> 0).
+    pub clearance: f64,
+    /// Steps per cut along the block.
+    pub steps: usize,
+    /// Millimetres per job unit.
+    pub mm_per_unit: f64,
+}
+
+/// One wire position: the two tower points (machine coordinates, mm) and the 3D points
+/// where the wire crosses the block's sides (model coordinates, job units).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct WireStep {
+    /// Position along the cut (frame `u`, job units).
+    pub u: f64,
+    /// Tower A `(X, Y)`.
+    pub a: [f64; 2],
+    /// Tower B `(U, V)`.
+    pub b: [f64; 2],
+    /// Wire point at the block's low-`w` side (after kerf), model coordinates.
+    pub side0: [f64; 3],
+    /// Wire point at the block's high-`w` side (after kerf), model coordinates.
+    pub side1: [f64; 3],
+}
+
+/// The path of one cut.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WirePath {
+    /// Direction index.
+    pub direction: usize,
+    /// Leg (cut) index.
+    pub leg: usize,
+    /// Steps: lead-in start, the block from end to end, lead-out end.
+    pub steps: Vec<WireStep>,
+    /// `w` of tower A's and tower B's planes.
+    pub towers: (f64, f64),
+}
+
+/// The wire paths of every leg of one direction.
+///
+/// # Errors
+/// [`PreCutError::InvalidParameter`] when the towers do not clear the block or a
+/// setting is out of range.
+pub fn paths(d: &DirectionCut, index: usize, floor: f64, p: &WireParams) -> Result<Vec<WirePath>> {
+    let width = d.w.1 - d.w.0;
+    let bad = |name, reason: String| Err(PreCutError::InvalidParameter { name, reason });
+    if !(p.tower_distance.is_finite() && p.tower_distance > width) {
+        return bad(
+            "tower_distance",
+            format!(
+                "{} must exceed the block's width across the cut, {width}",
+                p.tower_distance
+            ),
+        );
+    }
+    if !(p.kerf.is_finite() && p.kerf >= 0.0 && p.kerf < width / 10.0) {
+        return bad("kerf", format!("{} must be in [0, width/10)", p.kerf));
+    }
+    if !(p.speed.is_finite() && p.speed > 0.0) {
+        return bad("speed", format!("{} must be positive", p.speed));
+    }
+    if !(p.lead.is_finite() && p.lead >= 0.0 && p.clearance.is_finite() && p.clearance > 0.0) {
+        return bad("lead", "lead ≥ 0 and clearance > 0 needed".into());
+    }
+    if p.steps < 2 {
+        return bad("steps", format!("{} must be at least 2", p.steps));
+    }
+    let mid = (d.w.0 + d.w.1) / 2.0;
+    let towers = (mid - p.tower_distance / 2.0, mid + p.tower_distance / 2.0);
+    let curves = leg_curves(d)?;
+    let along = Vector3::from(d.direction);
+    let across = Vector3::from(d.across);
+    let mut out = Vec::new();
+    for (leg, curve) in curves.iter().enumerate() {
+        // z of the leg and its partial derivatives at (u, w).
+        let z = |u: f64, w: f64| {
+            let am = curve.eval(u.clamp(d.u.0, d.u.1));
+            am[0] + am[1] * (w - d.w_mid) / d.w_half
+        };
+        let h = 1e-6 * (d.u.1 - d.u.0);
+        // The cut surface continues unchanged (a cylinder) outside the block along u.
+        let point = |u: f64, w: f64| -> Vector3<f64> {
+            let uc = u.clamp(d.u.0, d.u.1);
+            let (u0, u1) = ((uc - h).max(d.u.0), (uc + h).min(d.u.1));
+            let dz_du = if u < d.u.0 || u > d.u.1 {
+                0.0
+            } else {
+                (z(u1, w) - z(u0, w)) / (u1 - u0)
+            };
+            let dz_dw = {
+                let am = curve.eval(uc);
+                am[1] / d.w_half
+            };
+            let n = Vector3::new(-dz_du, -dz_dw, 1.0).normalize();
+            // Frame coordinates (u, w, z) offset by half the kerf along n.
+            Vector3::new(u, w, z(u, w)) + n * (p.kerf / 2.0)
+        };
+        let mut us = vec![d.u.0 - p.lead];
+        us.extend((0..p.steps).map(|i| d.u.0 + (d.u.1 - d.u.0) * i as f64 / (p.steps - 1) as f64));
+        us.push(d.u.1 + p.lead);
+        let steps = us
+            .iter()
+            .map(|&u| {
+                let (q0, q1) = (point(u, d.w.0), point(u, d.w.1));
+                let at = |w: f64| q0 + (q1 - q0) * ((w - q0.y) / (q1.y - q0.y));
+                let (ta, tb) = (at(towers.0), at(towers.1));
+                let model = |q: Vector3<f64>| {
+                    let xy = along * q.x + across * q.y;
+                    [xy.x, xy.y, q.z]
+                };
+                let mm = p.mm_per_unit;
+                WireStep {
+                    u,
+                    a: [(ta.x - d.u.0 + p.lead) * mm, (ta.z - floor) * mm],
+                    b: [(tb.x - d.u.0 + p.lead) * mm, (tb.z - floor) * mm],
+                    side0: model(q0),
+                    side1: model(q1),
+                }
+            })
+            .collect();
+        out.push(WirePath {
+            direction: index,
+            leg,
+            steps,
+            towers,
+        });
+    }
+    Ok(out)
+}
+
+fn leg_curves(d: &DirectionCut) -> Result<Vec<geom::bspline::BSplineCurve<2>>> {
+    d.legs
+        .iter()
+        .map(|l| {
+            let ctrl =
+                l.a.iter()
+                    .zip(&l.m)
+                    .map(|(a, m)| nalgebra::Vector2::new(*a, *m))
+                    .collect();
+            Ok(geom::bspline::BSplineCurve::try_new(
+                d.degree,
+                d.knots.clone(),
+                ctrl,
+            )?)
+        })
+        .collect()
+}
+
+/// Formats a coordinate with 4 decimals (0.1 µm), `-0` as `0`.
+fn num(v: f64) -> String {
+    let s = format!("{v:.4}");
+    if s == "-0.0000" {
+        "0.0000".into()
+    } else {
+        s
+    }
+}
+
+/// The G-code of one cut: header, rapid to safe height above the lead-in point, down,
+/// the cut in inverse-time feed, rapid up after the lead-out.
+pub fn gcode(path: &WirePath, p: &WireParams, top: f64, floor: f64, name: &str) -> String {
+    let mm = p.mm_per_unit;
+    let safe = (top - floor + p.clearance) * mm;
+    let mut g = String::new();
+    let _ = writeln!(
+        g,
+        "; hotcut pre-cut {name}: direction {} cut {}",
+        path.direction + 1,
+        path.leg + 1
+    );
+    let _ = writeln!(
+        g,
+        "; towers {} mm apart; kerf {} mm; speed {} mm/min; X/U along the cut from the lead-in, Y/V above the block floor",
+        num(p.tower_distance * mm),
+        num(p.kerf * mm),
+        num(p.speed * mm)
+    );
+    let _ = writeln!(g, "G21 G90 G94");
+    let first = &path.steps[0];
+    let _ = writeln!(
+        g,
+        "G0 X{} Y{} U{} V{}",
+        num(first.a[0]),
+        num(safe),
+        num(first.b[0]),
+        num(safe)
+    );
+    let _ = writeln!(
+        g,
+        "G0 X{} Y{} U{} V{}",
+        num(first.a[0]),
+        num(first.a[1]),
+        num(first.b[0]),
+        num(first.b[1])
+    );
+    let _ = writeln!(g, "G93");
+    for w in path.steps.windows(2) {
+        let (s, t) = (&w[0], &w[1]);
+        let da = (t.a[0] - s.a[0]).hypot(t.a[1] - s.a[1]);
+        let db = (t.b[0] - s.b[0]).hypot(t.b[1] - s.b[1]);
+        let minutes = (da.max(db) / (p.speed * mm)).max(1e-9);
+        let _ = writeln!(
+            g,
+            "G1 X{} Y{} U{} V{} F{}",
+            num(t.a[0]),
+            num(t.a[1]),
+            num(t.b[0]),
+            num(t.b[1]),
+            num(1.0 / minutes)
+        );
+    }
+    let last = &path.steps[path.steps.len() - 1];
+    let _ = writeln!(g, "G94");
+    let _ = writeln!(
+        g,
+        "G0 X{} Y{} U{} V{}",
+        num(last.a[0]),
+        num(safe),
+        num(last.b[0]),
+        num(safe)
+    );
+    let _ = writeln!(g, "M2");
+    g
+}
+
+/// The CSV of one cut: one row per step.
+pub fn csv(path: &WirePath) -> String {
+    let mut c = String::from("step,u,X,Y,U,V,side0_x,side0_y,side0_z,side1_x,side1_y,side1_z\n");
+    for (i, s) in path.steps.iter().enumerate() {
+        let _ = writeln!(
+            c,
+            "{i},{},{},{},{},{},{},{},{},{},{},{}",
+            num(s.u),
+            num(s.a[0]),
+            num(s.a[1]),
+            num(s.b[0]),
+            num(s.b[1]),
+            num(s.side0[0]),
+            num(s.side0[1]),
+            num(s.side0[2]),
+            num(s.side1[0]),
+            num(s.side1[1]),
+            num(s.side1[2])
+        );
+    }
+    c
+}
