@@ -24,14 +24,28 @@ const SMALL: &str =
 #[test]
 fn runs_and_writes_every_file() {
     let dir = tempfile::tempdir().unwrap();
-    write(dir.path(), "job.ron", &job(SMALL, ""));
+    let text = job(SMALL, "").replace(
+        "outputs: [Report, PreCut, Svg]",
+        "outputs: [Report, PreCut, Svg, Obj, Gltf]",
+    );
+    write(dir.path(), "job.ron", &text);
     let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("(PreCut):"), "{stdout}");
     let out = dir.path().join("out/t");
-    for f in ["report.json", "precut.json", "sections.svg"] {
+    for f in [
+        "report.json",
+        "precut.json",
+        "sections.svg",
+        "precut.obj",
+        "model.gltf",
+    ] {
         assert!(out.join(f).is_file(), "{f} missing");
+    }
+    let obj = std::fs::read_to_string(out.join("precut.obj")).unwrap();
+    for o in ["o design", "o cut_d1", "o cut_d2", "o block"] {
+        assert!(obj.contains(o), "{o} missing from precut.obj");
     }
     let pc: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("precut.json")).unwrap()).unwrap();

@@ -48,7 +48,7 @@ use legs::Legs;
 use solve::{Point, SolveOptions};
 
 /// Parameters of [`pre_cut`].
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct Params {
     /// Cuts (legs of the moving polygon) per direction (≥ 1).
     pub legs: usize,

@@ -46,7 +46,7 @@ pub fn render(run: &Rc<BlockSegRun>, o: &OutputSpec) -> Vec<Render<'static>> {
 }
 
 /// A block as a closed box mesh.
-fn block_mesh(p: &Placement) -> export::Result<TriMesh> {
+pub(crate) fn block_mesh(p: &Placement) -> export::Result<TriMesh> {
     TriMesh::try_new(
         p.cuboid().corners().to_vec(),
         geom::mesh::BOX_FACES.to_vec(),
@@ -62,7 +62,8 @@ fn obj(run: &BlockSegRun, buf: &mut Vec<u8>) -> export::Result<()> {
     w.write(buf)
 }
 
-fn gltf_mesh(name: String, m: &TriMesh, material: usize) -> Mesh {
+/// A mesh for the glTF writer with one material.
+pub(crate) fn gltf_mesh(name: String, m: &TriMesh, material: usize) -> Mesh {
     Mesh {
         name,
         positions: m.vertices().iter().map(f32s).collect(),

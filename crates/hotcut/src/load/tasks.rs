@@ -250,7 +250,7 @@ pub(super) fn check_task(
                     ));
                 }
             }
-            &["Report", "PreCut", "Svg", "GCode", "Csv"]
+            &["Report", "PreCut", "Svg", "GCode", "Csv", "Obj", "Gltf"]
         }
     }
 }

@@ -25,29 +25,6 @@ use crate::job::{TaskSpec, Units};
 use crate::load::ResolvedJob;
 use crate::Progress;
 
-/// The optimizer's parameters as run (`report.json`).
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
-pub struct PreCutParams {
-    /// Cuts per direction.
-    pub legs: usize,
-    /// Directions as given, `[x, y]`.
-    pub directions: Vec<[f64; 2]>,
-    /// B-spline degree along the cut.
-    pub degree: usize,
-    /// Control values per cut along the cut.
-    pub controls: usize,
-    /// Section planes (N).
-    pub sections: usize,
-    /// Samples per section (M).
-    pub samples: usize,
-    /// Assignment-round cap.
-    pub max_rounds: usize,
-    /// Check-grid density factor.
-    pub check_density: usize,
-    /// Clearance kept above the design, relative to the block's longest edge.
-    pub margin: f64,
-}
-
 /// The report of a `PreCut` run (`report.json`).
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct PreCutReport {
@@ -55,8 +32,8 @@ pub struct PreCutReport {
     pub units: Units,
     /// The block: minimum and maximum corner.
     pub block: ruled::Block,
-    /// Parameters.
-    pub params: PreCutParams,
+    /// The optimizer's parameters as run.
+    pub params: ruled::Params,
     /// Table 2.1: volumes normalised by the block.
     pub volumes: ruled::Volumes,
     /// Per direction: rounds, QPs, constraint points, objective history, clearance.
@@ -190,17 +167,7 @@ pub fn pre_cut(job: &ResolvedJob, progress: &dyn Progress) -> Result<PreCutRun> 
     let report = PreCutReport {
         units: job.job.units,
         block,
-        params: PreCutParams {
-            legs: params.legs,
-            directions: params.directions.clone(),
-            degree: params.degree,
-            controls: params.controls,
-            sections: params.sections,
-            samples: params.samples,
-            max_rounds: params.max_rounds,
-            check_density: params.check_density,
-            margin: params.margin,
-        },
+        params: params.clone(),
         volumes: cut.volumes,
         directions: cut
             .directions
