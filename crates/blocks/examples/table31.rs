@@ -2,9 +2,10 @@
 //! for each model, a block edge is searched so that the initial grid is within ±10 % of
 //! the paper's "No B Init", then the full algorithm runs with `RESTARTS` restarts.
 //!
-//! `cargo run --release -p blocks --example table31 -- [RESTARTS] [ablation] [surface] [spacing=F] [MODEL…]`
+//! `cargo run --release -p blocks --example table31 -- [RESTARTS] [ablation] [surface] [spacing=F] [edge=F] [MODEL…]`
 //!
-//! `surface` switches to `Coverage::Surface`, `spacing=F` sets the sample spacing; with
+//! `surface` switches to `Coverage::Surface`, `spacing=F` sets the sample spacing, `edge=F`
+//! fixes the block edge instead of searching it; with
 //! `TABLE31_VERBOSE` set, every restart's outcome and the kept run's history go to stderr.
 //! The Torus rows are the shared `torus.obj` and a generated thin torus (see [`torus`]).
 
@@ -120,6 +121,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some(s) => s.parse()?,
         None => Params::default().sample_spacing,
     };
+    let fixed_edge: Option<f64> = match args.iter().find_map(|a| a.strip_prefix("edge=")) {
+        Some(s) => Some(s.parse()?),
+        None => None,
+    };
     let coverage = if args.iter().any(|a| a == "surface") {
         Coverage::Surface
     } else {
@@ -128,7 +133,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let only: Vec<&String> = args
         .iter()
         .skip(1)
-        .filter(|a| !["ablation", "surface"].contains(&a.as_str()) && !a.starts_with("spacing="))
+        .filter(|a| {
+            !["ablation", "surface"].contains(&a.as_str())
+                && !a.starts_with("spacing=")
+                && !a.starts_with("edge=")
+        })
         .collect();
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/meshes");
     if !ablation {
@@ -144,7 +153,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         } else {
             TriMesh::load_obj(&dir.join(file))?
         };
-        let (edge, init) = edge_for(&mesh, init_paper, (spacing, coverage))?;
+        let (edge, init) = match fixed_edge {
+            Some(e) => (e, initial(&mesh, e, (spacing, coverage))?),
+            None => edge_for(&mesh, init_paper, (spacing, coverage))?,
+        };
         let base = Params {
             block_size: [edge; 3],
             restarts,
