@@ -18,6 +18,15 @@ fn job(task: &str, extra: &str) -> String {
     )
 }
 
+/// A JSON array of numbers.
+fn floats(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
 const SMALL: &str =
     "PreCut(legs: 3, directions: [X, Degrees(90)], sections: 10, samples: 10, controls: 5)";
 
@@ -52,12 +61,7 @@ fn runs_and_writes_every_file() {
     let dirs = pc["directions"].as_array().unwrap();
     assert_eq!(dirs.len(), 2);
     for d in dirs {
-        let v: Vec<f64> = d["direction"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|x| x.as_f64().unwrap())
-            .collect();
+        let v: Vec<f64> = floats(&d["direction"]);
         assert!(
             (v[0].hypot(v[1]) - 1.0).abs() < 1e-9 && v[2] == 0.0,
             "{v:?}"
@@ -70,12 +74,7 @@ fn runs_and_writes_every_file() {
             // Every vertex lies in the section plane: direction · (x, y) = offset.
             let u = s["offset"].as_f64().unwrap();
             for p in poly {
-                let p: Vec<f64> = p
-                    .as_array()
-                    .unwrap()
-                    .iter()
-                    .map(|x| x.as_f64().unwrap())
-                    .collect();
+                let p: Vec<f64> = floats(&p);
                 assert!(
                     (v[0] * p[0] + v[1] * p[1] - u).abs() < 1e-6,
                     "{p:?} off plane {u}"
@@ -85,18 +84,8 @@ fn runs_and_writes_every_file() {
             let slopes: Vec<f64> = poly
                 .windows(2)
                 .map(|w| {
-                    let a: Vec<f64> = w[0]
-                        .as_array()
-                        .unwrap()
-                        .iter()
-                        .map(|x| x.as_f64().unwrap())
-                        .collect();
-                    let b: Vec<f64> = w[1]
-                        .as_array()
-                        .unwrap()
-                        .iter()
-                        .map(|x| x.as_f64().unwrap())
-                        .collect();
+                    let a: Vec<f64> = floats(&w[0]);
+                    let b: Vec<f64> = floats(&w[1]);
                     (b[2] - a[2]) / ((b[0] - a[0]).hypot(b[1] - a[1])).max(1e-12)
                 })
                 .collect();
