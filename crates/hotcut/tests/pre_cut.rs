@@ -74,7 +74,7 @@ fn runs_and_writes_every_file() {
             // Every vertex lies in the section plane: direction · (x, y) = offset.
             let u = s["offset"].as_f64().unwrap();
             for p in poly {
-                let p: Vec<f64> = floats(&p);
+                let p: Vec<f64> = floats(p);
                 assert!(
                     (v[0] * p[0] + v[1] * p[1] - u).abs() < 1e-6,
                     "{p:?} off plane {u}"
