@@ -1,0 +1,108 @@
+//! The cross-check programs of `examples/` (issue 3): one JSON line piped through each.
+//!
+//! `cargo test` builds the examples next to this test (`target/<profile>/examples/`); when
+//! they are missing (`cargo test --test examples` alone), they are built first.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+
+use serde_json::Value;
+
+/// The built example `name`, building the examples when it is missing.
+fn example(name: &str) -> PathBuf {
+    let exe = std::env::current_exe().expect("test executable");
+    // target/<profile>/deps/examples-<hash> → target/<profile>/examples/<name>
+    let dir = exe
+        .parent()
+        .and_then(|d| d.parent())
+        .expect("target profile folder")
+        .join("examples");
+    let path = dir.join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
+    if !path.is_file() {
+        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+        let profile = dir
+            .parent()
+            .and_then(|d| d.file_name())
+            .and_then(|d| d.to_str());
+        let mut build = Command::new(cargo);
+        build.args(["build", "-q", "-p", "elastica", "--examples"]);
+        if profile == Some("release") {
+            build.arg("--release");
+        }
+        let status = build.status().expect("cargo runs");
+        assert!(status.success(), "building the examples failed");
+    }
+    path
+}
+
+/// Pipes `line` through example `name` and returns the one JSON line it answers.
+fn pipe(name: &str, line: &str) -> Value {
+    let mut child = Command::new(example(name))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .expect("example starts");
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(format!("{line}\n").as_bytes())
+        .expect("write");
+    let out = child.wait_with_output().expect("example ends");
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 1, "{text}");
+    serde_json::from_str(lines[0]).expect("a JSON line")
+}
+
+fn number(v: &Value, key: &str) -> f64 {
+    v[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} missing in {v}"))
+}
+
+#[test]
+fn elliptic_answers_with_every_field() {
+    // m = 1/2 at u = K: sn = 1, cn = 0, dn = √(1/2); K(1/2) = 1.8540746773013719...
+    let k = 1.854_074_677_301_371_9;
+    let v = pipe("elliptic", &format!(r#"{{"id": "q", "u": {k}, "m": 0.5}}"#));
+    assert_eq!(v["id"], "q");
+    assert!((number(&v, "K") - k).abs() < 1e-15);
+    assert!((number(&v, "sn") - 1.0).abs() < 1e-15);
+    assert!(number(&v, "cn").abs() < 1e-15);
+    assert!((number(&v, "dn") - 0.5f64.sqrt()).abs() < 1e-15);
+    assert!((number(&v, "am") - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    // E(K|m) is the complete integral E(1/2) = 1.3506438810476755...
+    assert!((number(&v, "E") - 1.350_643_881_047_675_5).abs() < 1e-15);
+    assert!((number(&v, "eps") - number(&v, "E")).abs() < 1e-14);
+    // a bad request gets an error with its id, not a crash
+    let bad = pipe("elliptic", r#"{"id": 7, "u": 1, "m": 2}"#);
+    assert_eq!(bad["id"], 7);
+    assert!(bad["error"].is_string());
+}
+
+#[test]
+fn segment_answers_with_point_angle_and_curvature() {
+    // at σ = 0 the inflectional ζ starts at the origin along +x with curvature 2k
+    let v = pipe(
+        "segment",
+        r#"{"id": 3, "family": "inflectional", "k": 0.7, "s0": 0, "l": 2, "S": 1, "phi": 0, "x0": 0, "y0": 0, "t": 0}"#,
+    );
+    assert_eq!(v["id"], 3);
+    let expect = |v: &Value, want: [f64; 4]| {
+        for (key, w) in ["x", "y", "theta", "kappa"].into_iter().zip(want) {
+            assert!((number(v, key) - w).abs() < 1e-15, "{key}: {v}");
+        }
+    };
+    expect(&v, [0.0, 0.0, 0.0, 1.4]);
+    // the non-inflectional γ at σ = 0: curvature 2/k, scaled by 1/S, rotated by φ, moved
+    let w = pipe(
+        "segment",
+        r#"{"id": 4, "family": "noninflectional", "k": 0.5, "s0": 0, "l": 1, "S": 2, "phi": 0.3, "x0": 1, "y0": -1, "t": 0}"#,
+    );
+    expect(&w, [1.0, -1.0, 0.3, 2.0]);
+    let bad = pipe("segment", r#"{"id": 5, "family": "circle"}"#);
+    assert!(bad["error"].as_str().unwrap_or("").contains("family"));
+}
