@@ -6,9 +6,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use hotcut::job::OutputSpec;
 use hotcut::load::load_job;
 use hotcut::run::run_job;
+use hotcut::spec::OutputSpec;
 use hotcut::NoProgress;
 
 const VALIDATOR: &str = "gltf-validator@2.0.0-dev.3.10";
@@ -53,7 +53,7 @@ fn gltf_outputs_pass_the_khronos_validator() {
     jobs.sort();
     for path in jobs {
         let job = load_job(&path).unwrap();
-        if !job.job.outputs.contains(&OutputSpec::Gltf) {
+        if !job.outputs.contains(&OutputSpec::Gltf) {
             continue;
         }
         let r = run_job(&job, out.path(), &NoProgress).unwrap();

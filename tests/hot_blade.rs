@@ -12,10 +12,11 @@
 use std::path::Path;
 
 use elastica::discrete::{discrete_elastica, DiscreteParams};
-use hotcut::hot_blade::{hot_blade, HotBladeParams, HotBladeRun};
-use hotcut::job::{Continuity, FitConstraintSpec, TaskSpec};
-use hotcut::load::{load_job, parse_job, resolve};
-use hotcut::NoProgress;
+use elastica::fit::FitConstraint;
+use hotblade::{Continuity, FittedSection, Rationalization};
+use hotcut::job::TaskSpec;
+use hotcut::load::{load_job, parse_job, resolve, ResolvedJob};
+use hotcut::task::Task;
 use nalgebra::{Vector2, Vector3};
 
 const JOBS: [&str; 4] = [
@@ -25,14 +26,29 @@ const JOBS: [&str; 4] = [
     "hot-blade-curve",
 ];
 
+/// A `HotBlade` job's pipeline run, with the parameters it ran with.
+struct HotBladeRun {
+    cut: Rationalization,
+    params: hotblade::Params,
+}
+
+/// Runs the `hotblade` pipeline with the parameters the job's task gives.
+fn rationalize(job: &ResolvedJob) -> HotBladeRun {
+    let TaskSpec::HotBlade(task) = &job.task else {
+        panic!("not a HotBlade job");
+    };
+    let params = task.params(&job.context).unwrap().pipeline;
+    let surface = job.context.surface.as_ref().unwrap();
+    HotBladeRun {
+        cut: hotblade::rationalize(surface, &params, &|_| {}).unwrap(),
+        params,
+    }
+}
+
 fn run(name: &str) -> (HotBladeRun, f64) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("jobs/{name}.ron"));
     let job = load_job(&path).unwrap();
-    let params = HotBladeParams::from_job(&job).unwrap();
-    (
-        hot_blade(&job, &params, &NoProgress).unwrap(),
-        job.job.tolerance.max,
-    )
+    (rationalize(&job), job.context.tolerance.max)
 }
 
 fn dist_to_polyline(p: &Vector3<f64>, poly: &[Vector3<f64>]) -> f64 {
@@ -54,7 +70,7 @@ fn every_pose_rebuilds_a_blade_through_the_fitted_section() {
         let length = run.params.blade.length;
         let mut worst = 0.0f64;
         let (mut poses, mut fallbacks) = (0, 0);
-        for b in &run.blocks {
+        for b in &run.cut.blocks {
             for sec in &b.sections {
                 let pose = &sec.pose;
                 // the plane from the pose alone: origin at end 1, x along its tangent, z = normal
@@ -82,7 +98,7 @@ fn every_pose_rebuilds_a_blade_through_the_fitted_section() {
                     .map(|q| p0 + x * q[0] + y * q[1])
                     .collect();
                 // the fitted section (inside the block), in 3D
-                let plane = &run.planes[sec.plane];
+                let plane = &run.cut.planes[sec.plane];
                 for q in sec.fit.segment.sample(200).unwrap() {
                     let p = plane
                         .frame
@@ -105,11 +121,11 @@ fn every_pose_rebuilds_a_blade_through_the_fitted_section() {
 fn same_length_and_end_points_are_kept() {
     for name in JOBS {
         let (run, _) = run(name);
-        if run.params.constraint != FitConstraintSpec::EndPointsAndLength {
+        if run.params.constraint != FitConstraint::EndPointsAndLength {
             continue;
         }
         let mut worst = 0.0f64;
-        for b in &run.blocks {
+        for b in &run.cut.blocks {
             for sec in &b.sections {
                 let d = &sec.design;
                 let seg = &sec.fit.segment;
@@ -133,8 +149,8 @@ fn same_length_and_end_points_are_kept() {
 /// asserts that consecutive rows cut their shared face with the same blade.
 fn shared_ends(run: &HotBladeRun) -> (f64, f64, usize) {
     let (mut gap, mut angle, mut pairs) = (0.0f64, 0.0f64, 0);
-    for a in &run.blocks {
-        for b in &run.blocks {
+    for a in &run.cut.blocks {
+        for b in &run.cut.blocks {
             // side by side across the cut: a's far face is b's near face
             let touching = a.report.row == b.report.row
                 && (a.report.origin[1] + a.report.size[1] - b.report.origin[1]).abs() < 1e-9;
@@ -145,7 +161,7 @@ fn shared_ends(run: &HotBladeRun) -> (f64, f64, usize) {
                 let Some(sb) = b.sections.iter().find(|s| s.plane == sa.plane) else {
                     continue;
                 };
-                let plane = &run.planes[sa.plane];
+                let plane = &run.cut.planes[sa.plane];
                 let ea = sa.fit.segment.eval(1.0).unwrap();
                 let eb = sb.fit.segment.eval(0.0).unwrap();
                 let w = |q: [f64; 2]| {
@@ -161,7 +177,7 @@ fn shared_ends(run: &HotBladeRun) -> (f64, f64, usize) {
             }
         }
         // along the cut: consecutive rows cut the shared face with the same blade
-        for b in &run.blocks {
+        for b in &run.cut.blocks {
             if b.report.row == a.report.row + 1 && b.report.origin[1] == a.report.origin[1] {
                 let (la, fb) = (a.sections.last().unwrap(), b.sections.first().unwrap());
                 assert_eq!(la.plane, fb.plane);
@@ -177,12 +193,10 @@ fn neighbouring_blocks_share_end_points_and_tangents() {
     // the jobs as written, and the 8-block facade asked for C¹ as well
     let facade = Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs/hot-blade-facade.ron");
     let mut job = parse_job(&facade, &std::fs::read_to_string(&facade).unwrap()).unwrap();
-    if let TaskSpec::HotBlade { continuity, .. } = &mut job.task {
-        *continuity = Continuity::C1;
+    if let TaskSpec::HotBlade(task) = &mut job.task {
+        task.continuity = Continuity::C1;
     }
-    let job = resolve(&facade, job).unwrap();
-    let params = HotBladeParams::from_job(&job).unwrap();
-    let facade_c1 = hot_blade(&job, &params, &NoProgress).unwrap();
+    let facade_c1 = rationalize(&resolve(&facade, job).unwrap());
     let runs = JOBS
         .iter()
         .map(|name| (name.to_string(), run(name).0))
@@ -190,13 +204,13 @@ fn neighbouring_blocks_share_end_points_and_tangents() {
     for (name, run) in runs {
         let c1 = run.params.continuity == Continuity::C1;
         if c1 {
-            assert_eq!(run.report.summary.tangent_failures, 0, "{name}");
+            assert_eq!(run.cut.summary.tangent_failures, 0, "{name}");
         }
         let (gap, angle, pairs) = shared_ends(&run);
         println!(
             "{name}: {pairs} shared ends, gap ≤ {gap:.3e}, tangent angle ≤ {angle:.3e} (C1: {c1})"
         );
-        if run.blocks.len() > 1 {
+        if run.cut.blocks.len() > 1 {
             assert!(pairs > 0, "{name}: no neighbours found");
         }
         assert!(gap <= 1e-6, "{name}: gap {gap}");
@@ -217,15 +231,13 @@ fn columns_over_tolerance_are_halved_and_refitted() {
     let mut job = parse_job(&path, &text).unwrap();
     job.tolerance.max = 0.01;
     job.tolerance.rms = 0.005;
-    let job = resolve(&path, job).unwrap();
-    let params = HotBladeParams::from_job(&job).unwrap();
-    let run = hot_blade(&job, &params, &NoProgress).unwrap();
-    let (tol_max, tol_rms, depth) = (0.01f64, 0.005f64, params.split_depth);
-    let splits = &run.report.splits;
+    let run = rationalize(&resolve(&path, job).unwrap());
+    let (tol_max, tol_rms, depth) = (0.01f64, 0.005f64, run.params.split_depth);
+    let splits = &run.cut.splits;
     println!(
         "{} splits, {} blocks (8 unsplit)",
         splits.len(),
-        run.blocks.len()
+        run.cut.blocks.len()
     );
     assert!(!splits.is_empty());
     for s in splits {
@@ -233,8 +245,8 @@ fn columns_over_tolerance_are_halved_and_refitted() {
         assert!(s.max_fit_distance > tol_rms.min(tol_max), "{s:?}");
         assert!(s.level as usize <= depth as usize);
     }
-    let column_width = run.report.grid.size[1];
-    for b in &run.blocks {
+    let column_width = run.cut.grid.size[1];
+    for b in &run.cut.blocks {
         let over = b
             .sections
             .iter()
@@ -251,8 +263,9 @@ fn columns_over_tolerance_are_halved_and_refitted() {
     }
     // per row, the parts tile the surface's width without gap or overlap, alike in all rows
     let mut tilings = Vec::new();
-    for row in 0..run.report.grid.rows {
+    for row in 0..run.cut.grid.rows {
         let mut parts: Vec<(f64, f64)> = run
+            .cut
             .blocks
             .iter()
             .filter(|b| b.report.row == row)
@@ -265,7 +278,7 @@ fn columns_over_tolerance_are_halved_and_refitted() {
         tilings.push(parts);
     }
     assert!(tilings.windows(2).all(|w| w[0] == w[1]));
-    assert!(run.blocks.len() > 8);
+    assert!(run.cut.blocks.len() > 8);
     let (gap, _, pairs) = shared_ends(&run);
     println!("{pairs} shared ends after splitting, gap ≤ {gap:.3e}");
     assert!(gap <= 1e-6);
@@ -278,11 +291,11 @@ fn columns_over_tolerance_are_halved_and_refitted() {
 /// lies strictly behind b when its two ends do. Pairs with an end within 1e-6 mm of the
 /// other plane are skipped (either answer is right there). Returns (flagged, checked).
 fn overlaps_against_geometry(run: &HotBladeRun) -> (usize, usize) {
-    let axis_u = Vector3::from(run.report.grid.axis_u);
+    let axis_u = run.cut.grid.frame.u;
     let (mut flagged, mut pairs) = (0, 0);
     // the plan points of a section at the ends of its lateral extent
-    let ends = |sec: &hotcut::hot_blade::FittedSection| {
-        let pl = &run.planes[sec.plane];
+    let ends = |sec: &FittedSection| {
+        let pl = &run.cut.planes[sec.plane];
         let world: Vec<Vector3<f64>> = sec
             .design
             .points
@@ -294,10 +307,10 @@ fn overlaps_against_geometry(run: &HotBladeRun) -> (usize, usize) {
         let hi = *world.iter().max_by(by_u).unwrap();
         [lo, hi]
     };
-    for b in &run.blocks {
+    for b in &run.cut.blocks {
         'pairs: for (k, w) in b.sections.windows(2).enumerate() {
-            let (pa, pb) = (&run.planes[w[0].plane], &run.planes[w[1].plane]);
-            let dist = |pl: &hotcut::hot_blade::grid::Plane, p: &Vector3<f64>| {
+            let (pa, pb) = (&run.cut.planes[w[0].plane], &run.cut.planes[w[1].plane]);
+            let dist = |pl: &hotblade::grid::Plane, p: &Vector3<f64>| {
                 let n = Vector3::new(pl.frame.normal.x, pl.frame.normal.y, 0.0);
                 n.dot(&Vector3::new(p.x, p.y, 0.0)) - pl.offset
             };
@@ -341,11 +354,9 @@ fn overlapping_curve_planes_are_detected() {
         (1350.0, 300.0),
         (1800.0, 600.0),
     ]);
-    let job = resolve(&path, job).unwrap();
-    let params = HotBladeParams::from_job(&job).unwrap();
-    let sharp = hot_blade(&job, &params, &NoProgress).unwrap();
+    let sharp = rationalize(&resolve(&path, job).unwrap());
     let (flagged, pairs) = overlaps_against_geometry(&sharp);
     println!("sharp S curve: {flagged} of {pairs} consecutive plane pairs overlap");
     assert!(flagged > 0, "no overlap found on the sharp curve");
-    assert!(sharp.report.summary.flagged.overlap > 0);
+    assert!(sharp.cut.summary.flagged.overlap > 0);
 }

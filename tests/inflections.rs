@@ -8,8 +8,9 @@
 
 use std::path::Path;
 
-use hotcut::analyze::{analyze, AnalyzeParams};
+use hotcut::job::TaskSpec;
 use hotcut::load::load_job;
+use hotcut::task::Task;
 use hotcut::NoProgress;
 
 struct Case {
@@ -83,9 +84,13 @@ fn job_text(name: &str, surface: &str) -> String {
 
 fn counts(path: &Path) -> Vec<(f64, usize)> {
     let job = load_job(path).unwrap_or_else(|e| panic!("{e:?}"));
-    let a = analyze(&job, &AnalyzeParams::from_job(&job), &NoProgress).unwrap();
-    a.report
-        .sections
+    let TaskSpec::Analyze(task) = &job.task else {
+        panic!("not an Analyze job");
+    };
+    let params = task.params(&job.context).unwrap();
+    let a = hotcut::analyze::Analyze::run(&params, &job.context, &NoProgress).unwrap();
+    a.survey
+        .reports
         .iter()
         .map(|s| (s.offset, s.inflections.len()))
         .collect()

@@ -36,6 +36,48 @@ pub struct Mesh {
     pub material: usize,
 }
 
+/// A position as glTF's single precision.
+pub fn f32s(v: &nalgebra::Vector3<f64>) -> [f32; 3] {
+    [v.x as f32, v.y as f32, v.z as f32]
+}
+
+impl Mesh {
+    /// A triangle mesh of `geom` with one material and no vertex colours.
+    pub fn from_trimesh(name: impl Into<String>, m: &geom::mesh::TriMesh, material: usize) -> Self {
+        Self {
+            name: name.into(),
+            positions: m.vertices().iter().map(f32s).collect(),
+            colors: None,
+            indices: m.faces().iter().flatten().copied().collect(),
+            material,
+        }
+    }
+
+    /// A closed box (the faces of [`geom::mesh::BOX_FACES`]) with min corner `o` and edges
+    /// `s` along `axes` (each unit length; corner `i` adds edge `k` when bit `k` of `i` is
+    /// set).
+    pub fn from_box(
+        name: impl Into<String>,
+        o: nalgebra::Vector3<f64>,
+        axes: [nalgebra::Vector3<f64>; 3],
+        s: [f64; 3],
+        material: usize,
+    ) -> Self {
+        let corner = |i: usize| {
+            o + axes[0] * if i & 1 != 0 { s[0] } else { 0.0 }
+                + axes[1] * if i & 2 != 0 { s[1] } else { 0.0 }
+                + axes[2] * if i & 4 != 0 { s[2] } else { 0.0 }
+        };
+        Self {
+            name: name.into(),
+            positions: (0..8).map(|i| f32s(&corner(i))).collect(),
+            colors: None,
+            indices: geom::mesh::BOX_FACES.iter().flatten().copied().collect(),
+            material,
+        }
+    }
+}
+
 /// Writes the scene.
 ///
 /// ```

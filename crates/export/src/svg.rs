@@ -9,6 +9,17 @@ use crate::{fmt_float, Result};
 
 const DECIMALS: usize = 2;
 
+/// The bounding rectangle `(min, max)` of points (infinite bounds for none).
+pub fn bounds(pts: impl Iterator<Item = (f64, f64)>) -> ((f64, f64), (f64, f64)) {
+    pts.fold(
+        (
+            (f64::INFINITY, f64::INFINITY),
+            (f64::NEG_INFINITY, f64::NEG_INFINITY),
+        ),
+        |((x0, y0), (x1, y1)), (x, y)| ((x0.min(x), y0.min(y)), (x1.max(x), y1.max(y))),
+    )
+}
+
 /// Maps world coordinates `(x, y)` (y up) into a page rectangle, preserving aspect ratio.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Viewport {

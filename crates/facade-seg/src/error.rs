@@ -30,4 +30,14 @@ pub enum SegError {
         /// What kept the bands narrow.
         why: String,
     },
+    /// A piece's section part could not be fitted or extended to the blade.
+    #[error("piece {piece}: section {plane}: {message}")]
+    Rationalize {
+        /// Piece id.
+        piece: usize,
+        /// Plane index of the section.
+        plane: usize,
+        /// The fit's or blade's error.
+        message: String,
+    },
 }

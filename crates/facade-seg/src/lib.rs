@@ -19,8 +19,14 @@ pub mod inflection;
 pub mod longest;
 /// Pieces, blocks and seams: what every algorithm returns.
 pub mod piece;
+/// Rationalizing a piece: its parts fitted by elastica, extended to the blade, posed.
+pub mod rationalize;
+/// What a run reports per piece (blade fits folded into the verdicts), and the counts.
+pub mod report;
 /// Sections prepared for segmentation: arc length, inflections, sampling.
 pub mod section;
+/// The survey before cutting (§5.1): every section checked against the constraints.
+pub mod survey;
 /// The trace algorithm (§5.3).
 pub mod trace;
 

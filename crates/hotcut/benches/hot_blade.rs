@@ -1,14 +1,14 @@
 //! Benchmarks of the `HotBlade` task on the multi-block facade job
 //! (`jobs/hot-blade-facade.ron`: 8 blocks, 408 fitted sections):
-//! - `facade_job`: the whole computation (`hot_blade`: grid, sections, fits, splits,
-//!   swept surfaces, deviation grid, report), no files written;
+//! - `facade_job`: the whole computation (`hotblade::rationalize`: grid, sections, fits,
+//!   splits, swept surfaces, deviation grid, totals), no files written;
 //! - `facade_run`: `run_job`, i.e. the above plus validation of the report and every output
 //!   file written to a temporary directory (what `hotcut run` does);
 //! - `section_fit`: one elastica fit of one section as the task does it
 //!   (`EndPointsAndLength`, 100 design samples), cycling twice through all 408 design
 //!   sections of the job, warm-started from the previous plane's final fit (`warm`) or from
 //!   scratch (`cold`). The task runs both per section, plus a warm fit per backward or
-//!   forward sweep that still changes something (see `hot_blade::fit::sweep_fits`).
+//!   forward sweep that still changes something (see `hotblade::sweep_fits`).
 //!
 //! Run: `cargo bench -p hotcut --bench hot_blade`.
 
@@ -17,10 +17,11 @@ use std::sync::OnceLock;
 
 use elastica::fit::{fit_points_with_arclength, FitConstraint, FitParams};
 use elastica::segment::Segment;
-use hotcut::hot_blade::{hot_blade, HotBladeParams};
-
+use hotblade::Rationalization;
+use hotcut::job::TaskSpec;
 use hotcut::load::{load_job, ResolvedJob};
 use hotcut::run::run_job;
+use hotcut::task::Task;
 use hotcut::NoProgress;
 
 fn main() {
@@ -36,11 +37,19 @@ fn job() -> &'static ResolvedJob {
     J.get_or_init(|| load_job(&job_path()).expect("jobs/hot-blade-facade.ron loads"))
 }
 
+/// The `hotblade` pipeline with the job's parameters.
+fn rationalize(job: &ResolvedJob) -> Rationalization {
+    let TaskSpec::HotBlade(task) = &job.task else {
+        panic!("not a HotBlade job");
+    };
+    let params = task.params(&job.context).unwrap().pipeline;
+    let surface = job.context.surface.as_ref().unwrap();
+    hotblade::rationalize(surface, &params, &|_| {}).unwrap()
+}
+
 #[divan::bench(sample_count = 5, sample_size = 1)]
 fn facade_job() -> usize {
-    let job = job();
-    let params = HotBladeParams::from_job(job).unwrap();
-    hot_blade(job, &params, &NoProgress).unwrap().blocks.len()
+    rationalize(job()).blocks.len()
 }
 
 #[divan::bench(sample_count = 5, sample_size = 1)]
@@ -56,9 +65,7 @@ type Section = (Vec<[f64; 2]>, Vec<f64>, Option<Segment>);
 fn sections() -> &'static Vec<Section> {
     static S: OnceLock<Vec<Section>> = OnceLock::new();
     S.get_or_init(|| {
-        let job = job();
-        let params = HotBladeParams::from_job(job).unwrap();
-        let run = hot_blade(job, &params, &NoProgress).unwrap();
+        let run = rationalize(job());
         let mut out = Vec::new();
         for b in &run.blocks {
             let mut warm = None;

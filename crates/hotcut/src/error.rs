@@ -109,6 +109,17 @@ pub enum HotcutError {
     },
 }
 
+impl JobError {
+    /// A semantic error of job file `path` at JSON pointer `pointer`.
+    pub fn semantic(path: &std::path::Path, pointer: &str, message: impl Into<String>) -> Self {
+        Self::Semantic {
+            path: path.to_path_buf(),
+            pointer: pointer.into(),
+            message: message.into(),
+        }
+    }
+}
+
 impl From<JobError> for HotcutError {
     fn from(e: JobError) -> Self {
         Self::Invalid(vec![e])

@@ -1,8 +1,9 @@
 //! # hotcut — job files, validation, the task runner and the `hotcut` CLI
 //!
-//! A job file (RON) is read in three layers ([`load`]), resolved into checked geometry, run
-//! by its task ([`analyze`], [`fit_curves`], [`hot_blade`], [`segmentation`]) and written atomically ([`run`]). Schemas of the job file and
-//! the report come from the types in [`job`] and [`report`].
+//! The edge of the workspace: a job file (RON) is read in three layers ([`load`]), its
+//! task — one of the task modules below, each implementing [`task::Task`] — turns the
+//! resolved job into parameters for an algorithm crate, runs it, makes its report and
+//! writes its files, and [`run`] writes them atomically.
 //!
 //! ```
 //! let dir = tempfile::tempdir().unwrap();
@@ -16,149 +17,100 @@
 //! let job = hotcut::load::load_job(&path).unwrap();
 //! let out = hotcut::run::run_job(&job, &dir.path().join("out"), &hotcut::NoProgress).unwrap();
 //! // sin(y/200) changes sign at y = 200π and 400π inside (0, 1500)
-//! let report = out.report.analyze().unwrap();
-//! assert_eq!(report.sections[0].inflections.len(), 2);
+//! assert_eq!(out.report["sections"][0]["inflections"].as_array().unwrap().len(), 2);
 //! assert!(out.dir.join("report.json").is_file());
 //! ```
 
-/// The `Analyze` task.
+/// The `Analyze` task: every section checked against the production constraints.
 pub mod analyze;
 /// The `BlockSegmentation` task: a closed mesh covered by few freely placed blocks.
-pub mod block_seg;
-/// The `sections.svg` and `fit.svg` drawings.
-pub mod draw;
+pub mod block_segmentation;
+/// What a task sees of its job: the common fields as written and resolved.
+pub mod context;
 /// Error types.
 pub mod error;
-/// The `FitCurves` task.
+/// The `FacadeSegmentation` task: facade-seg algorithms, pieces rationalized, robot data.
+pub mod facade_segmentation;
+/// The `FitCurves` task: curves or sections fitted by elastica.
 pub mod fit_curves;
-/// The `HotBlade` task: block grid, elastica fits, swept surface, robot data.
+/// The `HotBlade` task: the hotblade pipeline, its report and robot files.
 pub mod hot_blade;
-/// Job-file types (serde + JSON Schema).
+/// The job file: the [`job::Job`] struct and [`job::TaskSpec`], the list of every task.
 pub mod job;
 /// Reading, validating and resolving job files.
 pub mod load;
+/// Writers shared by the tasks: rendered files, block meshes, robot files.
+pub mod output;
 /// The `PreCut` task: hot-wire cuts removing the bulk above a design surface.
 pub mod pre_cut;
-/// Report types (serde + JSON Schema).
+/// Progress of long steps.
+pub mod progress;
+/// What every report shares.
 pub mod report;
-/// Running a job and writing its outputs.
+/// Running a job and writing its outputs atomically.
 pub mod run;
-/// The `FacadeSegmentation` task: facade-seg algorithms, pieces rationalized, robot data.
-pub mod segmentation;
+/// Job-file types shared by every task (units, surface, block, blade, outputs, ...).
+pub mod spec;
+/// The `Task` trait, output declarations, and visiting a job's task.
+pub mod task;
 
 pub use error::{HotcutError, JobError, Result};
+pub use progress::{NoProgress, Progress};
 
-/// Progress of long steps; the CLI draws bars, libraries and tests pass [`NoProgress`].
-/// `tick` may be called from worker threads.
-pub trait Progress: Sync {
-    /// A step with `total` units of work begins.
-    fn start(&self, label: &str, total: u64);
-    /// One unit is done.
-    fn tick(&self);
-    /// The step is done.
-    fn finish(&self);
-    /// A status line for the current step (e.g. iteration, blocks and E). Default: ignored.
-    fn message(&self, _status: &str) {}
-}
+use analyze::Analyze;
+use block_segmentation::BlockSegmentation;
+use facade_segmentation::FacadeSegmentation;
+use fit_curves::FitCurves;
+use hot_blade::HotBlade;
+use pre_cut::PreCut;
+use task::Task;
 
-/// Reports nothing.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct NoProgress;
-
-impl Progress for NoProgress {
-    fn start(&self, _: &str, _: u64) {}
-    fn tick(&self) {}
-    fn finish(&self) {}
+/// Pretty JSON with a final newline, as the files in `schemas/` hold it.
+fn pretty(v: &serde_json::Value) -> String {
+    let mut s = serde_json::to_string_pretty(v).unwrap_or_default();
+    s.push('\n');
+    s
 }
 
 /// The JSON Schema of job files, as written to `schemas/job.schema.json`.
 pub fn job_schema_json() -> String {
-    let mut s = serde_json::to_string_pretty(&load::job_schema()).unwrap_or_default();
-    s.push('\n');
-    s
+    pretty(&load::job_schema())
 }
 
-/// The JSON Schema of an `Analyze` run's `report.json`, as written to
-/// `schemas/report.schema.json`.
-pub fn report_schema_json() -> String {
-    let v = serde_json::to_value(schemars::schema_for!(report::AnalyzeReport)).unwrap_or_default();
-    let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
-    s.push('\n');
-    s
+/// One schema file of `schemas/`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SchemaFile {
+    /// The task whose report it describes (`None`: the job file).
+    pub task: Option<&'static str>,
+    /// File name.
+    pub file: &'static str,
+    /// Contents.
+    pub text: String,
 }
 
-/// The JSON Schema of a `FitCurves` run's `report.json`, as written to
-/// `schemas/fit-curves-report.schema.json`.
-pub fn fit_curves_report_schema_json() -> String {
-    let v =
-        serde_json::to_value(schemars::schema_for!(report::FitCurvesReport)).unwrap_or_default();
-    let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
-    s.push('\n');
-    s
+/// The schema of task `T`'s `report.json`.
+fn report_schema<T: Task>() -> SchemaFile {
+    let v = serde_json::to_value(schemars::schema_for!(T::Report)).unwrap_or_default();
+    SchemaFile {
+        task: Some(T::NAME),
+        file: T::REPORT_SCHEMA,
+        text: pretty(&v),
+    }
 }
 
-/// The JSON Schema of a `HotBlade` run's `report.json`, as written to
-/// `schemas/hot-blade-report.schema.json`.
-pub fn hot_blade_report_schema_json() -> String {
-    let v = serde_json::to_value(schemars::schema_for!(hot_blade::report::HotBladeReport))
-        .unwrap_or_default();
-    let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
-    s.push('\n');
-    s
-}
-
-/// The JSON Schema of a `FacadeSegmentation` run's `report.json`, as written to
-/// `schemas/facade-segmentation-report.schema.json`.
-pub fn segmentation_report_schema_json() -> String {
-    let v = serde_json::to_value(schemars::schema_for!(
-        segmentation::report::SegmentationReport
-    ))
-    .unwrap_or_default();
-    let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
-    s.push('\n');
-    s
-}
-
-/// The JSON Schema of a `BlockSegmentation` run's `report.json`, as written to
-/// `schemas/block-segmentation-report.schema.json`.
-pub fn block_segmentation_report_schema_json() -> String {
-    let v =
-        serde_json::to_value(schemars::schema_for!(block_seg::BlockSegReport)).unwrap_or_default();
-    let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
-    s.push('\n');
-    s
-}
-
-/// The JSON Schema of a `PreCut` run's `report.json`, as written to
-/// `schemas/pre-cut-report.schema.json`.
-pub fn pre_cut_report_schema_json() -> String {
-    let v = serde_json::to_value(schemars::schema_for!(pre_cut::PreCutReport)).unwrap_or_default();
-    let mut s = serde_json::to_string_pretty(&v).unwrap_or_default();
-    s.push('\n');
-    s
-}
-
-/// Every schema file of `schemas/`: (file name, contents).
-pub fn schema_files() -> Vec<(&'static str, String)> {
+/// Every schema file of `schemas/`: the job file's, then one per task's report.
+pub fn schema_files() -> Vec<SchemaFile> {
     vec![
-        ("job.schema.json", job_schema_json()),
-        ("report.schema.json", report_schema_json()),
-        (
-            "fit-curves-report.schema.json",
-            fit_curves_report_schema_json(),
-        ),
-        (
-            "hot-blade-report.schema.json",
-            hot_blade_report_schema_json(),
-        ),
-        (
-            "facade-segmentation-report.schema.json",
-            segmentation_report_schema_json(),
-        ),
-        (
-            "block-segmentation-report.schema.json",
-            block_segmentation_report_schema_json(),
-        ),
-        ("pre-cut-report.schema.json", pre_cut_report_schema_json()),
+        SchemaFile {
+            task: None,
+            file: "job.schema.json",
+            text: job_schema_json(),
+        },
+        report_schema::<Analyze>(),
+        report_schema::<FitCurves>(),
+        report_schema::<HotBlade>(),
+        report_schema::<FacadeSegmentation>(),
+        report_schema::<BlockSegmentation>(),
+        report_schema::<PreCut>(),
     ]
 }

@@ -1,44 +1,50 @@
-//! The runner: maps a resolved job to its task and writes the outputs atomically.
+//! The runner: runs a resolved job's task and writes its outputs atomically.
 //!
-//! Outputs are written into a temporary folder inside the output directory and renamed to
-//! `<out>/<job name>/` only when everything succeeded, so a failed run leaves no partial
-//! output folder.
+//! Outputs are rendered into memory, written into a temporary folder inside the output
+//! directory and renamed to `<out>/<job name>/` only when everything succeeded, so a failed
+//! run leaves no partial output folder.
 //!
-//! Entry point: [`run_job`](crate::run::run_job).
+//! Entry points: [`run_job`](crate::run::run_job) for any job,
+//! [`run_task`](crate::run::run_task) for a task of a known type with its typed results.
 
 use std::path::{Path, PathBuf};
 
-use export::json::{to_json_string, REPORT_DIGITS};
-use export::obj::ObjWriter;
+use export::json::REPORT_DIGITS;
 
-use crate::analyze::{analyze, sample_world, AnalyzeParams};
-use crate::draw::{fit_svg, sections_svg};
+use crate::context::Context;
 use crate::error::{HotcutError, Result};
-use crate::fit_curves::{fit_curves, FitCurvesParams};
-use crate::hot_blade::{hot_blade, HotBladeParams};
-use crate::job::{OutputSpec, TaskSpec};
 use crate::load::ResolvedJob;
-use crate::report::TaskReport;
-use crate::segmentation::{segment_facade, SegmentationParams};
-use crate::Progress;
+use crate::output::Files;
+use crate::progress::Progress;
+use crate::spec::{OutputKind, OutputSpec};
+use crate::task::{Finished, Task, Visit};
 
-/// What a run produced.
+/// What a run of any task produced.
 #[derive(Debug, Clone)]
 pub struct RunOutcome {
     /// The output folder, `<out>/<job name>`.
     pub dir: PathBuf,
     /// Files written, relative to `dir`, in order.
     pub files: Vec<String>,
-    /// The report.
-    pub report: TaskReport,
+    /// The report, as `report.json` holds it (before rounding).
+    pub report: serde_json::Value,
+    /// What the CLI prints about the run.
+    pub summary: String,
 }
 
-/// How a task renders its own output files (all but `report.json`); an output kind may
-/// give several files.
-type TaskFiles = Box<dyn Fn(&OutputSpec) -> Vec<Render<'static>>>;
-
-/// One output file: its name and how to render it.
-pub(crate) type Render<'a> = (String, Box<dyn Fn(&mut Vec<u8>) -> export::Result<()> + 'a>);
+/// What a run of task `T` produced, typed.
+pub struct TaskOutcome<T: Task> {
+    /// The output folder, `<out>/<job name>`.
+    pub dir: PathBuf,
+    /// Files written, relative to `dir`, in order.
+    pub files: Vec<String>,
+    /// The parameters it ran with.
+    pub params: T::Params,
+    /// What it produced.
+    pub run: T::Run,
+    /// Its report.
+    pub report: T::Report,
+}
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> HotcutError + '_ {
     move |source| HotcutError::Io {
@@ -51,134 +57,114 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> HotcutError + '_ {
 /// run's folder.
 ///
 /// # Errors
-/// Geometry failures of the task; I/O failures writing the outputs.
+/// Failures of the task; I/O failures writing the outputs.
 pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result<RunOutcome> {
-    let units = job.job.units.symbol();
-    // run the task; `render` makes the task's own files (validation rejected the rest)
-    let (report, render): (TaskReport, TaskFiles) = match &job.job.task {
-        TaskSpec::Analyze { .. } => {
-            let params = AnalyzeParams::from_job(job);
-            let a = std::rc::Rc::new(analyze(job, &params, progress)?);
-            let report = TaskReport::Analyze(Box::new(a.report.clone()));
-            let render = move |o: &OutputSpec| -> Vec<Render<'static>> {
-                let a = a.clone();
-                match o {
-                    OutputSpec::Svg => vec![(
-                        "sections.svg".into(),
-                        Box::new(move |buf| sections_svg(&a, units).write(buf)),
-                    )],
-                    OutputSpec::Obj => vec![(
-                        "sections.obj".into(),
-                        Box::new(move |buf| {
-                            let mut w = ObjWriter::new(REPORT_DIGITS);
-                            for (s, _) in &a.sections {
-                                w.polyline(
-                                    &format!("section_{}_{}", s.index, s.piece),
-                                    &sample_world(&a.frame, s, 400),
-                                );
-                            }
-                            w.write(buf)
-                        }),
-                    )],
-                    _ => Vec::new(),
-                }
-            };
-            (report, Box::new(render))
-        }
-        TaskSpec::FitCurves {
-            constraint,
-            samples,
-            ..
-        } => {
-            let params = FitCurvesParams {
-                constraint: *constraint,
-                samples: *samples as usize,
-            };
-            let f = std::rc::Rc::new(fit_curves(job, &params, progress)?);
-            let report = TaskReport::FitCurves(f.report.clone());
-            let render = move |o: &OutputSpec| -> Vec<Render<'static>> {
-                let f = f.clone();
-                match o {
-                    OutputSpec::Svg => vec![(
-                        "fit.svg".into(),
-                        Box::new(move |buf| fit_svg(&f, units).write(buf)),
-                    )],
-                    _ => Vec::new(),
-                }
-            };
-            (report, Box::new(render))
-        }
-        TaskSpec::HotBlade { .. } => {
-            let params = HotBladeParams::from_job(job).ok_or_else(|| HotcutError::Task {
-                path: job.path.clone(),
-                message: "not a HotBlade job".into(),
-            })?;
-            let h = std::rc::Rc::new(hot_blade(job, &params, progress)?);
-            let report = TaskReport::HotBlade(Box::new(h.report.clone()));
-            let units = job.job.units;
-            let name = job.job.name.clone();
-            let render =
-                move |o: &OutputSpec| crate::hot_blade::outputs::render(&h, o, units, &name);
-            (report, Box::new(render))
-        }
-        TaskSpec::FacadeSegmentation { .. } => {
-            let params = SegmentationParams::from_job(job).ok_or_else(|| HotcutError::Task {
-                path: job.path.clone(),
-                message: "not a FacadeSegmentation job with a block".into(),
-            })?;
-            let s = std::rc::Rc::new(segment_facade(job, &params, progress)?);
-            let report = TaskReport::FacadeSegmentation(Box::new(s.report.clone()));
-            let units = job.job.units;
-            let name = job.job.name.clone();
-            let render =
-                move |o: &OutputSpec| crate::segmentation::outputs::render(&s, o, units, &name);
-            (report, Box::new(render))
-        }
-        TaskSpec::BlockSegmentation { .. } => {
-            let b = std::rc::Rc::new(crate::block_seg::block_segmentation(job, progress)?);
-            let report = TaskReport::BlockSegmentation(Box::new(b.report.clone()));
-            let render = move |o: &OutputSpec| crate::block_seg::outputs::render(&b, o);
-            (report, Box::new(render))
-        }
-        TaskSpec::PreCut { .. } => {
-            let c = std::rc::Rc::new(crate::pre_cut::pre_cut(job, progress)?);
-            let report = TaskReport::PreCut(Box::new(c.report.clone()));
-            let render = move |o: &OutputSpec| crate::pre_cut::outputs::render(&c, o);
-            (report, Box::new(render))
-        }
-    };
-    let mut renders: Vec<Render<'_>> = Vec::new();
-    for o in &job.job.outputs {
-        match o {
-            OutputSpec::Report => renders.push((
-                "report.json".into(),
-                Box::new(|buf| {
-                    buf.extend(to_json_string(&report, REPORT_DIGITS)?.into_bytes());
-                    Ok(())
-                }),
-            )),
-            other => renders.extend(render(other)),
-        }
-    }
+    job.task.visit(Runner { job, out, progress })
+}
 
+/// Runs `job` with `T` and type-erases the outcome.
+struct Runner<'a> {
+    job: &'a ResolvedJob,
+    out: &'a Path,
+    progress: &'a dyn Progress,
+}
+
+impl Visit for Runner<'_> {
+    type Output = Result<RunOutcome>;
+
+    fn visit<T: Task>(self, task: &T) -> Result<RunOutcome> {
+        let job = &self.job.context;
+        let o = run_task(task, job, &self.job.outputs, self.out, self.progress)?;
+        let report = serde_json::to_value(&o.report).map_err(|e| HotcutError::Export {
+            path: o.dir.join("report.json"),
+            source: e.into(),
+        })?;
+        Ok(RunOutcome {
+            summary: T::summary(&o.report, job),
+            dir: o.dir,
+            files: o.files,
+            report,
+        })
+    }
+}
+
+/// Runs task `task` on `job` and writes `outputs` to `<out>/<name>/` (see
+/// [`run_job`]).
+///
+/// # Errors
+/// Failures of the task; an output the task does not write; I/O failures.
+pub fn run_task<T: Task>(
+    task: &T,
+    job: &Context,
+    outputs: &[OutputSpec],
+    out: &Path,
+    progress: &dyn Progress,
+) -> Result<TaskOutcome<T>> {
+    let params = task.params(job)?;
+    let run = T::run(&params, job, progress)?;
+    let report = T::report(&params, &run, job);
+    let done = Finished::<T> {
+        job,
+        params: &params,
+        run: &run,
+        report: &report,
+    };
+    let dir = out.join(&job.name);
+    let files = render(&done, outputs).map_err(|(file, source)| HotcutError::Export {
+        path: dir.join(file),
+        source,
+    })?;
+    let names = write_atomically(&files, out, &job.name)?;
+    Ok(TaskOutcome {
+        dir,
+        files: names,
+        params,
+        run,
+        report,
+    })
+}
+
+/// A file that could not be rendered, and why.
+type FileError = (String, export::ExportError);
+
+/// Renders every output into memory, in the job's order, through the task's declared
+/// writers; an output the task does not declare is an error (validation rejects it first).
+fn render<T: Task>(
+    done: &Finished<'_, T>,
+    outputs: &[OutputSpec],
+) -> std::result::Result<Vec<(String, Vec<u8>)>, FileError> {
+    let mut files = Files::default();
+    for o in outputs {
+        let result = if o.kind() == OutputKind::Report {
+            files.json("report.json", done.report, REPORT_DIGITS)
+        } else {
+            match T::OUTPUTS.iter().find(|w| w.kind == o.kind()) {
+                Some(w) => (w.write)(done, o, &mut files),
+                None => Err(export::ExportError::Io(std::io::Error::other(format!(
+                    "task {} does not write {} files",
+                    T::NAME,
+                    o.name()
+                )))),
+            }
+        };
+        result.map_err(|e| (files.last_name().unwrap_or(o.name()).to_string(), e))?;
+    }
+    Ok(files.into_vec())
+}
+
+/// Writes `files` into a temporary folder in `out`, then renames it to `out/name`
+/// (replacing an earlier run's). Returns the file names in order.
+fn write_atomically(files: &[(String, Vec<u8>)], out: &Path, name: &str) -> Result<Vec<String>> {
     std::fs::create_dir_all(out).map_err(io(out))?;
     let tmp = tempfile::Builder::new()
-        .prefix(&format!(".{}.tmp-", job.job.name))
+        .prefix(&format!(".{name}.tmp-"))
         .tempdir_in(out)
         .map_err(io(out))?;
-    let mut files = Vec::new();
-    // renders each output into memory, then writes it into the temporary folder
-    for (name, render) in renders {
-        let p = tmp.path().join(&name);
-        let mut buf = Vec::new();
-        render(&mut buf).map_err(|source| HotcutError::Export {
-            path: p.clone(),
-            source,
-        })?;
-        std::fs::write(&p, buf).map_err(io(&p))?;
-        files.push(name);
+    for (file, bytes) in files {
+        let p = tmp.path().join(file);
+        std::fs::write(&p, bytes).map_err(io(&p))?;
     }
-    let dir = out.join(&job.job.name);
+    let dir = out.join(name);
     if dir.exists() {
         std::fs::remove_dir_all(&dir).map_err(io(&dir))?;
     }
@@ -190,5 +176,5 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
             source: e,
         }
     })?;
-    Ok(RunOutcome { dir, files, report })
+    Ok(files.iter().map(|(n, _)| n.clone()).collect())
 }

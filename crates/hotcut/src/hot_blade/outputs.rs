@@ -1,58 +1,32 @@
-//! The files of a `HotBlade` run: robot targets (JSON, CSV), the RAPID program, the
-//! rationalized surfaces (OBJ per block, one glTF for the job), an SVG per block of its
-//! worst section (hot-blade paper fig. 15) and a CSV of every fitted section.
+//! The files of a `HotBlade` run: robot targets (JSON, CSV) and the RAPID program
+//! ([`crate::output::robot`]), the rationalized surfaces (OBJ per block, one glTF for the
+//! job), an SVG per block of its worst section (hot-blade paper fig. 15) and a CSV of every
+//! fitted section.
 
-use std::rc::Rc;
-
-use elastica::sweep::BladePose;
 use export::fmt_float;
-use export::gltf::{write_gltf, Material, Mesh};
-use export::json::to_json_string;
+use export::gltf::{f32s, write_gltf, Material, Mesh};
 use export::obj::ObjWriter;
-use export::rapid::{write_module, write_pgf, RapidBlock, RapidModule, RapidTarget};
-use export::svg::{SvgDoc, Viewport};
+use export::svg::{bounds, SvgDoc, Viewport};
 use geom::mesh::TriMesh;
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
-use serde::Serialize;
+use hotblade::{BlockResult, Rationalization};
+use nalgebra::Vector3;
 
-use super::{BlockResult, HotBladeRun};
-use crate::draw::bounds;
-use crate::job::{OutputSpec, Units};
-use crate::run::Render;
+use super::HotBlade;
+use crate::output::robot::{self, TargetsBlock, TargetsFile};
+use crate::output::Files;
+use crate::spec::OutputSpec;
+use crate::task::Finished;
 
-/// Significant digits of `targets.json` (finer than the report: robot data).
-pub const TARGET_DIGITS: usize = 12;
+type Done<'a> = Finished<'a, HotBlade>;
 
-/// `targets.json`.
-#[derive(Debug, Clone, Serialize)]
-pub struct TargetsFile {
-    /// Length unit of every position.
-    pub units: Units,
-    /// Physical blade length.
-    pub blade_length: f64,
-    /// Blocks in cutting order.
-    pub blocks: Vec<TargetsBlock>,
-}
-
-/// One block of `targets.json`.
-#[derive(Debug, Clone, Serialize)]
-pub struct TargetsBlock {
-    /// Block number.
-    pub block: usize,
-    /// The block's min corner, the work object's origin (job coordinates).
-    pub origin: [f64; 3],
-    /// Orientation `[w, x, y, z]` of the block axes (work object frame).
-    pub rotation: [f64; 4],
-    /// Poses in cutting order, positions in job coordinates.
-    pub poses: Vec<BladePose>,
-}
-
-/// The targets of a run.
-pub fn targets(run: &HotBladeRun, units: Units) -> TargetsFile {
+/// The targets of a run: every block's poses in cutting order.
+fn targets(done: &Done<'_>) -> TargetsFile {
     TargetsFile {
-        units,
-        blade_length: run.params.blade.length,
-        blocks: run
+        units: done.job.units,
+        blade_length: done.params.pipeline.blade.length,
+        blocks: done
+            .run
+            .cut
             .blocks
             .iter()
             .map(|b| TargetsBlock {
@@ -65,153 +39,56 @@ pub fn targets(run: &HotBladeRun, units: Units) -> TargetsFile {
     }
 }
 
-/// How one output file is rendered.
-pub(crate) type Boxed = Box<dyn Fn(&mut Vec<u8>) -> export::Result<()>>;
-
-/// One output file: its name and renderer.
-pub(crate) fn file(name: impl Into<String>, f: Boxed) -> Render<'static> {
-    (name.into(), f)
+/// `targets.json` and `targets.csv`, or the RAPID modules `HotBlade_T_ROB<n>.mod/.pgf`.
+pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    let t = targets(done);
+    robot::write(
+        files,
+        &t,
+        done.params.motion,
+        &done.job.name,
+        "HotBlade",
+        o.kind(),
+    )
 }
 
-/// The files of output `o`.
-pub fn render(
-    run: &Rc<HotBladeRun>,
-    o: &OutputSpec,
-    units: Units,
-    job: &str,
-) -> Vec<Render<'static>> {
-    let r = run.clone();
-    match o {
-        OutputSpec::RobotTargets { .. } | OutputSpec::Rapid => robot_files(
-            Rc::new(targets(run, units)),
-            run.params.speed,
-            run.params.approach,
-            job,
-            "HotBlade",
-            o,
-        ),
-        OutputSpec::Obj => per_block(run, "surface_block", "obj", |b, buf| {
+/// `surface_block_NNN.obj`: each block's rationalized surface.
+pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    for b in &done.run.cut.blocks {
+        files.add(format!("surface_block_{:03}.obj", b.report.block), |buf| {
             let mut w = ObjWriter::new(6);
             if let Some(m) = surface_mesh(b) {
                 w.mesh(&format!("block_{}", b.report.block), &m);
             }
             w.write(buf)
-        }),
-        OutputSpec::Gltf => vec![file("model.gltf", Box::new(move |buf| gltf(&r, buf)))],
-        OutputSpec::Svg => per_block(run, "block", "svg", move |b, buf| {
-            block_svg(b, units.symbol()).write(buf)
-        }),
-        OutputSpec::Csv => vec![file(
-            "sections.csv",
-            Box::new(move |buf| sections_csv(&r, buf)),
-        )],
-        _ => Vec::new(),
+        })?;
     }
-}
-
-/// The robot files of output `o` (`RobotTargets` or `Rapid`) for the poses in `t`, shared
-/// by every task that poses the blade: `targets.json` and `targets.csv`, or one RAPID
-/// module and `.pgf` per blade robot named `<prefix>_T_ROB<n>`.
-pub(crate) fn robot_files(
-    t: Rc<TargetsFile>,
-    speed: f64,
-    approach: f64,
-    job: &str,
-    prefix: &str,
-    o: &OutputSpec,
-) -> Vec<Render<'static>> {
-    match o {
-        OutputSpec::RobotTargets { .. } => {
-            let t2 = t.clone();
-            vec![
-                file(
-                    "targets.json",
-                    Box::new(move |buf| {
-                        buf.extend(to_json_string(&*t, TARGET_DIGITS)?.into_bytes());
-                        Ok(())
-                    }),
-                ),
-                file("targets.csv", Box::new(move |buf| targets_csv(&t2, buf))),
-            ]
-        }
-        OutputSpec::Rapid => {
-            let mut out = Vec::new();
-            for robot in 0..2 {
-                let module = format!("{prefix}_T_ROB{}", robot + 1);
-                let (t, job, m) = (t.clone(), job.to_string(), module.clone());
-                out.push(file(
-                    format!("{module}.mod"),
-                    Box::new(move |buf| {
-                        let motion = Motion { speed, approach };
-                        rapid(&t, motion, &job, robot, &m, buf)
-                    }),
-                ));
-                let mod_file = format!("{module}.mod");
-                out.push(file(
-                    format!("{module}.pgf"),
-                    Box::new(move |buf| write_pgf(&mod_file, buf)),
-                ));
-            }
-            out
-        }
-        _ => Vec::new(),
-    }
-}
-
-/// Blade motion settings of a RAPID program.
-#[derive(Debug, Clone, Copy)]
-struct Motion {
-    /// Cutting speed, job units per second.
-    speed: f64,
-    /// Approach and retreat distance along the cut.
-    approach: f64,
-}
-
-/// One file `<stem>_NNN.<ext>` per block, rendered by `f`.
-fn per_block(
-    run: &Rc<HotBladeRun>,
-    stem: &str,
-    ext: &str,
-    f: impl Fn(&BlockResult, &mut Vec<u8>) -> export::Result<()> + Clone + 'static,
-) -> Vec<Render<'static>> {
-    (0..run.blocks.len())
-        .map(|i| {
-            let (r, f) = (run.clone(), f.clone());
-            file(
-                format!("{stem}_{:03}.{ext}", run.blocks[i].report.block),
-                Box::new(move |buf| f(&r.blocks[i], buf)),
-            )
-        })
-        .collect()
-}
-
-fn targets_csv(t: &TargetsFile, buf: &mut Vec<u8>) -> export::Result<()> {
-    let mut s = String::from(
-        "block,pose,end,x,y,z,tangent_x,tangent_y,tangent_z,q_w,q_x,q_y,q_z,normal_x,normal_y,normal_z\n",
-    );
-    let f = |v: f64| fmt_float(v, 9);
-    for b in &t.blocks {
-        for (k, pose) in b.poses.iter().enumerate() {
-            for (e, end) in pose.ends.iter().enumerate() {
-                let mut row = vec![
-                    b.block.to_string(),
-                    (k + 1).to_string(),
-                    (e + 1).to_string(),
-                ];
-                row.extend(end.position.iter().map(|v| f(*v)));
-                row.extend(end.tangent.iter().map(|v| f(*v)));
-                row.extend(end.rotation.iter().map(|v| f(*v)));
-                row.extend(pose.plane_normal.iter().map(|v| f(*v)));
-                s.push_str(&row.join(","));
-                s.push('\n');
-            }
-        }
-    }
-    buf.extend(s.into_bytes());
     Ok(())
 }
 
-fn sections_csv(run: &HotBladeRun, buf: &mut Vec<u8>) -> export::Result<()> {
+/// `block_NNN.svg`: each block's worst section.
+pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    let units = done.job.units.symbol();
+    for b in &done.run.cut.blocks {
+        files.add(format!("block_{:03}.svg", b.report.block), |buf| {
+            block_svg(b, units).write(buf)
+        })?;
+    }
+    Ok(())
+}
+
+/// `model.gltf`: blocks as translucent boxes, surfaces coloured by deviation.
+pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    let tol = done.params.pipeline.tolerance_max;
+    files.add("model.gltf", |buf| model(&done.run.cut, tol, buf))
+}
+
+/// `sections.csv`: one row per fitted section.
+pub(super) fn csv(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    files.add("sections.csv", |buf| sections_csv(&done.run.cut, buf))
+}
+
+fn sections_csv(run: &Rationalization, buf: &mut Vec<u8>) -> export::Result<()> {
     let mut s = String::from(
         "block,pose,plane,kind,design_length,fit_length,l2,rms,max,blade_max_abs_curvature,blade_inflections,plane_angle\n",
     );
@@ -238,79 +115,6 @@ fn sections_csv(run: &HotBladeRun, buf: &mut Vec<u8>) -> export::Result<()> {
     }
     buf.extend(s.into_bytes());
     Ok(())
-}
-
-fn uq(q: &[f64; 4]) -> UnitQuaternion<f64> {
-    UnitQuaternion::from_quaternion(Quaternion::new(q[0], q[1], q[2], q[3]))
-}
-
-fn wxyz(q: &UnitQuaternion<f64>) -> [f64; 4] {
-    let c = q.as_ref().coords;
-    let s = if c.w < 0.0 { -1.0 } else { 1.0 };
-    [s * c.w, s * c.x, s * c.y, s * c.z]
-}
-
-fn rapid(
-    t: &TargetsFile,
-    motion: Motion,
-    job: &str,
-    robot: usize,
-    module: &str,
-    buf: &mut Vec<u8>,
-) -> export::Result<()> {
-    let mm = 1.0 / t.units.per_mm();
-    let approach = motion.approach;
-    let blocks: Vec<RapidBlock> = t
-        .blocks
-        .iter()
-        .filter(|b| !b.poses.is_empty())
-        .map(|b| {
-            let frame_q = uq(&b.rotation);
-            let origin = Vector3::from(b.origin);
-            let local = |p: Vector3<f64>, q: &[f64; 4]| RapidTarget {
-                position: (frame_q.inverse() * (p - origin) * mm).into(),
-                rotation: wxyz(&(frame_q.inverse() * uq(q))),
-            };
-            let at = |k: usize, shift: f64| {
-                let pose = &b.poses[k];
-                let e = &pose.ends[robot];
-                local(
-                    Vector3::from(e.position) + Vector3::from(pose.plane_normal) * shift,
-                    &e.rotation,
-                )
-            };
-            let n = b.poses.len();
-            RapidBlock {
-                number: b.block,
-                frame: RapidTarget {
-                    position: (origin * mm).into(),
-                    rotation: b.rotation,
-                },
-                approach: at(0, -approach),
-                targets: (0..n).map(|k| at(k, 0.0)).collect(),
-                retreat: at(n - 1, approach),
-            }
-        })
-        .collect();
-    let comment = vec![
-        format!("hotcut job \"{job}\": hot-blade cut, robot task T_ROB{} holds blade end {} ({}).", robot + 1, robot + 1, if robot == 0 { "the blade's start" } else { "the blade's end" }),
-        "The cell's world frame is the job frame. Each block has a work object wBlock<n> whose user".into(),
-        "frame is the block's min corner with the block axes (along the cut, across it, up).".into(),
-        "Targets are in that frame, in mm; orientation [q1,q2,q3,q4] = [w,x,y,z]: tool x along the".into(),
-        "blade's tangent at the held end (from the blade's start to its end), tool z normal to the".into(),
-        "cutting plane. Calibrate the tool (the blade holder's TCP at the blade end) before running.".into(),
-        format!("Blade length {} {}; {} block(s); both tasks must run this program's twin.", fmt_float(t.blade_length, 6), t.units.symbol(), blocks.len()),
-    ];
-    let m = RapidModule {
-        name: module,
-        comment: &comment,
-        tasks: ["T_ROB1", "T_ROB2"],
-        tool: &format!("tBladeEnd{}", robot + 1),
-        speed: motion.speed * mm,
-        air_speed: (motion.speed * mm * 5.0).max(20.0),
-        blocks: &blocks,
-    };
-    write_module(&m, buf)
 }
 
 /// The rationalized surface of a block as a triangle mesh (consecutive grid rows of equal
@@ -355,37 +159,7 @@ fn deviation_color(dev: f64, tolerance: f64) -> [f32; 4] {
     [r as f32, g as f32, b as f32, 1.0]
 }
 
-pub(crate) fn f32s(v: &Vector3<f64>) -> [f32; 3] {
-    [v.x as f32, v.y as f32, v.z as f32]
-}
-
-/// A block as a closed box mesh: min corner `o`, edges `s` along the frame's normal, `u`
-/// and `v`.
-pub(crate) fn box_mesh(
-    frame: &geom::slice::PlaneFrame,
-    o: Vector3<f64>,
-    s: [f64; 3],
-    name: String,
-    material: usize,
-) -> Mesh {
-    let corner = |i: usize| {
-        o + frame.normal * if i & 1 != 0 { s[0] } else { 0.0 }
-            + frame.u * if i & 2 != 0 { s[1] } else { 0.0 }
-            + frame.v * if i & 4 != 0 { s[2] } else { 0.0 }
-    };
-    let positions: Vec<[f32; 3]> = (0..8).map(|i| f32s(&corner(i))).collect();
-    let indices = geom::mesh::BOX_FACES.iter().flatten().copied().collect();
-    Mesh {
-        name,
-        positions,
-        colors: None,
-        indices,
-        material,
-    }
-}
-
-fn gltf(run: &HotBladeRun, buf: &mut Vec<u8>) -> export::Result<()> {
-    let tol = run.params.tolerance_max;
+fn model(run: &Rationalization, tol: f64, buf: &mut Vec<u8>) -> export::Result<()> {
     let materials = vec![
         Material {
             name: "block".into(),
@@ -401,11 +175,11 @@ fn gltf(run: &HotBladeRun, buf: &mut Vec<u8>) -> export::Result<()> {
     let mut meshes = Vec::new();
     let g = &run.grid;
     for b in &run.blocks {
-        meshes.push(box_mesh(
-            &g.frame,
-            Vector3::from(b.report.origin),
-            b.report.size,
+        meshes.push(Mesh::from_box(
             format!("block_{}", b.report.block),
+            Vector3::from(b.report.origin),
+            [g.frame.normal, g.frame.u, g.frame.v],
+            b.report.size,
             0,
         ));
         let (verts, faces) = surface_grid(b);

@@ -14,16 +14,106 @@
 //! # Ok(()) }
 //! ```
 
-pub mod outputs;
+/// Its files: `precut.json`, `sections.svg`, `precut.obj`, `model.gltf`, wire G-code and
+/// CSV.
+mod outputs;
 
 use geom::surface::Surface;
 use schemars::JsonSchema;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
-use crate::error::{HotcutError, Result};
-use crate::job::{TaskSpec, Units};
-use crate::load::ResolvedJob;
-use crate::Progress;
+use crate::context::{Context, JobFields};
+use crate::error::{JobError, Result};
+use crate::progress::Progress;
+use crate::spec::{OutputKind, OutputSpec, Units};
+use crate::task::{Output, Task};
+
+/// Hot-wire pre-cuts before milling (thesis ch. 2): per cutting direction, `legs`
+/// straight wire cuts across the block whose lower envelope stays on or above the
+/// design surface (never cutting into it) while leaving as little material as
+/// possible for milling. The design surface's outward normal is roughly +z; the block
+/// is `block` (origin defaults to the surface's bounding-box minimum). Write
+/// `PreCut(legs: 4, directions: [X])`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PreCut {
+    /// Cuts per direction (the moving polygon's legs), 1–32. Default: 4.
+    #[serde(default = "default_legs")]
+    #[schemars(range(min = 1, max = 32))]
+    pub legs: u32,
+    /// Cutting directions in the xy plane: `X`, `Y`, `Degrees(a)` (from +x towards
+    /// +y) or `Vector(dx, dy)`. Default: `[X]`.
+    #[serde(default = "default_cut_directions")]
+    #[schemars(length(min = 1, max = 8))]
+    pub directions: Vec<CutDirection>,
+    /// B-spline degree of the cuts along the cutting direction (thesis p), 1–5.
+    /// Default: 3.
+    #[serde(default = "default_cut_degree")]
+    #[schemars(range(min = 1, max = 5))]
+    pub degree: u32,
+    /// Control values per cut along the cutting direction (thesis k), degree + 1 to
+    /// 64. Default: 8.
+    #[serde(default = "default_cut_controls")]
+    #[schemars(range(min = 2, max = 64))]
+    pub controls: u32,
+    /// Section planes along the cut (thesis N), ≥ 2. Default: 30.
+    #[serde(default = "default_cut_samples")]
+    #[schemars(range(min = 2, max = 500))]
+    pub sections: u32,
+    /// Samples per section across the block (thesis M), ≥ 2. Default: 30.
+    #[serde(default = "default_cut_samples")]
+    #[schemars(range(min = 2, max = 500))]
+    pub samples: u32,
+    /// Most assignment rounds of the optimizer. Default: 40.
+    #[serde(default = "default_cut_rounds")]
+    #[schemars(range(min = 1))]
+    pub max_rounds: u32,
+}
+
+/// A cutting direction in the xy plane.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub enum CutDirection {
+    /// Along +x.
+    X,
+    /// Along +y.
+    Y,
+    /// At this angle from +x towards +y, degrees.
+    Degrees(f64),
+    /// Along `(dx, dy)` (normalised; must not be zero).
+    Vector(f64, f64),
+}
+
+impl CutDirection {
+    /// The direction as an `[x, y]` vector (not normalised for `Vector`).
+    pub fn vector(&self) -> [f64; 2] {
+        match *self {
+            Self::X => [1.0, 0.0],
+            Self::Y => [0.0, 1.0],
+            Self::Degrees(a) => [a.to_radians().cos(), a.to_radians().sin()],
+            Self::Vector(x, y) => [x, y],
+        }
+    }
+}
+
+fn default_legs() -> u32 {
+    4
+}
+fn default_cut_directions() -> Vec<CutDirection> {
+    vec![CutDirection::X]
+}
+fn default_cut_degree() -> u32 {
+    3
+}
+fn default_cut_controls() -> u32 {
+    8
+}
+fn default_cut_samples() -> u32 {
+    30
+}
+fn default_cut_rounds() -> u32 {
+    40
+}
 
 /// The report of a `PreCut` run (`report.json`).
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
@@ -57,25 +147,30 @@ pub struct DirectionSummary {
     pub clearance: f64,
 }
 
+/// Parameters of a `PreCut` run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreCutParams {
+    /// The optimizer's.
+    pub cut: ruled::Params,
+    /// The block: its origin defaults to the surface's bounding-box minimum.
+    pub block: ruled::Block,
+    /// The wire machine, when the job has one (`GCode`, `Csv`), stepping once per section.
+    pub wire: Option<ruled::wire::WireParams>,
+}
+
 /// A finished run.
 #[derive(Debug, Clone)]
 pub struct PreCutRun {
-    /// The report.
-    pub report: PreCutReport,
     /// The full result (polygons, legs).
     pub cut: ruled::PreCut,
     /// The design surface.
     pub surface: Surface,
-    /// The wire machine, when the job has one (`GCode`, `Csv`).
-    pub wire: Option<ruled::wire::WireParams>,
-    /// The job's name.
-    pub name: String,
 }
 
 /// The wire machine's settings of a job, in job units (`None` without `wire`).
-pub fn wire_params(job: &ResolvedJob) -> Option<ruled::wire::WireParams> {
-    let w = job.job.wire.as_ref()?;
-    let unit = job.job.units.per_mm();
+pub fn wire_params(job: &Context) -> Option<ruled::wire::WireParams> {
+    let w = job.wire.as_ref()?;
+    let unit = job.per_mm();
     Some(ruled::wire::WireParams {
         tower_distance: w.tower_distance,
         kerf: w.kerf,
@@ -87,116 +182,204 @@ pub fn wire_params(job: &ResolvedJob) -> Option<ruled::wire::WireParams> {
     })
 }
 
-/// The optimizer's parameters and block for a resolved `PreCut` job (`None` for other
-/// tasks or without a block).
-pub fn params_from_job(job: &ResolvedJob) -> Option<(ruled::Params, ruled::Block)> {
-    let TaskSpec::PreCut {
-        legs,
-        directions,
-        degree,
-        controls,
-        sections,
-        samples,
-        max_rounds,
-    } = &job.job.task
-    else {
-        return None;
-    };
-    let spec = job.job.block.as_ref()?;
-    let origin = match spec.origin {
-        Some(o) => [o.0, o.1, o.2],
-        None => {
-            let b = job.surface.as_ref()?.aabb();
-            [b.min.x, b.min.y, b.min.z]
-        }
-    };
-    let size = [spec.size.0, spec.size.1, spec.size.2];
-    let block = ruled::Block {
-        min: origin,
-        max: [
-            origin[0] + size[0],
-            origin[1] + size[1],
-            origin[2] + size[2],
-        ],
-    };
-    Some((
-        ruled::Params {
-            legs: *legs as usize,
-            directions: directions.iter().map(|d| d.vector()).collect(),
-            degree: *degree as usize,
-            controls: *controls as usize,
-            sections: *sections as usize,
-            samples: *samples as usize,
-            max_rounds: *max_rounds as usize,
-            ..ruled::Params::default()
-        },
-        block,
-    ))
-}
+const PTR: &str = "/task/PreCut";
 
-/// Runs the task.
-///
-/// # Errors
-/// [`HotcutError::Task`] for a job without a surface or block, or when the optimizer
-/// rejects the input or cannot verify its result.
-pub fn pre_cut(job: &ResolvedJob, progress: &dyn Progress) -> Result<PreCutRun> {
-    let fail = |message: String| HotcutError::Task {
-        path: job.path.clone(),
-        message,
-    };
-    let (params, block) = params_from_job(job)
-        .ok_or_else(|| fail("task PreCut needs a surface and a block".into()))?;
-    let Some(surface) = &job.surface else {
-        return Err(fail("task PreCut needs a surface".into()));
-    };
-    progress.start(
-        "pre-cut",
-        (params.directions.len() * params.max_rounds) as u64,
-    );
-    let cut = ruled::pre_cut(surface, &block, &params, &|p: ruled::Progress| {
-        progress.tick();
-        progress.message(&format!(
-            "direction {} · round {} · Σd² {:.4e}",
-            p.direction + 1,
-            p.round + 1,
-            p.objective
-        ));
-    })
-    .map_err(|e| fail(e.to_string()))?;
-    progress.finish();
-    let report = PreCutReport {
-        units: job.job.units,
-        block,
-        params: params.clone(),
-        volumes: cut.volumes,
-        directions: cut
-            .directions
-            .iter()
-            .map(|d| DirectionSummary {
-                direction: d.direction,
-                rounds: d.rounds,
-                qps: d.qps,
-                constraint_points: d.constraint_points,
-                objective_history: d.objective_history.clone(),
-                clearance: d.clearance,
-            })
-            .collect(),
-    };
-    let wire = wire_params(job).map(|w| ruled::wire::WireParams {
-        steps: params.sections + 1,
-        ..w
-    });
-    if let Some(w) = &wire {
-        // Refuse bad machine settings now rather than while writing files.
-        for (i, d) in cut.directions.iter().enumerate() {
-            ruled::wire::paths(d, i, block.min[2], w).map_err(|e| fail(e.to_string()))?;
+impl Task for PreCut {
+    const NAME: &'static str = "PreCut";
+    const REPORT_SCHEMA: &'static str = "pre-cut-report.schema.json";
+    const OUTPUTS: &'static [Output<Self>] = &[
+        Output::new(OutputKind::PreCut, outputs::precut_json),
+        Output::new(OutputKind::Svg, outputs::svg),
+        Output::new(OutputKind::GCode, outputs::wire),
+        Output::new(OutputKind::Csv, outputs::wire),
+        Output::new(OutputKind::Obj, outputs::obj),
+        Output::new(OutputKind::Gltf, outputs::gltf),
+    ];
+    type Params = PreCutParams;
+    type Run = PreCutRun;
+    type Report = PreCutReport;
+
+    fn check(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+        job.require_surface_and_block(Self::NAME, "", "cuts are", errors);
+        self.check_counts(job, errors);
+        self.check_directions(job, errors);
+        for (i, o) in job.outputs.iter().enumerate() {
+            if matches!(o, OutputSpec::GCode | OutputSpec::Csv) && job.wire.is_none() {
+                errors.push(job.error(
+                    &format!("/outputs/{i}"),
+                    format!("{} writes wire programs: the job needs `wire: Wire(tower_distance: .., kerf: ..)`", o.name()),
+                ));
+            }
+        }
+        if let Some(w) = job.wire {
+            let positive = |v: Option<f64>| v.is_none_or(|v| v.is_finite() && v > 0.0);
+            let mut bad = |field: &str, message: &str| {
+                errors.push(job.error(&format!("/wire/{field}"), message));
+            };
+            if !(w.tower_distance.is_finite() && w.tower_distance > 0.0) {
+                bad("tower_distance", "tower_distance must be positive");
+            }
+            if !(w.kerf.is_finite() && w.kerf >= 0.0) {
+                bad("kerf", "kerf must be at least 0");
+            }
+            if !positive(w.speed) {
+                bad("speed", "speed must be positive");
+            }
+            if !w.lead.is_none_or(|v| v.is_finite() && v >= 0.0) {
+                bad("lead", "lead must be at least 0");
+            }
+            if !positive(w.clearance) {
+                bad("clearance", "clearance must be positive");
+            }
         }
     }
-    Ok(PreCutRun {
-        report,
-        cut,
-        surface: surface.clone(),
-        wire,
-        name: job.job.name.clone(),
-    })
+
+    fn params(&self, job: &Context) -> Result<PreCutParams> {
+        let spec = job.block(Self::NAME)?;
+        let origin = match spec.origin {
+            Some(o) => [o.0, o.1, o.2],
+            None => {
+                let b = job.surface(Self::NAME)?.aabb();
+                [b.min.x, b.min.y, b.min.z]
+            }
+        };
+        let size = [spec.size.0, spec.size.1, spec.size.2];
+        let block = ruled::Block {
+            min: origin,
+            max: [
+                origin[0] + size[0],
+                origin[1] + size[1],
+                origin[2] + size[2],
+            ],
+        };
+        let cut = ruled::Params {
+            legs: self.legs as usize,
+            directions: self.directions.iter().map(|d| d.vector()).collect(),
+            degree: self.degree as usize,
+            controls: self.controls as usize,
+            sections: self.sections as usize,
+            samples: self.samples as usize,
+            max_rounds: self.max_rounds as usize,
+            ..ruled::Params::default()
+        };
+        let wire = wire_params(job).map(|w| ruled::wire::WireParams {
+            steps: cut.sections + 1,
+            ..w
+        });
+        Ok(PreCutParams { cut, block, wire })
+    }
+
+    fn run(params: &PreCutParams, job: &Context, progress: &dyn Progress) -> Result<PreCutRun> {
+        let surface = job.surface(Self::NAME)?;
+        let p = &params.cut;
+        progress.start("pre-cut", (p.directions.len() * p.max_rounds) as u64);
+        let cut = ruled::pre_cut(surface, &params.block, p, &|p: ruled::Progress| {
+            progress.tick();
+            progress.message(&format!(
+                "direction {} · round {} · Σd² {:.4e}",
+                p.direction + 1,
+                p.round + 1,
+                p.objective
+            ));
+        })
+        .map_err(|e| job.fail(e.to_string()))?;
+        progress.finish();
+        if let Some(w) = &params.wire {
+            // Refuse bad machine settings now rather than while writing files.
+            for (i, d) in cut.directions.iter().enumerate() {
+                ruled::wire::paths(d, i, params.block.min[2], w)
+                    .map_err(|e| job.fail(e.to_string()))?;
+            }
+        }
+        Ok(PreCutRun {
+            cut,
+            surface: surface.clone(),
+        })
+    }
+
+    fn report(params: &PreCutParams, run: &PreCutRun, job: &Context) -> PreCutReport {
+        PreCutReport {
+            units: job.units,
+            block: params.block,
+            params: params.cut.clone(),
+            volumes: run.cut.volumes,
+            directions: run
+                .cut
+                .directions
+                .iter()
+                .map(|d| DirectionSummary {
+                    direction: d.direction,
+                    rounds: d.rounds,
+                    qps: d.qps,
+                    constraint_points: d.constraint_points,
+                    objective_history: d.objective_history.clone(),
+                    clearance: d.clearance,
+                })
+                .collect(),
+        }
+    }
+
+    fn summary(r: &PreCutReport, job: &Context) -> String {
+        let v = &r.volumes;
+        format!(
+            "{} (PreCut): {} direction(s) × {} cut(s); left for milling {:.4} of the block (convex hull {:.4}, block {:.4}): {:.0} % more removed than the hull, {:.0} % more than the block; model {:.4}",
+            job.name,
+            r.directions.len(),
+            r.params.legs,
+            v.ruled,
+            v.convex_hull,
+            v.bounding_box,
+            v.more_than_hull_percent,
+            v.more_than_box_percent,
+            v.model
+        )
+    }
+}
+
+impl PreCut {
+    /// The counts `legs`, `degree`, `controls`, `sections`, `samples`, `max_rounds`.
+    fn check_counts(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+        let mut range = |field: &str, v: u32, lo: u32, hi: u32| {
+            if !(lo..=hi).contains(&v) {
+                errors.push(job.error(
+                    &format!("{PTR}/{field}"),
+                    format!("{field} must be {lo}–{hi}, got {v}"),
+                ));
+            }
+        };
+        range("legs", self.legs, 1, 32);
+        range("degree", self.degree, 1, 5);
+        range("controls", self.controls, self.degree + 1, 64);
+        range("sections", self.sections, 2, 500);
+        range("samples", self.samples, 2, 500);
+        range("max_rounds", self.max_rounds, 1, 10_000);
+    }
+
+    /// At least one direction, each in the xy plane and none repeated.
+    fn check_directions(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+        let directions = &self.directions;
+        if directions.is_empty() {
+            errors.push(job.error(
+                &format!("{PTR}/directions"),
+                "at least one cutting direction, e.g. [X]",
+            ));
+        }
+        for (i, d) in directions.iter().enumerate() {
+            let [x, y] = d.vector();
+            if !(x.is_finite() && y.is_finite()) || x.hypot(y) < 1e-9 {
+                errors.push(job.error(
+                    &format!("{PTR}/directions/{i}"),
+                    format!("{d:?} is not a direction in the xy plane (finite, not zero)"),
+                ));
+            } else if directions[..i].iter().any(|e| {
+                let [a, b] = e.vector();
+                (a * y - b * x).abs() < 1e-9 * x.hypot(y) * a.hypot(b) && a * x + b * y > 0.0
+            }) {
+                errors.push(job.error(
+                    &format!("{PTR}/directions/{i}"),
+                    format!("{d:?} repeats an earlier direction"),
+                ));
+            }
+        }
+    }
 }

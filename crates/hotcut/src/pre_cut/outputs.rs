@@ -4,10 +4,8 @@
 //! (design surface, each direction's cut surface, the block) and per cut the wire's
 //! G-code and CSV.
 
-use std::rc::Rc;
-
-use export::gltf::{write_gltf, Material};
-use export::json::{to_json_string, REPORT_DIGITS};
+use export::gltf::{write_gltf, Material, Mesh};
+use export::json::REPORT_DIGITS;
 use export::obj::ObjWriter;
 use export::svg::{SvgDoc, Viewport};
 use geom::mesh::TriMesh;
@@ -15,44 +13,51 @@ use geom::surface::Surface;
 use nalgebra::Vector3;
 use serde::Serialize;
 
-use super::PreCutRun;
-use crate::block_seg::outputs::{block_mesh, gltf_mesh};
-use crate::hot_blade::outputs::file;
-use crate::job::OutputSpec;
-use crate::run::Render;
+use super::{PreCut, PreCutRun};
+use crate::output::mesh::block_mesh;
+use crate::output::Files;
+use crate::spec::{OutputKind, OutputSpec};
+use crate::task::Finished;
 
-/// The files of output `o`.
-pub fn render(run: &Rc<PreCutRun>, o: &OutputSpec) -> Vec<Render<'static>> {
-    let r = run.clone();
-    match o {
-        OutputSpec::PreCut => vec![file(
-            "precut.json",
-            Box::new(move |buf| {
-                #[derive(Serialize)]
-                struct PreCutFile<'a> {
-                    directions: &'a [ruled::DirectionCut],
-                }
-                let f = PreCutFile {
-                    directions: &r.cut.directions,
-                };
-                buf.extend(to_json_string(&f, REPORT_DIGITS)?.into_bytes());
-                Ok(())
-            }),
-        )],
-        OutputSpec::Svg => vec![file(
-            "sections.svg",
-            Box::new(move |buf| sections_svg(&r, buf)),
-        )],
-        OutputSpec::Obj => vec![file("precut.obj", Box::new(move |buf| obj(&r, buf)))],
-        OutputSpec::Gltf => vec![file("model.gltf", Box::new(move |buf| gltf(&r, buf)))],
-        OutputSpec::GCode | OutputSpec::Csv => wire_files(run, matches!(o, OutputSpec::GCode)),
-        _ => Vec::new(),
+type Done<'a> = Finished<'a, PreCut>;
+
+/// `precut.json`: per direction the polygons of rulings and the legs' B-splines.
+pub(super) fn precut_json(
+    done: &Done<'_>,
+    _: &OutputSpec,
+    files: &mut Files,
+) -> export::Result<()> {
+    #[derive(Serialize)]
+    struct PreCutFile<'a> {
+        directions: &'a [ruled::DirectionCut],
     }
+    let f = PreCutFile {
+        directions: &done.run.cut.directions,
+    };
+    files.json("precut.json", &f, REPORT_DIGITS)
+}
+
+/// `sections.svg`: cross sections per direction.
+pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    files.add("sections.svg", |buf| {
+        sections_svg(done.run, &done.params.block, buf)
+    })
+}
+
+/// `precut.obj`: design, cut surfaces, block.
+pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    files.add("precut.obj", |buf| {
+        meshes_obj(done.run, &done.params.block, buf)
+    })
+}
+
+/// `model.gltf`: design, cut surfaces, block.
+pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    files.add("model.gltf", |buf| model(done.run, &done.params.block, buf))
 }
 
 /// The block as a box mesh.
-fn block_box(run: &PreCutRun) -> export::Result<TriMesh> {
-    let b = run.report.block;
+fn block_box(b: &ruled::Block) -> export::Result<TriMesh> {
     let (lo, hi) = (Vector3::from(b.min), Vector3::from(b.max));
     block_mesh(&blocks::Placement {
         center: ((lo + hi) / 2.0).into(),
@@ -107,19 +112,19 @@ fn cut_mesh(d: &ruled::DirectionCut, top: f64) -> Option<TriMesh> {
     TriMesh::try_new(v, f).ok()
 }
 
-fn obj(run: &PreCutRun, buf: &mut Vec<u8>) -> export::Result<()> {
+fn meshes_obj(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> export::Result<()> {
     let mut w = ObjWriter::new(6);
     w.mesh("design", &design_mesh(run)?);
     for (i, d) in run.cut.directions.iter().enumerate() {
-        if let Some(m) = cut_mesh(d, run.report.block.max[2]) {
+        if let Some(m) = cut_mesh(d, block.max[2]) {
             w.mesh(&format!("cut_d{}", i + 1), &m);
         }
     }
-    w.mesh("block", &block_box(run)?);
+    w.mesh("block", &block_box(block)?);
     w.write(buf)
 }
 
-fn gltf(run: &PreCutRun, buf: &mut Vec<u8>) -> export::Result<()> {
+fn model(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> export::Result<()> {
     let materials = vec![
         Material {
             name: "design".into(),
@@ -137,45 +142,38 @@ fn gltf(run: &PreCutRun, buf: &mut Vec<u8>) -> export::Result<()> {
             blend: true,
         },
     ];
-    let mut meshes = vec![gltf_mesh("design".into(), &design_mesh(run)?, 0)];
+    let mut meshes = vec![Mesh::from_trimesh("design", &design_mesh(run)?, 0)];
     for (i, d) in run.cut.directions.iter().enumerate() {
-        if let Some(m) = cut_mesh(d, run.report.block.max[2]) {
-            meshes.push(gltf_mesh(format!("cut_d{}", i + 1), &m, 1));
+        if let Some(m) = cut_mesh(d, block.max[2]) {
+            meshes.push(Mesh::from_trimesh(format!("cut_d{}", i + 1), &m, 1));
         }
     }
-    meshes.push(gltf_mesh("block".into(), &block_box(run)?, 2));
+    meshes.push(Mesh::from_trimesh("block", &block_box(block)?, 2));
     write_gltf("hotcut PreCut", &meshes, &materials, buf)
 }
 
-/// One file per cut: `wire_d{direction}_c{cut}.gcode` (or `.csv`), 1-based.
-fn wire_files(run: &Rc<PreCutRun>, gcode: bool) -> Vec<Render<'static>> {
-    let Some(w) = run.wire else {
-        return Vec::new();
+/// One file per cut: `wire_d{direction}_c{cut}.gcode` (`GCode`) or `.csv` (`Csv`), 1-based.
+pub(super) fn wire(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    let Some(w) = done.params.wire else {
+        return Ok(());
     };
-    let block = run.report.block;
-    let mut out = Vec::new();
-    for (i, d) in run.cut.directions.iter().enumerate() {
+    let gcode = o.kind() == OutputKind::GCode;
+    let block = done.params.block;
+    for (i, d) in done.run.cut.directions.iter().enumerate() {
         let Ok(paths) = ruled::wire::paths(d, i, block.min[2], &w) else {
             continue;
         };
         for path in paths {
-            let name = run.name.clone();
             let ext = if gcode { "gcode" } else { "csv" };
-            out.push(file(
-                format!("wire_d{}_c{}.{ext}", i + 1, path.leg + 1),
-                Box::new(move |buf| {
-                    let text = if gcode {
-                        ruled::wire::gcode(&path, &w, block.max[2], block.min[2], &name)
-                    } else {
-                        ruled::wire::csv(&path)
-                    };
-                    buf.extend(text.into_bytes());
-                    Ok(())
-                }),
-            ));
+            let text = if gcode {
+                ruled::wire::gcode(&path, &w, block.max[2], block.min[2], &done.job.name)
+            } else {
+                ruled::wire::csv(&path)
+            };
+            files.text(format!("wire_d{}_c{}.{ext}", i + 1, path.leg + 1), text);
         }
     }
-    out
+    Ok(())
 }
 
 /// Sections drawn per direction (evenly spread along the cut).
@@ -183,12 +181,11 @@ const PANELS: usize = 5;
 
 /// One row per direction, `PANELS` cross sections each: block outline, design curve
 /// (black), convex hull (grey, dashed look by colour), the cut polygon (red).
-fn sections_svg(run: &PreCutRun, buf: &mut Vec<u8>) -> export::Result<()> {
+fn sections_svg(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> export::Result<()> {
     let to_err =
         |e: ruled::PreCutError| export::ExportError::Io(std::io::Error::other(e.to_string()));
     let height = ruled::Height::new(&run.surface).map_err(to_err)?;
-    let block = run.report.block;
-    let (_, hull) = ruled::volume::hull_top(&height, &block, 100).map_err(to_err)?;
+    let (_, hull) = ruled::volume::hull_top(&height, block, 100).map_err(to_err)?;
     let (pw, ph, pad) = (260.0, 180.0, 16.0);
     let rows = run.cut.directions.len();
     let mut doc = SvgDoc::new(PANELS as f64 * pw, rows as f64 * ph + 24.0);

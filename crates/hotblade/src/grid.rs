@@ -3,7 +3,7 @@
 //! block holds.
 //!
 //! Coordinates: the grid frame has axes `d` (the cutting direction, or the chord of the
-//! cutting-direction curve), `u = normalize(ẑ × d)` and `v = d × u` ([`PlaneFrame`]); a
+//! cutting-direction curve), `u = normalize(ẑ × d)` and `v = d × u` ([`PlaneFrame`](geom::slice::PlaneFrame)); a
 //! point's grid coordinates are `(d·p, u·p, v·p)`. Blocks are boxes of `size` (along
 //! `d`, `u`, `v`) tiling the surface's extent from the grid origin.
 
@@ -11,11 +11,15 @@ use geom::planar::{ArcLength, PlanarCurve};
 use geom::slice::PlaneFrame;
 use geom::surface::Section;
 use nalgebra::{Vector2, Vector3};
+use serde::Serialize;
+
+use crate::result::GridInfo;
 
 /// The block grid.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize)]
 pub struct Grid {
     /// Block axes.
+    #[serde(serialize_with = "crate::ser::frame")]
     pub frame: PlaneFrame,
     /// Grid coordinates of the grid's min corner.
     pub origin: [f64; 3],
@@ -100,12 +104,27 @@ impl Grid {
     pub fn world(&self, c: [f64; 3]) -> Vector3<f64> {
         self.frame.normal * c[0] + self.frame.u * c[1] + self.frame.v * c[2]
     }
+
+    /// The grid as the report gives it.
+    pub fn info(&self) -> GridInfo {
+        let arr = |v: &Vector3<f64>| [v.x, v.y, v.z];
+        GridInfo {
+            axis_d: arr(&self.frame.normal),
+            axis_u: arr(&self.frame.u),
+            axis_v: arr(&self.frame.v),
+            size: self.size,
+            origin: arr(&self.world(self.origin)),
+            rows: self.rows,
+            columns: self.cols,
+        }
+    }
 }
 
 /// A cutting plane: its frame and offset along the frame's normal.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Plane {
     /// In-plane axes and normal.
+    #[serde(serialize_with = "crate::ser::frame")]
     pub frame: PlaneFrame,
     /// Offset along the normal.
     pub offset: f64,
@@ -235,7 +254,7 @@ fn natural_second_derivatives(x: &[f64], y: &[f64]) -> Vec<f64> {
 }
 
 /// The part of a section inside a block's `u` range, sampled equally in arc length.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize)]
 pub struct Clipped {
     /// Sample points in plane coordinates.
     pub points: Vec<[f64; 2]>,

@@ -2,100 +2,81 @@
 //! `blocks.obj` (blocks as boxes), `model.gltf` (model and translucent blocks) and
 //! `progress.svg` (blocks and E per iteration, after thesis fig. 3.6).
 
-use std::rc::Rc;
-
 use blocks::{Phase, Placement};
 use export::gltf::{write_gltf, Material, Mesh};
-use export::json::{to_json_string, REPORT_DIGITS};
+use export::json::REPORT_DIGITS;
 use export::obj::ObjWriter;
 use export::svg::SvgDoc;
-use geom::mesh::TriMesh;
 use serde::Serialize;
 
-use super::BlockSegRun;
-use crate::hot_blade::outputs::{f32s, file};
-use crate::job::OutputSpec;
-use crate::run::Render;
+use super::BlockSegmentation;
+use crate::output::mesh::block_mesh;
+use crate::output::Files;
+use crate::spec::OutputSpec;
+use crate::task::Finished;
 
-/// The files of output `o`.
-pub fn render(run: &Rc<BlockSegRun>, o: &OutputSpec) -> Vec<Render<'static>> {
-    let r = run.clone();
-    match o {
-        OutputSpec::Blocks => vec![file(
-            "blocks.json",
-            Box::new(move |buf| {
-                #[derive(Serialize)]
-                struct BlocksFile<'a> {
-                    blocks: &'a [Placement],
-                }
-                let f = BlocksFile {
-                    blocks: &r.report.segmentation.blocks,
-                };
-                buf.extend(to_json_string(&f, REPORT_DIGITS)?.into_bytes());
-                Ok(())
-            }),
-        )],
-        OutputSpec::Obj => vec![file("blocks.obj", Box::new(move |buf| obj(&r, buf)))],
-        OutputSpec::Gltf => vec![file("model.gltf", Box::new(move |buf| gltf(&r, buf)))],
-        OutputSpec::Svg => vec![file(
-            "progress.svg",
-            Box::new(move |buf| progress_svg(&r).write(buf)),
-        )],
-        _ => Vec::new(),
+type Done<'a> = Finished<'a, BlockSegmentation>;
+
+/// `blocks.json`: every block's centre, rotation and size.
+pub(super) fn blocks_json(
+    done: &Done<'_>,
+    _: &OutputSpec,
+    files: &mut Files,
+) -> export::Result<()> {
+    #[derive(Serialize)]
+    struct BlocksFile<'a> {
+        blocks: &'a [Placement],
     }
+    let f = BlocksFile {
+        blocks: &done.run.segmentation.blocks,
+    };
+    files.json("blocks.json", &f, REPORT_DIGITS)
 }
 
-/// A block as a closed box mesh.
-pub(crate) fn block_mesh(p: &Placement) -> export::Result<TriMesh> {
-    TriMesh::try_new(
-        p.cuboid().corners().to_vec(),
-        geom::mesh::BOX_FACES.to_vec(),
-    )
-    .map_err(|e| export::ExportError::Io(std::io::Error::other(e.to_string())))
+/// `blocks.obj`: the blocks as boxes.
+pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    files.add("blocks.obj", |buf| {
+        let mut w = ObjWriter::new(6);
+        for (i, b) in done.run.segmentation.blocks.iter().enumerate() {
+            w.mesh(&format!("block_{i}"), &block_mesh(b)?);
+        }
+        w.write(buf)
+    })
 }
 
-fn obj(run: &BlockSegRun, buf: &mut Vec<u8>) -> export::Result<()> {
-    let mut w = ObjWriter::new(6);
-    for (i, b) in run.report.segmentation.blocks.iter().enumerate() {
-        w.mesh(&format!("block_{i}"), &block_mesh(b)?);
-    }
-    w.write(buf)
+/// `model.gltf`: the model and its translucent blocks.
+pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    let run = done.run;
+    files.add("model.gltf", |buf| {
+        let materials = vec![
+            Material {
+                name: "model".into(),
+                color: [0.8, 0.8, 0.82, 1.0],
+                blend: false,
+            },
+            Material {
+                name: "block".into(),
+                color: [0.95, 0.6, 0.2, 0.25],
+                blend: true,
+            },
+        ];
+        let mut meshes = vec![Mesh::from_trimesh("model", &run.mesh, 0)];
+        for (i, b) in run.segmentation.blocks.iter().enumerate() {
+            meshes.push(Mesh::from_trimesh(format!("block_{i}"), &block_mesh(b)?, 1));
+        }
+        write_gltf("hotcut BlockSegmentation", &meshes, &materials, buf)
+    })
 }
 
-/// A mesh for the glTF writer with one material.
-pub(crate) fn gltf_mesh(name: String, m: &TriMesh, material: usize) -> Mesh {
-    Mesh {
-        name,
-        positions: m.vertices().iter().map(f32s).collect(),
-        colors: None,
-        indices: m.faces().iter().flatten().copied().collect(),
-        material,
-    }
-}
-
-fn gltf(run: &BlockSegRun, buf: &mut Vec<u8>) -> export::Result<()> {
-    let materials = vec![
-        Material {
-            name: "model".into(),
-            color: [0.8, 0.8, 0.82, 1.0],
-            blend: false,
-        },
-        Material {
-            name: "block".into(),
-            color: [0.95, 0.6, 0.2, 0.25],
-            blend: true,
-        },
-    ];
-    let mut meshes = vec![gltf_mesh("model".into(), &run.mesh, 0)];
-    for (i, b) in run.report.segmentation.blocks.iter().enumerate() {
-        meshes.push(gltf_mesh(format!("block_{i}"), &block_mesh(b)?, 1));
-    }
-    write_gltf("hotcut BlockSegmentation", &meshes, &materials, buf)
+/// `progress.svg`: blocks and E per iteration.
+pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    files.add("progress.svg", |buf| {
+        progress_svg(&done.run.segmentation).write(buf)
+    })
 }
 
 /// Blocks per iteration as a step line, alignment passes marked, the lower bound dashed.
-fn progress_svg(run: &BlockSegRun) -> SvgDoc {
-    let seg = &run.report.segmentation;
+fn progress_svg(seg: &blocks::Segmentation) -> SvgDoc {
     let (w, h) = (640.0, 360.0);
     let mut doc = SvgDoc::new(w, h);
     let last = seg.history.last().map_or(1, |r| r.iteration.max(1)) as f64;

@@ -3,19 +3,18 @@
 //! section parts of every piece), `sections.csv` (one row per part) and the robot files
 //! shared with `HotBlade`.
 
-use std::rc::Rc;
-
 use export::fmt_float;
-use export::gltf::{write_gltf, Material, Mesh};
+use export::gltf::{f32s, write_gltf, Material, Mesh};
 use export::obj::ObjWriter;
-use export::svg::{SvgDoc, Viewport};
+use export::svg::{bounds, SvgDoc, Viewport};
 use nalgebra::Vector3;
 
-use super::SegmentationRun;
-use crate::draw::bounds;
-use crate::hot_blade::outputs::{box_mesh, f32s, file, robot_files};
-use crate::job::{OutputSpec, Units};
-use crate::run::Render;
+use super::report::SegmentationReport;
+use super::{FacadeSegmentation, SegmentationRun};
+use crate::output::robot::{self, TargetsBlock, TargetsFile};
+use crate::output::Files;
+use crate::spec::OutputSpec;
+use crate::task::Finished;
 
 /// Piece colours, cycled by piece id (a qualitative palette readable in print).
 const PALETTE: [[f32; 3]; 10] = [
@@ -43,34 +42,62 @@ fn hex(c: [f32; 3]) -> String {
     format!("#{:02x}{:02x}{:02x}", b(c[0]), b(c[1]), b(c[2]))
 }
 
-/// The files of output `o`.
-pub fn render(
-    run: &Rc<SegmentationRun>,
-    o: &OutputSpec,
-    units: Units,
-    job: &str,
-) -> Vec<Render<'static>> {
-    let r = run.clone();
-    match o {
-        OutputSpec::RobotTargets { .. } | OutputSpec::Rapid => robot_files(
-            Rc::new(run.targets(units)),
-            run.params.speed,
-            run.params.approach,
-            job,
-            "FacadeSeg",
-            o,
-        ),
-        OutputSpec::Svg => vec![file(
-            "segmentation.svg",
-            Box::new(move |buf| plan_svg(&r, units.symbol()).write(buf)),
-        )],
-        OutputSpec::Gltf => vec![file("model.gltf", Box::new(move |buf| gltf(&r, buf)))],
-        OutputSpec::Obj => vec![file("segmentation.obj", Box::new(move |buf| obj(&r, buf)))],
-        OutputSpec::Csv => vec![file("sections.csv", Box::new(move |buf| csv(&r, buf)))],
-        OutputSpec::Report | OutputSpec::GCode | OutputSpec::Blocks | OutputSpec::PreCut => {
-            Vec::new()
-        }
+type Done<'a> = Finished<'a, FacadeSegmentation>;
+
+/// The robot targets: one "block" per posed piece, its poses in cutting order.
+fn targets(done: &Done<'_>) -> TargetsFile {
+    let run = done.run;
+    TargetsFile {
+        units: done.job.units,
+        blade_length: done.params.blade.length,
+        blocks: run
+            .posed
+            .iter()
+            .filter(|p| !p.parts.is_empty())
+            .map(|p| TargetsBlock {
+                block: p.id,
+                origin: run.segmentation.pieces[p.id - 1].block.origin,
+                rotation: p.rotation,
+                poses: p.parts.iter().map(|q| q.pose).collect(),
+            })
+            .collect(),
     }
+}
+
+/// `targets.json` and `targets.csv`, or the RAPID modules `FacadeSeg_T_ROB<n>.mod/.pgf`.
+pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    let t = targets(done);
+    robot::write(
+        files,
+        &t,
+        done.params.motion,
+        &done.job.name,
+        "FacadeSeg",
+        o.kind(),
+    )
+}
+
+/// `segmentation.svg`.
+pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    let units = done.job.units.symbol();
+    files.add("segmentation.svg", |buf| {
+        plan_svg(done.run, done.report, units).write(buf)
+    })
+}
+
+/// `model.gltf`.
+pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    files.add("model.gltf", |buf| model(done.run, buf))
+}
+
+/// `segmentation.obj`.
+pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    files.add("segmentation.obj", |buf| parts_obj(done.run, buf))
+}
+
+/// `sections.csv`.
+pub(super) fn csv(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    files.add("sections.csv", |buf| parts_csv(done.report, buf))
 }
 
 /// World points of piece part `k` of piece `i`, `n + 1` of them.
@@ -97,7 +124,7 @@ fn part_points(run: &SegmentationRun, i: usize, k: usize, n: usize) -> Vec<Vecto
 /// colours (each reaching half a section spacing beyond its first and last section, where
 /// its row's neighbour takes over), sections grey, inflection points red, seams black,
 /// blocks dashed.
-fn plan_svg(run: &SegmentationRun, units: &str) -> SvgDoc {
+fn plan_svg(run: &SegmentationRun, r: &SegmentationReport, units: &str) -> SvgDoc {
     const W: f64 = 1000.0;
     const M: f64 = 40.0;
     let f = &run.facade.frame;
@@ -117,7 +144,6 @@ fn plan_svg(run: &SegmentationRun, units: &str) -> SvgDoc {
     let inner = W - 2.0 * M;
     let h = (inner * (hi.1 - lo.1) / (hi.0 - lo.0).max(1e-9)).clamp(200.0, 1400.0);
     let mut doc = SvgDoc::new(W, h + 3.0 * M);
-    let r = &run.report;
     doc.text(
         (M, 22.0),
         16.0,
@@ -226,7 +252,7 @@ fn plan_svg(run: &SegmentationRun, units: &str) -> SvgDoc {
 
 /// Pieces as coloured triangle strips between their consecutive section parts, and their
 /// blocks as translucent boxes.
-fn gltf(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
+fn model(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
     let mut materials = vec![Material {
         name: "block".into(),
         color: [0.85, 0.85, 0.8, 0.15],
@@ -242,11 +268,12 @@ fn gltf(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
     let mut meshes = Vec::new();
     let n = DRAW_SAMPLES;
     for (i, piece) in run.segmentation.pieces.iter().enumerate() {
-        meshes.push(box_mesh(
-            &run.facade.frame,
-            Vector3::from(piece.block.origin),
-            piece.block.size,
+        let f = &run.facade.frame;
+        meshes.push(Mesh::from_box(
             format!("block_{}", piece.id),
+            Vector3::from(piece.block.origin),
+            [f.normal, f.u, f.v],
+            piece.block.size,
             0,
         ));
         if piece.parts.len() < 2 {
@@ -277,7 +304,7 @@ fn gltf(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
 }
 
 /// Every piece's section parts as 3D polylines.
-fn obj(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
+fn parts_obj(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
     let mut w = ObjWriter::new(6);
     for (i, piece) in run.segmentation.pieces.iter().enumerate() {
         for (k, part) in piece.parts.iter().enumerate() {
@@ -291,12 +318,12 @@ fn obj(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
 }
 
 /// One row per section part of a piece.
-fn csv(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
+fn parts_csv(report: &SegmentationReport, buf: &mut Vec<u8>) -> export::Result<()> {
     let mut s = String::from(
         "piece,row,band,plane,offset,s0,s1,length,inflections,max_abs_curvature,start_x,start_y,start_z,end_x,end_y,end_z,blade_fit_rms,blade_fit_max\n",
     );
     let f = |v: f64| fmt_float(v, 9);
-    for p in &run.report.pieces {
+    for p in &report.pieces {
         for sec in &p.sections {
             let mut row = vec![
                 p.id.to_string(),

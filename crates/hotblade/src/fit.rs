@@ -7,16 +7,14 @@ use elastica::segment::Segment;
 use elastica::sweep::blade_pose;
 use nalgebra::{Vector2, Vector3};
 
-use super::grid::{clip, clip_polyline, Clipped};
-use super::*;
-use crate::error::{HotcutError, Result};
-use crate::job::{Continuity, FitConstraintSpec};
-use crate::load::Blade as BladeLimits;
-use crate::Progress;
+use crate::grid::{clip, clip_polyline, Clipped};
+use crate::pipeline::{Context, FittedPart, Part};
+use crate::result::FittedSection;
+use crate::{BladeLimits, Continuity, HotBladeError, Progress, ProgressFn, SHORTEST_PART};
 
 /// The longest clipped part of a plane's section pieces as a dense polyline (for the
-/// deviation grid; see [`grid::clip_polyline`]).
-pub(super) fn design_polyline(
+/// deviation grid; see [`clip_polyline`]).
+pub(crate) fn design_polyline(
     ctx: &Context<'_>,
     plane: usize,
     range: (f64, f64),
@@ -56,7 +54,7 @@ fn design_part(ctx: &Context<'_>, plane: usize, range: (f64, f64), n: usize) -> 
 /// nothing (at most `MAX_SWEEPS`). On long, nearly straight sections any single start
 /// lands in a poor local minimum now and then (an arc 0.6 mm off where an elastica fits
 /// to 0.003 mm); a good fit found anywhere then spreads to its neighbours.
-pub(crate) fn sweep_fits(
+pub fn sweep_fits(
     designs: &[Option<Clipped>],
     constraint: FitConstraint,
 ) -> std::result::Result<Vec<Option<FitResult>>, (usize, FitError)> {
@@ -119,20 +117,19 @@ pub(crate) fn sweep_fits(
     Ok(fits)
 }
 
-pub(super) fn fit_part(
+/// Fits part `part` on every target plane: the design parts (slivers left out), the
+/// warm-started sweeps, with `C1` the tangent-keeping refits, and the blades with their
+/// poses.
+pub(crate) fn fit_part(
     ctx: &Context<'_>,
     part: Part,
     targets: usize,
-    progress: &dyn Progress,
-) -> Result<FittedPart> {
+    progress: &ProgressFn<'_>,
+) -> Result<FittedPart, HotBladeError> {
     let p = ctx.params;
     let constraint = match p.constraint {
-        FitConstraintSpec::EndPointsAndLength => FitConstraint::EndPointsAndLength,
+        FitConstraint::EndPointsAndLength => FitConstraint::EndPointsAndLength,
         _ => FitConstraint::EndPoints,
-    };
-    let task_err = |message: String| HotcutError::Task {
-        path: ctx.path.to_path_buf(),
-        message,
     };
     // a plane that only grazes the block's surface (a corner of a rotated plane, the edge
     // of a surface) gives a sliver no blade pose can be extrapolated from: left out
@@ -142,95 +139,117 @@ pub(super) fn fit_part(
             design_part(ctx, plane, part.range, p.samples).filter(|d| d.length >= shortest)
         })
         .collect();
-    let c0 = sweep_fits(&designs, constraint).map_err(|(plane, e)| {
-        task_err(format!(
-            "column {} (range {:.6}..{:.6}), plane {plane}: {e}",
-            part.column, part.range.0, part.range.1
-        ))
+    let c0 = sweep_fits(&designs, constraint).map_err(|(plane, source)| HotBladeError::Fit {
+        column: part.column,
+        range: part.range,
+        plane,
+        source,
     })?;
-    // C¹: each fit refitted to keep the design's tangents at shared faces, started from the
-    // plane before; those that fail are retried backwards from the plane after
     let mut fitted: Vec<Option<(Clipped, FitResult, bool)>> = designs
         .into_iter()
         .zip(c0)
         .map(|(d, f)| d.zip(f).map(|(d, f)| (d, f, true)))
         .collect();
     if p.continuity == Continuity::C1 {
-        let keep = |plane: usize, design: &Clipped, fit: &FitResult, warm: Option<&Segment>| {
-            let (t0, t1) = design_tangents(ctx, plane, design, part.range);
-            elastica::fit::fit_with_end_tangents(
-                &design.points,
-                &design.s,
-                fit,
-                warm,
-                t0,
-                t1,
-                constraint,
-            )
-            .ok()
-        };
-        let mut warm: Option<Segment> = None;
-        for (plane, slot) in fitted.iter_mut().enumerate() {
-            let Some((design, fit, kept)) = slot else {
-                continue;
-            };
-            match keep(plane, design, fit, warm.as_ref()) {
-                Some(f) => *fit = f,
-                None => *kept = false,
-            }
-            warm = Some(fit.segment);
-        }
-        for plane in (0..fitted.len().saturating_sub(1)).rev() {
-            let next = match &fitted[plane + 1] {
-                Some((_, f, true)) => f.segment,
-                _ => continue,
-            };
-            if let Some((design, fit, kept @ false)) = &mut fitted[plane] {
-                if let Some(f) = keep(plane, design, fit, Some(&next)) {
-                    *fit = f;
-                    *kept = true;
-                }
-            }
-        }
+        keep_tangents(ctx, part, constraint, &mut fitted);
     }
     let mut fits = Vec::with_capacity(targets);
     for (plane, slot) in fitted.into_iter().enumerate() {
-        progress.tick();
+        progress(Progress::Tick);
         // a failed C¹ fit keeps its C⁰ fit; the block reports it and the face angle shows it
-        let Some((design, fit, tangents_kept)) = slot else {
-            fits.push(None);
-            continue;
-        };
-        let blade = make_blade(&fit.segment, &p.blade)
-            .map_err(|e| task_err(format!("plane {plane}: {e}")))?;
-        let plane_ref = &ctx.planes[plane];
-        let pose = blade_pose(&plane_ref.frame, plane_ref.offset, &blade);
-        let world: Vec<Vector3<f64>> = design
-            .points
-            .iter()
-            .map(|q| {
-                plane_ref
-                    .frame
-                    .to_world(plane_ref.offset, &Vector2::new(q[0], q[1]))
-            })
-            .collect();
-        let plane_angle = ctx
-            .normals
-            .normals_near(&world)
-            .iter()
-            .map(|n| n.dot(&plane_ref.frame.normal).abs().min(1.0).asin())
-            .fold(0.0, f64::max);
-        fits.push(Some(FittedSection {
-            plane,
-            design,
-            fit,
-            blade,
-            pose,
-            plane_angle,
-            tangents_kept,
-        }));
+        fits.push(match slot {
+            Some((design, fit, tangents_kept)) => {
+                Some(pose_section(ctx, plane, design, fit, tangents_kept)?)
+            }
+            None => None,
+        });
     }
     Ok(FittedPart { part, fits })
+}
+
+/// C¹: each fit refitted to keep the design's tangents at shared faces, started from the
+/// plane before; those that fail are retried backwards from the plane after. A fit that
+/// still fails keeps its C⁰ fit and is marked (`false`).
+fn keep_tangents(
+    ctx: &Context<'_>,
+    part: Part,
+    constraint: FitConstraint,
+    fitted: &mut [Option<(Clipped, FitResult, bool)>],
+) {
+    let keep = |plane: usize, design: &Clipped, fit: &FitResult, warm: Option<&Segment>| {
+        let (t0, t1) = design_tangents(ctx, plane, design, part.range);
+        elastica::fit::fit_with_end_tangents(
+            &design.points,
+            &design.s,
+            fit,
+            warm,
+            t0,
+            t1,
+            constraint,
+        )
+        .ok()
+    };
+    let mut warm: Option<Segment> = None;
+    for (plane, slot) in fitted.iter_mut().enumerate() {
+        let Some((design, fit, kept)) = slot else {
+            continue;
+        };
+        match keep(plane, design, fit, warm.as_ref()) {
+            Some(f) => *fit = f,
+            None => *kept = false,
+        }
+        warm = Some(fit.segment);
+    }
+    for plane in (0..fitted.len().saturating_sub(1)).rev() {
+        let next = match &fitted[plane + 1] {
+            Some((_, f, true)) => f.segment,
+            _ => continue,
+        };
+        if let Some((design, fit, kept @ false)) = &mut fitted[plane] {
+            if let Some(f) = keep(plane, design, fit, Some(&next)) {
+                *fit = f;
+                *kept = true;
+            }
+        }
+    }
+}
+
+/// A fitted section with its blade, pose and largest plane angle.
+fn pose_section(
+    ctx: &Context<'_>,
+    plane: usize,
+    design: Clipped,
+    fit: FitResult,
+    tangents_kept: bool,
+) -> Result<FittedSection, HotBladeError> {
+    let blade = make_blade(&fit.segment, &ctx.params.blade)
+        .map_err(|source| HotBladeError::Blade { plane, source })?;
+    let plane_ref = &ctx.planes[plane];
+    let pose = blade_pose(&plane_ref.frame, plane_ref.offset, &blade);
+    let world: Vec<Vector3<f64>> = design
+        .points
+        .iter()
+        .map(|q| {
+            plane_ref
+                .frame
+                .to_world(plane_ref.offset, &Vector2::new(q[0], q[1]))
+        })
+        .collect();
+    let plane_angle = ctx
+        .normals
+        .normals_near(&world)
+        .iter()
+        .map(|n| n.dot(&plane_ref.frame.normal).abs().min(1.0).asin())
+        .fold(0.0, f64::max);
+    Ok(FittedSection {
+        plane,
+        design,
+        fit,
+        blade,
+        pose,
+        plane_angle,
+        tangents_kept,
+    })
 }
 
 /// The design's unit tangent angles that a C¹ fit keeps at its ends: only where the end is
@@ -264,7 +283,7 @@ fn design_tangents(
 
 /// The fit extended to the blade's length; a section longer than the blade keeps its own
 /// length (and its block is flagged).
-pub(crate) fn make_blade(
+pub fn make_blade(
     segment: &Segment,
     limits: &BladeLimits,
 ) -> std::result::Result<Blade, BladeError> {

@@ -1,0 +1,254 @@
+//! What a segmentation run reports per piece: its block, per section its part with the
+//! design's measures and the blade's fit, and a verdict per constraint in which the blade
+//! fits count too; and the counts over all pieces.
+//!
+//! Entry point: [`summarize`](crate::report::summarize).
+
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use crate::constraints::{Constraints, FitCheck, Verdicts};
+use crate::rationalize::PosedPiece;
+use crate::{Facade, Segmentation};
+
+/// The pieces of a segmentation as reported, and the counts over them.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct Pieces {
+    /// How many pieces and blocks, and how many break each constraint.
+    pub counts: SegmentationCounts,
+    /// The pieces, by band then by row.
+    pub pieces: Vec<PieceReport>,
+}
+
+/// Counts over the segmentation.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct SegmentationCounts {
+    /// Pieces.
+    pub pieces: usize,
+    /// Blocks needed: one per piece.
+    pub blocks: usize,
+    /// Bands across the cut.
+    pub bands: usize,
+    /// Rows of blocks along the cut.
+    pub rows: usize,
+    /// Sections.
+    pub sections: usize,
+    /// Section parts over all pieces.
+    pub parts: usize,
+    /// Pieces breaking each constraint.
+    pub failing: ConstraintCounts,
+    /// Every piece meets every constraint.
+    pub all_ok: bool,
+    /// Blade poses over all pieces (rationalized runs).
+    pub poses: usize,
+    /// Section parts left without a pose: slivers shorter than 5 % of the blade.
+    pub unposed: usize,
+}
+
+/// Pieces breaking each constraint of §5.1.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+pub struct ConstraintCounts {
+    /// Dimension (blade length, block).
+    pub dimension: usize,
+    /// Approximation (only measured by `LongestElastica`).
+    pub approximation: usize,
+    /// Shape (inflections).
+    pub shape: usize,
+    /// Blade strain (curvature).
+    pub blade_strain: usize,
+}
+
+/// The block a piece is cut from.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct PieceBlock {
+    /// Block number (= piece id).
+    pub number: usize,
+    /// Min corner, the work object's origin.
+    pub origin: [f64; 3],
+    /// Orientation `[w, x, y, z]` of the block axes (along the cut, across it, up).
+    pub rotation: [f64; 4],
+    /// Size along the cut, across it and up.
+    pub size: [f64; 3],
+    /// The piece's extent in the block (≤ `size` when it fits).
+    pub used: [f64; 3],
+}
+
+/// One section part of a piece.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct PieceSection {
+    /// Plane index of the section.
+    pub plane: usize,
+    /// Plane offset along the cutting direction.
+    pub offset: f64,
+    /// 3D start point of the part.
+    pub start: [f64; 3],
+    /// 3D end point of the part.
+    pub end: [f64; 3],
+    /// Arc-length range along the section from its start.
+    pub s: [f64; 2],
+    /// Arc length.
+    pub length: f64,
+    /// Inflections of the design in the part.
+    pub inflections: usize,
+    /// Largest |curvature| of the design in the part.
+    pub max_abs_curvature: f64,
+    /// The elastica fit through the part's end points the algorithm measured
+    /// (`LongestElastica`).
+    pub check_fit: Option<FitCheck>,
+    /// The rationalized part: the blade's fit (rationalized runs; `None` for a sliver).
+    pub blade_fit: Option<BladeFit>,
+}
+
+/// The fit a piece's part is cut with.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct BladeFit {
+    /// `elastica`, `arc` or `line`.
+    pub kind: String,
+    /// RMS distance to the design part.
+    pub rms: f64,
+    /// Largest distance to the design part.
+    pub max: f64,
+    /// Largest |curvature| of the blade, over its whole length (what strains it).
+    pub max_abs_curvature: f64,
+    /// Inflections of the cut: the fitted segment inside the block (the shape constraint
+    /// of §5.1.3).
+    pub inflections: usize,
+    /// Inflections of the whole blade, its extension outside the block included.
+    pub blade_inflections: usize,
+}
+
+/// One piece.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct PieceReport {
+    /// 1-based id.
+    pub id: usize,
+    /// Row of blocks along the cut.
+    pub row: usize,
+    /// Band across the cut (0 at the facade's start edge).
+    pub band: usize,
+    /// Its block.
+    pub block: PieceBlock,
+    /// Per section it crosses, its part.
+    pub sections: Vec<PieceSection>,
+    /// Per constraint of §5.1: met (true) or not. Approximation is measured by the
+    /// algorithm's own check fits (`LongestElastica`) and, in a rationalized run, by the
+    /// blade fits, whose bending (over the whole blade) and inflections (inside the block)
+    /// also count for blade strain and shape.
+    pub verdicts: Verdicts,
+    /// Largest fit distance over the rationalized parts (rationalized runs).
+    pub max_blade_fit: Option<f64>,
+}
+
+/// The pieces of `seg` as reported, with the blade fits of `posed` (empty when the run
+/// did not rationalize; `rationalized` says whether it did), and the counts.
+pub fn summarize(
+    facade: &Facade,
+    seg: &Segmentation,
+    posed: &[PosedPiece],
+    rationalized: bool,
+    c: &Constraints,
+) -> Pieces {
+    let rotation = elastica::sweep::frame_quaternion(&facade.frame.normal, &facade.frame.v);
+    let pieces: Vec<PieceReport> = seg
+        .pieces
+        .iter()
+        .map(|p| piece_report(p, posed.iter().find(|q| q.id == p.id), rotation, c))
+        .collect();
+    let count = |f: &dyn Fn(&Verdicts) -> bool| pieces.iter().filter(|p| f(&p.verdicts)).count();
+    let parts: usize = pieces.iter().map(|p| p.sections.len()).sum();
+    let poses: usize = posed.iter().map(|p| p.parts.len()).sum();
+    let counts = SegmentationCounts {
+        pieces: pieces.len(),
+        blocks: pieces.len(),
+        bands: seg.bands,
+        rows: seg.rows,
+        sections: facade.sections.len(),
+        parts,
+        failing: ConstraintCounts {
+            dimension: count(&|v| !v.dimension),
+            approximation: count(&|v| v.approximation == Some(false)),
+            shape: count(&|v| !v.shape),
+            blade_strain: count(&|v| !v.blade_strain),
+        },
+        all_ok: pieces.iter().all(|p| p.verdicts.all()),
+        poses,
+        unposed: if rationalized { parts - poses } else { 0 },
+    };
+    Pieces { counts, pieces }
+}
+
+/// One piece as reported; `posed` is its rationalization, if the run made one.
+fn piece_report(
+    p: &crate::Piece,
+    posed: Option<&PosedPiece>,
+    rotation: [f64; 4],
+    c: &Constraints,
+) -> PieceReport {
+    let sections: Vec<PieceSection> = p
+        .parts
+        .iter()
+        .enumerate()
+        .map(|(k, part)| {
+            let blade_fit = posed
+                .and_then(|q| q.parts.iter().find(|x| x.part == k))
+                .map(|x| BladeFit {
+                    kind: x.fit.segment.kind().to_string(),
+                    rms: x.fit.rms,
+                    max: x.fit.max,
+                    max_abs_curvature: x.blade.max_abs_curvature,
+                    inflections: x.fit.segment.inflections().map_or(usize::MAX, |v| v.len()),
+                    blade_inflections: x.blade.inflections,
+                });
+            PieceSection {
+                plane: part.plane,
+                offset: part.offset,
+                start: part.start,
+                end: part.end,
+                s: part.s,
+                length: part.check.length,
+                inflections: part.check.inflections,
+                max_abs_curvature: part.check.max_abs_curvature,
+                check_fit: part.check.fit,
+                blade_fit,
+            }
+        })
+        .collect();
+    // the blades are what is cut: in a rationalized run their fits, their bending and the
+    // inflections of the cut count against the piece's verdicts too
+    let mut verdicts = p.verdicts;
+    if posed.is_some() {
+        let fits: Vec<&BladeFit> = sections
+            .iter()
+            .filter_map(|s| s.blade_fit.as_ref())
+            .collect();
+        let within = fits
+            .iter()
+            .all(|f| f.rms <= c.tolerance_rms && f.max <= c.tolerance_max);
+        verdicts.approximation = Some(verdicts.approximation != Some(false) && within);
+        verdicts.shape &= fits
+            .iter()
+            .all(|f| f.inflections <= c.max_inflections as usize);
+        verdicts.blade_strain &= fits.iter().all(|f| f.max_abs_curvature <= c.max_curvature);
+    }
+    let max_blade_fit = posed.map(|_| {
+        sections
+            .iter()
+            .filter_map(|s| s.blade_fit.as_ref().map(|f| f.max))
+            .fold(0.0, f64::max)
+    });
+    PieceReport {
+        id: p.id,
+        row: p.row,
+        band: p.band,
+        block: PieceBlock {
+            number: p.id,
+            origin: p.block.origin,
+            rotation,
+            size: p.block.size,
+            used: p.block.used,
+        },
+        sections,
+        verdicts,
+        max_blade_fit,
+    }
+}

@@ -1,0 +1,159 @@
+//! The files of an `Analyze` run: `sections.svg`, after thesis fig. 5.13 — a plan view
+//! (looking down −z) of the sections with inflection points in red and curvature maxima in
+//! blue, and below it the section profiles in their planes' `(u, v)` coordinates, overlaid;
+//! sections that break a constraint in orange and thicker — and `sections.obj`, the
+//! sections as 3D polylines.
+
+use export::json::REPORT_DIGITS;
+use export::obj::ObjWriter;
+use export::svg::{bounds, SvgDoc, Viewport};
+use geom::planar::PlanarCurve;
+use geom::slice::PlaneFrame;
+use geom::surface::Section;
+
+use super::report::AnalyzeReport;
+use super::{Analysis, Analyze};
+use crate::output::Files;
+use crate::spec::OutputSpec;
+use crate::task::Finished;
+
+const WIDTH: f64 = 1000.0;
+const MARGIN: f64 = 40.0;
+const SAMPLES: usize = 200;
+
+/// `sections.svg`.
+pub(super) fn svg(
+    done: &Finished<'_, Analyze>,
+    _: &OutputSpec,
+    files: &mut Files,
+) -> export::Result<()> {
+    let units = done.job.units.symbol();
+    files.add("sections.svg", |buf| {
+        sections_svg(done.run, done.report, units).write(buf)
+    })
+}
+
+/// `sections.obj`.
+pub(super) fn obj(
+    done: &Finished<'_, Analyze>,
+    _: &OutputSpec,
+    files: &mut Files,
+) -> export::Result<()> {
+    files.add("sections.obj", |buf| {
+        let mut w = ObjWriter::new(REPORT_DIGITS);
+        for (s, _) in &done.run.survey.sections {
+            w.polyline(
+                &format!("section_{}_{}", s.index, s.piece),
+                &sample_world(&done.run.frame, s, 400),
+            );
+        }
+        w.write(buf)
+    })
+}
+
+/// Points along a section in world coordinates, `n + 1` equally spaced in parameter.
+fn sample_world(frame: &PlaneFrame, s: &Section, n: usize) -> Vec<nalgebra::Vector3<f64>> {
+    let (a, b) = s.curve.domain();
+    (0..=n)
+        .map(|i| frame.to_world(s.offset, &s.curve.point(a + (b - a) * i as f64 / n as f64)))
+        .collect()
+}
+
+/// Draws the analysis.
+fn sections_svg(a: &Analysis, r: &AnalyzeReport, units: &str) -> SvgDoc {
+    let plan: Vec<Vec<(f64, f64)>> = a
+        .survey
+        .sections
+        .iter()
+        .map(|(s, _)| {
+            sample_world(&a.frame, s, SAMPLES)
+                .iter()
+                .map(|p| (p.x, p.y))
+                .collect()
+        })
+        .collect();
+    let profiles: Vec<Vec<(f64, f64)>> = a
+        .survey
+        .sections
+        .iter()
+        .map(|(s, _)| {
+            let (t0, t1) = s.curve.domain();
+            (0..=SAMPLES)
+                .map(|i| {
+                    let p = s.curve.point(t0 + (t1 - t0) * i as f64 / SAMPLES as f64);
+                    (p.x, p.y)
+                })
+                .collect()
+        })
+        .collect();
+    let (pmin, pmax) = bounds(plan.iter().flatten().copied());
+    let (qmin, qmax) = bounds(profiles.iter().flatten().copied());
+    let inner = WIDTH - 2.0 * MARGIN;
+    let plan_h = (inner * (pmax.1 - pmin.1) / (pmax.0 - pmin.0).max(1e-9)).clamp(150.0, 700.0);
+    let prof_h = (inner * (qmax.1 - qmin.1) / (qmax.0 - qmin.0).max(1e-9)).clamp(120.0, 400.0);
+    let height = MARGIN * 4.0 + plan_h + prof_h + 30.0;
+    let mut doc = SvgDoc::new(WIDTH, height);
+    doc.text(
+        (MARGIN, 24.0),
+        16.0,
+        "black",
+        &format!(
+            "{} — {} sections, {} inflections, max |κ| {:.4} /{units}, {}",
+            r.job,
+            r.summary.pieces,
+            r.summary.total_inflections,
+            r.summary.max_abs_curvature,
+            if r.summary.cuttable_without_segmentation {
+                "cuttable in one piece"
+            } else {
+                "needs segmentation"
+            }
+        ),
+    );
+    doc.text(
+        (MARGIN, MARGIN + 12.0),
+        12.0,
+        "#444",
+        "plan (x right, y up): inflections red, curvature maxima blue, offending sections orange",
+    );
+    let plan_page = (MARGIN, MARGIN + 20.0, inner, plan_h);
+    doc.rect(plan_page, "#ccc", "none");
+    let vp = Viewport::fit(pmin, pmax, plan_page);
+    let prof_top = MARGIN * 2.0 + 20.0 + plan_h + 20.0;
+    doc.text(
+        (MARGIN, prof_top - 8.0),
+        12.0,
+        "#444",
+        &format!("section profiles in (u, v), overlaid ({units})"),
+    );
+    let prof_page = (MARGIN, prof_top, inner, prof_h);
+    doc.rect(prof_page, "#ccc", "none");
+    let vq = Viewport::fit(qmin, qmax, prof_page);
+
+    for (k, ((s, an), rep)) in a.survey.sections.iter().zip(&r.sections).enumerate() {
+        let bad = !rep.violations.is_empty();
+        let (stroke, w) = if bad { ("#e07000", 1.6) } else { ("#333", 0.8) };
+        let title = format!(
+            "section {} piece {}: length {:.1}, {} inflections",
+            s.index,
+            s.piece,
+            rep.length,
+            rep.inflections.len()
+        );
+        let pts: Vec<(f64, f64)> = plan[k].iter().map(|&(x, y)| vp.map(x, y)).collect();
+        doc.polyline(&pts, stroke, w, Some(&title));
+        let pts: Vec<(f64, f64)> = profiles[k].iter().map(|&(x, y)| vq.map(x, y)).collect();
+        doc.polyline(&pts, stroke, w * 0.7, Some(&title));
+        for (list, colour) in [
+            (&an.curvature_maxima, "#1060e0"),
+            (&an.inflections, "#e01010"),
+        ] {
+            for p in list.iter() {
+                let world = a.frame.to_world(s.offset, &p.point);
+                doc.circle(vp.map(world.x, world.y), 2.6, colour, None);
+                doc.circle(vq.map(p.point.x, p.point.y), 2.0, colour, None);
+            }
+        }
+    }
+    doc
+}

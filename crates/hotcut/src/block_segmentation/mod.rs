@@ -1,0 +1,301 @@
+//! The `BlockSegmentation` task (thesis ch. 3): the job's closed mesh covered by as few
+//! freely placed blocks of `block.size` as possible, by [`blocks::segment`].
+//!
+//! ```no_run
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! // jobs/blocks-torus.ron:
+//! //   surface: Mesh(path: "../../shared/data/meshes/torus.obj", closed: true),
+//! //   block: Block(size: (0.55, 0.55, 0.55)),
+//! //   task: BlockSegmentation(restarts: 2, coverage: Solid),
+//! let job = hotcut::load::load_job(std::path::Path::new("jobs/blocks-torus.ron"))
+//!     .map_err(|errors| format!("{errors:?}"))?;
+//! let outcome = hotcut::run::run_job(&job, std::path::Path::new("out"), &hotcut::NoProgress)?;
+//! println!("{:?}", outcome.files);
+//! # Ok(()) }
+//! ```
+
+/// Its files: `blocks.json`, `blocks.obj`, `model.gltf`, `progress.svg`.
+mod outputs;
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use geom::mesh::TriMesh;
+use geom::surface::Surface;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::context::{Context, JobFields};
+use crate::error::{JobError, Result};
+use crate::progress::Progress;
+use crate::spec::{OutputKind, SurfaceSpec, Units};
+use crate::task::{Output, Task};
+
+/// Volumetric block segmentation (thesis ch. 3): cover a closed mesh
+/// (`surface: Mesh(path: .., closed: true)`) with as few freely translated and rotated
+/// blocks of `block.size` as possible, by the stochastic optimization of §3.3. The
+/// job's `seed` seeds it. Write `BlockSegmentation(restarts: 4, coverage: Solid)`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BlockSegmentation {
+    /// Operations used: any of `Translate`, `Rotate`, `Align` (the ablation of
+    /// Table 3.2). Default: all three.
+    #[serde(default = "default_block_operations")]
+    #[schemars(length(min = 1, max = 3))]
+    pub operations: Vec<blocks::Operation>,
+    /// `Solid`: the model's volume must lie in the union of blocks; `Surface`: only
+    /// its surface. Default: `Solid`.
+    #[serde(default)]
+    pub coverage: blocks::Coverage,
+    /// Exponent p of eq. 3.3 (≥ 1). Default: 2.
+    #[serde(default = "default_block_p")]
+    #[schemars(range(min = 1))]
+    pub p: f64,
+    /// ε of eq. 3.3 (> 0). Default: 1e-5.
+    #[serde(default = "default_block_epsilon")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub epsilon: f64,
+    /// Independent runs in parallel, seeds derived from the job's `seed`; the run
+    /// with the fewest blocks is kept. Default: 1.
+    #[serde(default = "default_restarts")]
+    #[schemars(range(min = 1, max = 256))]
+    pub restarts: u32,
+    /// Iteration cap per run (an iteration is one cycle over the blocks, of moves or
+    /// of alignment). Default: 200.
+    #[serde(default = "default_block_iterations")]
+    #[schemars(range(min = 1))]
+    pub max_iterations: u32,
+    /// Wall-time cap per run, seconds (> 0). Results then depend on the machine's
+    /// speed; prefer `max_iterations`. Default: none.
+    #[serde(default)]
+    pub time_limit: Option<f64>,
+    /// Interior sample spacing as a fraction of the block's shortest edge, in
+    /// (0, 0.25]; blocks are shrunk by this spacing (half of it for `Surface`) when
+    /// testing coverage, so that covering the samples covers the model. Default: 0.05.
+    #[serde(default = "default_sample_spacing")]
+    #[schemars(extend("exclusiveMinimum" = 0), range(max = 0.25))]
+    pub sample_spacing: f64,
+}
+
+fn default_block_operations() -> Vec<blocks::Operation> {
+    vec![
+        blocks::Operation::Translate,
+        blocks::Operation::Rotate,
+        blocks::Operation::Align,
+    ]
+}
+fn default_block_p() -> f64 {
+    2.0
+}
+fn default_block_epsilon() -> f64 {
+    1e-5
+}
+fn default_restarts() -> u32 {
+    1
+}
+fn default_block_iterations() -> u32 {
+    200
+}
+fn default_sample_spacing() -> f64 {
+    0.05
+}
+
+/// The report of a `BlockSegmentation` run (`report.json`).
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct BlockSegReport {
+    /// Length unit of every length.
+    pub units: Units,
+    /// The model: vertices, faces, volume.
+    pub model: ModelInfo,
+    /// The parameters the optimizer ran with.
+    pub params: blocks::Params,
+    /// The result: counts, reduction, lower bound, history (fig. 3.6), acceptance
+    /// counts, every restart, and the blocks.
+    pub segmentation: blocks::Segmentation,
+}
+
+/// What the model is.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct ModelInfo {
+    /// Mesh vertices.
+    pub vertices: usize,
+    /// Mesh triangles.
+    pub faces: usize,
+    /// Enclosed volume.
+    pub volume: f64,
+}
+
+/// A finished run: the segmentation and the mesh, for the output files.
+#[derive(Debug, Clone)]
+pub struct BlockSegRun {
+    /// The optimizer's result.
+    pub segmentation: blocks::Segmentation,
+    /// The model.
+    pub mesh: TriMesh,
+}
+
+const PTR: &str = "/task/BlockSegmentation";
+
+impl Task for BlockSegmentation {
+    const NAME: &'static str = "BlockSegmentation";
+    const REPORT_SCHEMA: &'static str = "block-segmentation-report.schema.json";
+    const OUTPUTS: &'static [Output<Self>] = &[
+        Output::new(OutputKind::Blocks, outputs::blocks_json),
+        Output::new(OutputKind::Svg, outputs::svg),
+        Output::new(OutputKind::Obj, outputs::obj),
+        Output::new(OutputKind::Gltf, outputs::gltf),
+    ];
+    type Params = blocks::Params;
+    type Run = BlockSegRun;
+    type Report = BlockSegReport;
+
+    fn check(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+        job.require_surface_and_block(Self::NAME, " (a closed mesh)", "model is", errors);
+        match job.surface {
+            Some(SurfaceSpec::Mesh { closed: true, .. }) | None => {}
+            Some(SurfaceSpec::Mesh { closed: false, .. }) => errors.push(job.error(
+                "/surface/Mesh/closed",
+                "BlockSegmentation covers a solid: the mesh must be closed (`closed: true`)",
+            )),
+            Some(_) => errors.push(job.error(
+                "/surface",
+                "BlockSegmentation needs a closed triangle mesh: `Mesh(path: .., closed: true)`",
+            )),
+        }
+        if job.block.is_some_and(|b| b.origin.is_some()) {
+            errors.push(job.error(
+                "/block/origin",
+                "BlockSegmentation places its blocks itself: leave origin out",
+            ));
+        }
+        self.check_fields(job, errors);
+    }
+
+    fn params(&self, job: &Context) -> Result<blocks::Params> {
+        let block = job.block(Self::NAME)?;
+        Ok(blocks::Params {
+            block_size: [block.size.0, block.size.1, block.size.2],
+            operations: self.operations.clone(),
+            coverage: self.coverage,
+            p: self.p,
+            epsilon: self.epsilon,
+            restarts: self.restarts,
+            seed: job.seed,
+            max_iterations: self.max_iterations,
+            time_limit: self.time_limit,
+            sample_spacing: self.sample_spacing,
+            ..blocks::Params::default()
+        })
+    }
+
+    fn run(params: &blocks::Params, job: &Context, progress: &dyn Progress) -> Result<BlockSegRun> {
+        let Some(Surface::Mesh(mesh)) = &job.surface else {
+            return Err(job.fail("task BlockSegmentation needs a closed mesh surface"));
+        };
+        let total = params.max_iterations as u64 * params.restarts as u64;
+        progress.start("block segmentation", total);
+        let done = AtomicUsize::new(0);
+        let segmentation = blocks::segment(mesh, params, &|p: blocks::Progress| {
+            done.fetch_add(1, Ordering::Relaxed);
+            progress.tick();
+            progress.message(&format!(
+                "run {} · iteration {} · {} blocks · E {:.4}",
+                p.restart + 1,
+                p.iteration,
+                p.blocks,
+                p.energy
+            ));
+        })
+        .map_err(|e| job.fail(e.to_string()))?;
+        progress.finish();
+        Ok(BlockSegRun {
+            segmentation,
+            mesh: mesh.clone(),
+        })
+    }
+
+    fn report(params: &blocks::Params, run: &BlockSegRun, job: &Context) -> BlockSegReport {
+        BlockSegReport {
+            units: job.units,
+            model: ModelInfo {
+                vertices: run.mesh.vertices().len(),
+                faces: run.mesh.faces().len(),
+                volume: run.segmentation.model_volume,
+            },
+            params: params.clone(),
+            segmentation: run.segmentation.clone(),
+        }
+    }
+
+    fn summary(r: &BlockSegReport, job: &Context) -> String {
+        let s = &r.segmentation;
+        format!(
+            "{} (BlockSegmentation): {} → {} block(s), {:.1} % fewer (lower bound {}); best of {} run(s), {} iteration(s); accepted {} translation(s), {} rotation(s), {} alignment(s)",
+            job.name,
+            s.initial_blocks,
+            s.final_blocks,
+            s.reduction_percent,
+            s.lower_bound,
+            s.restarts.len(),
+            s.history.last().map_or(0, |h| h.iteration),
+            s.accepted.translations,
+            s.accepted.rotations,
+            s.accepted.alignments
+        )
+    }
+}
+
+impl BlockSegmentation {
+    /// The optimizer's own fields.
+    fn check_fields(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+        let mut bad = |field: &str, message: String| {
+            errors.push(job.error(&format!("{PTR}/{field}"), message));
+        };
+        if !(1..=256).contains(&self.restarts) {
+            bad(
+                "restarts",
+                format!("restarts must be 1–256, got {}", self.restarts),
+            );
+        }
+        if self.max_iterations == 0 {
+            bad("max_iterations", "max_iterations must be at least 1".into());
+        }
+        let ops = &self.operations;
+        if ops.is_empty() {
+            bad(
+                "operations",
+                "at least one of Translate, Rotate, Align".into(),
+            );
+        }
+        for (i, o) in ops.iter().enumerate() {
+            if ops[..i].contains(o) {
+                bad(&format!("operations/{i}"), format!("{o:?} is listed twice"));
+            }
+        }
+        let p = self.p;
+        if !(p >= 1.0) || !p.is_finite() {
+            bad("p", format!("p must be a finite number ≥ 1, got {p}"));
+        }
+        let epsilon = self.epsilon;
+        if !(epsilon > 0.0) || !epsilon.is_finite() {
+            bad(
+                "epsilon",
+                format!("epsilon must be positive, got {epsilon}"),
+            );
+        }
+        if let Some(t) = self.time_limit {
+            if !(t > 0.0) || !t.is_finite() {
+                bad(
+                    "time_limit",
+                    format!("time_limit must be positive seconds, got {t}"),
+                );
+            }
+        }
+        let s = self.sample_spacing;
+        if !(s > 0.0 && s <= 0.25) {
+            bad(
+                "sample_spacing",
+                format!("sample_spacing must be in (0, 0.25] of the shortest block edge, got {s}"),
+            );
+        }
+    }
+}

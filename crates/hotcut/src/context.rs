@@ -1,0 +1,230 @@
+//! What a task sees of its job: the common fields as written ([`JobFields`](crate::context::JobFields), for the
+//! task's checks while the job is validated) and resolved ([`Context`](crate::context::Context), with the surface
+//! loaded and defaults applied, for its run).
+//!
+//! Tasks never see the job enum: they get these two views, which is what keeps the
+//! modules free of circles (`job` → tasks → `context`).
+
+use std::path::{Path, PathBuf};
+
+use geom::fit::SmoothingParams;
+use geom::surface::{SectionParams, Surface};
+use nalgebra::Vector3;
+
+use crate::error::{HotcutError, JobError};
+use crate::spec::{BladeSpec, BlockSpec, CuttingSpec, OutputSpec, SurfaceSpec, ToleranceSpec};
+use crate::spec::{Units, WireSpec};
+
+/// Blade constraints in job units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Blade {
+    /// Blade length.
+    pub length: f64,
+    /// Largest allowed |curvature|.
+    pub max_curvature: f64,
+    /// Most inflections a blade shape may have.
+    pub max_inflections: u32,
+}
+
+impl Blade {
+    /// The job's blade, or the default blade (1000 mm, 0.011 /mm, 2 inflections) converted
+    /// to `units`.
+    pub fn of(spec: Option<&BladeSpec>, units: Units) -> Self {
+        match spec {
+            Some(b) => Self {
+                length: b.length,
+                max_curvature: b.max_curvature,
+                max_inflections: b.max_inflections,
+            },
+            None => {
+                let f = units.per_mm();
+                Self {
+                    length: 1000.0 * f,
+                    max_curvature: 0.011 / f,
+                    max_inflections: 2,
+                }
+            }
+        }
+    }
+
+    /// The limits as the `hotblade` pipeline takes them.
+    pub fn limits(&self) -> hotblade::BladeLimits {
+        hotblade::BladeLimits {
+            length: self.length,
+            max_curvature: self.max_curvature,
+            max_inflections: self.max_inflections,
+        }
+    }
+}
+
+/// A job's common fields, resolved: what every task's run gets.
+#[derive(Debug, Clone)]
+pub struct Context {
+    /// The job file.
+    pub path: PathBuf,
+    /// The job's name (its output folder).
+    pub name: String,
+    /// Length unit of every length.
+    pub units: Units,
+    /// The loaded surface, if the job has one.
+    pub surface: Option<Surface>,
+    /// Non-fatal findings while loading (e.g. an open mesh).
+    pub warnings: Vec<String>,
+    /// The block, as written.
+    pub block: Option<BlockSpec>,
+    /// Blade constraints (defaults applied, in job units).
+    pub blade: Blade,
+    /// The hot-wire machine, as written.
+    pub wire: Option<WireSpec>,
+    /// Cutting direction, sections and curve, as written.
+    pub cutting: CuttingSpec,
+    /// Unit cutting direction (the curve's chord when the job gives a curve).
+    pub direction: Vector3<f64>,
+    /// Tolerances.
+    pub tolerance: ToleranceSpec,
+    /// Seed of every random choice.
+    pub seed: u64,
+}
+
+impl Context {
+    /// How many job units one millimetre is.
+    pub fn per_mm(&self) -> f64 {
+        self.units.per_mm()
+    }
+
+    /// How the job's `cutting` and `tolerance` section the surface (shared by the tasks
+    /// that work on sections).
+    pub fn sectioning(&self) -> SectionParams {
+        SectionParams {
+            direction: self.direction,
+            count: self.cutting.sections as usize,
+            smoothing: SmoothingParams {
+                degree: 3,
+                tolerance: self.tolerance.smoothing,
+                max_control: 400,
+                chordal: false,
+            },
+            spline_grid: 200,
+        }
+    }
+
+    /// A task's failure on this job.
+    pub fn fail(&self, message: impl Into<String>) -> HotcutError {
+        HotcutError::Task {
+            path: self.path.clone(),
+            message: message.into(),
+        }
+    }
+
+    /// A geometry failure while doing `context`.
+    pub fn geom_err(&self, context: &str) -> impl FnOnce(geom::GeomError) -> HotcutError {
+        let (path, context) = (self.path.clone(), context.to_string());
+        move |source| HotcutError::Geom {
+            path,
+            context,
+            source,
+        }
+    }
+
+    /// The surface; validation made sure a task that needs one has it.
+    ///
+    /// # Errors
+    /// [`HotcutError::Invalid`] naming `/surface` when there is none.
+    pub fn surface(&self, task: &str) -> Result<&Surface, HotcutError> {
+        self.surface.as_ref().ok_or_else(|| {
+            JobError::semantic(
+                &self.path,
+                "/surface",
+                format!("task {task} needs a surface"),
+            )
+            .into()
+        })
+    }
+
+    /// The block; validation made sure a task that needs one has it.
+    ///
+    /// # Errors
+    /// [`HotcutError::Invalid`] naming `/block` when there is none.
+    pub fn block(&self, task: &str) -> Result<&BlockSpec, HotcutError> {
+        self.block.as_ref().ok_or_else(|| {
+            JobError::semantic(&self.path, "/block", format!("task {task} needs a block")).into()
+        })
+    }
+}
+
+/// A job's common fields as written, for the checks of its task while the job is
+/// validated (the surface may not have loaded).
+#[derive(Debug, Clone, Copy)]
+pub struct JobFields<'a> {
+    /// The job file.
+    pub path: &'a Path,
+    /// The folder relative paths start from.
+    pub base: &'a Path,
+    /// Length unit.
+    pub units: Units,
+    /// The surface.
+    pub surface: Option<&'a SurfaceSpec>,
+    /// The block.
+    pub block: Option<&'a BlockSpec>,
+    /// The blade.
+    pub blade: Option<&'a BladeSpec>,
+    /// The hot-wire machine.
+    pub wire: Option<&'a WireSpec>,
+    /// Files to write.
+    pub outputs: &'a [OutputSpec],
+}
+
+impl JobFields<'_> {
+    /// A semantic error at JSON pointer `pointer` of this job.
+    pub fn error(&self, pointer: &str, message: impl Into<String>) -> JobError {
+        JobError::semantic(self.path, pointer, message)
+    }
+
+    /// A task that cuts a surface from blocks needs both: reports each missing one. `what`
+    /// says what the surface is (may be empty), `cut` what is cut from the blocks, with its
+    /// verb ("surface is").
+    pub fn require_surface_and_block(
+        &self,
+        task: &str,
+        what: &str,
+        cut: &str,
+        errors: &mut Vec<JobError>,
+    ) {
+        if self.surface.is_none() {
+            errors.push(self.error("/surface", format!("task {task} needs a surface{what}")));
+        }
+        if self.block.is_none() {
+            errors.push(self.error(
+                "/block",
+                format!("task {task} needs `block` (the size of the blocks the {cut} cut from)"),
+            ));
+        }
+    }
+
+    /// Checks a task's cutting speed (> 0) and approach distance (≥ 0), when given; `ptr`
+    /// is the task's pointer.
+    pub fn check_motion(
+        &self,
+        ptr: &str,
+        speed: Option<f64>,
+        approach: Option<f64>,
+        errors: &mut Vec<JobError>,
+    ) {
+        if let Some(v) = speed {
+            if !(v > 0.0) || !v.is_finite() {
+                errors.push(self.error(
+                    &format!("{ptr}/speed"),
+                    format!("the cutting speed must be a positive number, got {v}"),
+                ));
+            }
+        }
+        if let Some(v) = approach {
+            if !(v >= 0.0) || !v.is_finite() {
+                errors.push(self.error(
+                    &format!("{ptr}/approach"),
+                    format!("the approach distance must be ≥ 0, got {v}"),
+                ));
+            }
+        }
+    }
+}

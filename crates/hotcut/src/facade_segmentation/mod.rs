@@ -1,0 +1,477 @@
+//! The `FacadeSegmentation` task (thesis ch. 5): the job's sections handed to one of the
+//! [`facade_seg`] algorithms, then every piece rationalized
+//! ([`facade_seg::rationalize`]: an elastica per section part, warm-started sweeps,
+//! extended to the blade, posed for the two robots), and the report, drawings and robot
+//! files.
+//!
+//! ```
+//! let dir = tempfile::tempdir().unwrap();
+//! let path = dir.path().join("wavy.ron");
+//! std::fs::write(&path, r#"Job(
+//!     name: "wavy",
+//!     surface: HeightField(z: "60*sin(y/150)", x: (0, 600), y: (0, 1800)),
+//!     block: Block(size: (600, 600, 400)),
+//!     blade: Blade(length: 800, max_curvature: 0.011),
+//!     cutting: Cutting(sections: 6),
+//!     task: FacadeSegmentation(algorithm: Inflection(symmetric: false), rationalize: false),
+//! )"#).unwrap();
+//! let job = hotcut::load::load_job(&path).unwrap();
+//! let hotcut::job::TaskSpec::FacadeSegmentation(task) = &job.task else { unreachable!() };
+//! let out = hotcut::run::run_task(task, &job.context, &job.outputs, dir.path(), &hotcut::NoProgress)
+//!     .unwrap();
+//! // every part of every piece holds at most two inflections
+//! assert!(out.report.pieces.iter().all(|p| p.verdicts.shape));
+//! assert_eq!(out.report.counts.pieces, out.run.segmentation.pieces.len());
+//! ```
+
+/// Its files: `segmentation.svg`, `model.gltf`, `segmentation.obj`, `sections.csv`, robot
+/// files.
+mod outputs;
+/// Its report.
+pub mod report;
+
+use elastica::fit::FitConstraint;
+use facade_seg::inflection::{inflection_points, InflectionParams};
+use facade_seg::longest::{longest_elastica, LongestParams};
+use facade_seg::rationalize::{pose_piece, PosedPiece, RationalizeParams};
+use facade_seg::trace::{trace, TraceParams};
+use facade_seg::{Constraints, Facade, Segmentation};
+use geom::surface::SectionParams;
+use rayon::prelude::*;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::context::{Context, JobFields};
+use crate::error::{JobError, Result};
+use crate::output::robot::Motion;
+use crate::progress::Progress;
+use crate::report::SurfaceInfo;
+use crate::spec::{keep_length, FitConstraintSpec, OutputKind, OutputSpec};
+use crate::spec::{APPROACH_MM, BLADE_SPEED_MM_PER_S};
+use crate::task::{Output, Task};
+use report::{SegmentationReport, SegmentationSettings};
+
+/// Facade segmentation for hot-blade cutting (thesis ch. 5): the sections of
+/// `cutting` are split into pieces, each cut from one block, so that every part of a
+/// section in a piece meets the production constraints (§5.1: blade length and block,
+/// approximation, shape, blade strain); then each piece is rationalized (an elastica
+/// per section part, extended to the blade, with its robot pose). Needs `block`. Write
+/// `FacadeSegmentation(algorithm: Inflection(symmetric: false))`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FacadeSegmentation {
+    /// The algorithm.
+    pub algorithm: SegAlgorithmSpec,
+    /// Points each section part is sampled at for its checks and fits (≥ 8).
+    /// Default: 64.
+    #[serde(default = "default_seg_samples")]
+    #[schemars(range(min = 8, max = 100000))]
+    pub samples: u32,
+    /// Fit every piece's section parts by elastica and pose the blade on them (needed
+    /// by `RobotTargets` and `Rapid`). Default: `true`.
+    #[serde(default = "default_true")]
+    pub rationalize: bool,
+    /// What each piece's fitted elastica keeps of its section part: `EndPoints`, or
+    /// `EndPointsAndLength`. Default: `EndPointsAndLength`.
+    #[serde(default = "keep_length")]
+    pub constraint: FitConstraintSpec,
+    /// Cutting speed of the blade (> 0), job units per second. Default: 7 mm/s.
+    #[serde(default)]
+    pub speed: Option<f64>,
+    /// Approach and retreat distance of the blade along the cut (≥ 0). Default: 50 mm.
+    #[serde(default)]
+    pub approach: Option<f64>,
+}
+
+/// How a facade is segmented (thesis ch. 5).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub enum SegAlgorithmSpec {
+    /// §5.2: a grid of blocks per row along the cut; blocks are translated along their
+    /// row (or a translated copy inserted) until no block holds a section part with more
+    /// than `max_inflections` inflections; in overlaps the seam runs through curvature
+    /// maxima. Write `Inflection(symmetric: false)`.
+    Inflection {
+        /// Apply every move to all rows alike (one arrangement for the whole facade).
+        /// Default: `false`.
+        #[serde(default)]
+        symmetric: bool,
+    },
+    /// §5.3: curvature maxima between inflections linked across sections into traces,
+    /// extended, merged and completed by middle traces; pieces are the bands between
+    /// traces. Write `Trace()`.
+    Trace {
+        /// Farthest (across the cut) a maximum may be from a trace's last point to continue
+        /// it (> 0). Default: a quarter of the block's width.
+        #[serde(default)]
+        link_distance: Option<f64>,
+        /// Traces closer than this anywhere are merged (≥ 0). Default: 2 % of the block's
+        /// width.
+        #[serde(default)]
+        merge_distance: Option<f64>,
+        /// Traces over fewer sections are dropped (the stand-in for the thesis' smoothing
+        /// step, ≥ 1). Default: 2.
+        #[serde(default = "default_min_sections")]
+        #[schemars(range(min = 1, max = 100000))]
+        min_sections: u32,
+    },
+    /// §5.4: per section the longest part from the current seam an elastica fits within
+    /// tolerance (halving search), seams evened out, repeated until the facade is covered;
+    /// shape and blade strain enforced too. Write `LongestElastica(precision: 1.0)`.
+    LongestElastica {
+        /// Precision of the halving search (> 0), job units. Default: 1 mm.
+        #[serde(default)]
+        precision: Option<f64>,
+        /// Most a part may be longer than its neighbour's (> 0). Default: the spacing of
+        /// the sections.
+        #[serde(default)]
+        max_step: Option<f64>,
+    },
+}
+
+impl SegAlgorithmSpec {
+    /// Name as written in job files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Inflection { .. } => "Inflection",
+            Self::Trace { .. } => "Trace",
+            Self::LongestElastica { .. } => "LongestElastica",
+        }
+    }
+}
+
+fn default_min_sections() -> u32 {
+    2
+}
+fn default_true() -> bool {
+    true
+}
+fn default_seg_samples() -> u32 {
+    64
+}
+
+/// Parameters of a `FacadeSegmentation` run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SegmentationParams {
+    /// The algorithm and its options.
+    pub algorithm: SegAlgorithmSpec,
+    /// Points per section part for checks and fits.
+    pub samples: usize,
+    /// Whether pieces are rationalized and posed.
+    pub rationalize: bool,
+    /// What each piece's fits keep.
+    pub constraint: FitConstraintSpec,
+    /// Cutting speed and approach distance of the robot programs.
+    pub motion: Motion,
+    /// The production constraints of §5.1.
+    pub constraints: Constraints,
+    /// The blade.
+    pub blade: hotblade::BladeLimits,
+    /// Sectioning of the facade.
+    pub sectioning: SectionParams,
+    /// Precision of the longest-elastica search when the job leaves it out (1 mm).
+    pub default_precision: f64,
+}
+
+/// The result of a `FacadeSegmentation` run.
+#[derive(Debug, Clone)]
+pub struct SegmentationRun {
+    /// The prepared sections.
+    pub facade: Facade,
+    /// What the algorithm returned.
+    pub segmentation: Segmentation,
+    /// Rationalized pieces (empty when `rationalize` is off), in piece order.
+    pub posed: Vec<PosedPiece>,
+    /// The surface as loaded.
+    pub surface: SurfaceInfo,
+}
+
+const PTR: &str = "/task/FacadeSegmentation";
+
+impl Task for FacadeSegmentation {
+    const NAME: &'static str = "FacadeSegmentation";
+    const REPORT_SCHEMA: &'static str = "facade-segmentation-report.schema.json";
+    const OUTPUTS: &'static [Output<Self>] = &[
+        Output::new(OutputKind::Svg, outputs::svg),
+        Output::new(OutputKind::Obj, outputs::obj),
+        Output::new(OutputKind::Gltf, outputs::gltf),
+        Output::new(OutputKind::Csv, outputs::csv),
+        Output::new(OutputKind::RobotTargets, outputs::robot),
+        Output::new(OutputKind::Rapid, outputs::robot),
+    ];
+    type Params = SegmentationParams;
+    type Run = SegmentationRun;
+    type Report = SegmentationReport;
+
+    fn check(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+        job.require_surface_and_block(Self::NAME, " (the facade)", "pieces are", errors);
+        if self.constraint == FitConstraintSpec::Free {
+            errors.push(job.error(&format!("{PTR}/constraint"), "a piece's fits keep its parts' end points so that neighbouring pieces meet: use EndPoints or EndPointsAndLength"));
+        }
+        job.check_motion(PTR, self.speed, self.approach, errors);
+        if job.blade.is_some_and(|b| b.max_inflections == 0) {
+            errors.push(job.error("/blade/max_inflections", "FacadeSegmentation needs max_inflections ≥ 1: parts meet between inflections, never exactly on one, so a section with an inflection cannot be split into parts without any"));
+        }
+        self.algorithm.check(job, errors);
+        for (i, o) in job.outputs.iter().enumerate() {
+            let robot = matches!(o, OutputSpec::RobotTargets { .. } | OutputSpec::Rapid);
+            if robot && !self.rationalize {
+                errors.push(job.error(
+                    &format!("/outputs/{i}"),
+                    format!(
+                        "output {} needs the pieces rationalized: set `rationalize: true`",
+                        o.name()
+                    ),
+                ));
+            }
+            if let OutputSpec::RobotTargets { per_block: Some(_) } = o {
+                errors.push(job.error(&format!("/outputs/{i}/RobotTargets/per_block"), "FacadeSegmentation poses the blade on every section a piece crosses: leave per_block out"));
+            }
+        }
+    }
+
+    fn params(&self, job: &Context) -> Result<SegmentationParams> {
+        let block = job.block(Self::NAME)?;
+        let per_mm = job.per_mm();
+        Ok(SegmentationParams {
+            algorithm: self.algorithm.clone(),
+            samples: self.samples as usize,
+            rationalize: self.rationalize,
+            constraint: self.constraint,
+            motion: Motion {
+                speed: self.speed.unwrap_or(BLADE_SPEED_MM_PER_S * per_mm),
+                approach: self.approach.unwrap_or(APPROACH_MM * per_mm),
+            },
+            constraints: Constraints {
+                block: [block.size.0, block.size.1, block.size.2],
+                blade_length: job.blade.length,
+                max_curvature: job.blade.max_curvature,
+                max_inflections: job.blade.max_inflections,
+                tolerance_rms: job.tolerance.rms,
+                tolerance_max: job.tolerance.max,
+            },
+            blade: job.blade.limits(),
+            sectioning: job.sectioning(),
+            default_precision: per_mm,
+        })
+    }
+
+    fn run(
+        params: &SegmentationParams,
+        job: &Context,
+        progress: &dyn Progress,
+    ) -> Result<SegmentationRun> {
+        let surface = job.surface(Self::NAME)?;
+        progress.start("sectioning", params.sectioning.count as u64);
+        let (frame, sections) = surface
+            .sections(&params.sectioning, &|| progress.tick())
+            .map_err(job.geom_err("sectioning the facade"))?;
+        progress.finish();
+        let facade = Facade::new(frame, &sections).map_err(|e| job.fail(e.to_string()))?;
+        let segmentation = segment(&facade, params, progress)
+            .map_err(|e| job.fail(format!("segmentation failed: {e}")))?;
+        let posed = if params.rationalize {
+            rationalize(&facade, &segmentation, params, progress)
+                .map_err(|e| job.fail(e.to_string()))?
+        } else {
+            Vec::new()
+        };
+        Ok(SegmentationRun {
+            facade,
+            segmentation,
+            posed,
+            surface: SurfaceInfo::of(job, surface),
+        })
+    }
+
+    fn report(
+        params: &SegmentationParams,
+        run: &SegmentationRun,
+        job: &Context,
+    ) -> SegmentationReport {
+        let c = &params.constraints;
+        let pieces = facade_seg::report::summarize(
+            &run.facade,
+            &run.segmentation,
+            &run.posed,
+            params.rationalize,
+            c,
+        );
+        SegmentationReport {
+            job: job.name.clone(),
+            task: Self::NAME.into(),
+            units: job.units,
+            surface: run.surface.clone(),
+            settings: SegmentationSettings {
+                algorithm: params.algorithm.clone(),
+                sections: run.facade.sections.len(),
+                samples: params.samples,
+                block: c.block,
+                blade_length: c.blade_length,
+                max_curvature: c.max_curvature,
+                max_inflections: c.max_inflections,
+                tolerance_rms: c.tolerance_rms,
+                tolerance_max: c.tolerance_max,
+                rationalized: params.rationalize,
+                constraint: params.constraint,
+                speed: params.motion.speed,
+                approach: params.motion.approach,
+            },
+            counts: pieces.counts,
+            pieces: pieces.pieces,
+            seams: run
+                .segmentation
+                .seams
+                .iter()
+                .map(|s| s.points.clone())
+                .collect(),
+        }
+    }
+
+    fn summary(r: &SegmentationReport, job: &Context) -> String {
+        let units = job.units.symbol();
+        let c = &r.counts;
+        let mut out = format!(
+            "{} (FacadeSegmentation, {}): {} piece(s) from {} block(s), {} band(s) × {} row(s), {} section part(s)",
+            r.job, r.settings.algorithm.name(), c.pieces, c.blocks, c.bands, c.rows, c.parts
+        );
+        if r.settings.rationalized {
+            let worst = r
+                .pieces
+                .iter()
+                .filter_map(|p| p.max_blade_fit)
+                .fold(0.0, f64::max);
+            out.push_str(&format!(
+                "\n  {} blade pose(s), {} sliver(s) unposed; largest blade fit distance {:.4} {units}",
+                c.poses, c.unposed, worst
+            ));
+        }
+        let f = &c.failing;
+        if c.all_ok {
+            out.push_str("\n  every piece meets every constraint");
+        } else {
+            out.push_str(&format!(
+                "\n  warning: pieces breaking a constraint — dimension {}, approximation {}, shape {}, blade strain {}",
+                f.dimension, f.approximation, f.shape, f.blade_strain
+            ));
+        }
+        out
+    }
+}
+
+impl SegAlgorithmSpec {
+    /// Checks the algorithm's own options.
+    fn check(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+        let mut positive = |field: &str, v: Option<f64>, zero_ok: bool| {
+            let Some(v) = v else { return };
+            if !(v.is_finite() && (v > 0.0 || (zero_ok && v == 0.0))) {
+                errors.push(job.error(
+                    &format!("{PTR}/algorithm/{}/{field}", self.name()),
+                    format!(
+                        "{field} must be a {} number, got {v}",
+                        if zero_ok { "non-negative" } else { "positive" }
+                    ),
+                ));
+            }
+        };
+        match self {
+            Self::Inflection { .. } => {}
+            Self::Trace {
+                link_distance,
+                merge_distance,
+                ..
+            } => {
+                positive("link_distance", *link_distance, false);
+                positive("merge_distance", *merge_distance, true);
+            }
+            Self::LongestElastica {
+                precision,
+                max_step,
+            } => {
+                positive("precision", *precision, false);
+                positive("max_step", *max_step, false);
+            }
+        }
+    }
+}
+
+/// Runs the job's segmentation algorithm on the facade.
+fn segment(
+    facade: &Facade,
+    params: &SegmentationParams,
+    progress: &dyn Progress,
+) -> std::result::Result<Segmentation, facade_seg::SegError> {
+    let c = &params.constraints;
+    let tick = || progress.tick();
+    let samples = params.samples;
+    let seg = match &params.algorithm {
+        SegAlgorithmSpec::Inflection { symmetric } => {
+            progress.start("inflection algorithm (rows)", 0);
+            let p = InflectionParams {
+                symmetric: *symmetric,
+                samples,
+                ..InflectionParams::default()
+            };
+            inflection_points(facade, c, &p, &tick)
+        }
+        SegAlgorithmSpec::Trace {
+            link_distance,
+            merge_distance,
+            min_sections,
+        } => {
+            progress.start("trace algorithm", 0);
+            let p = TraceParams {
+                link_distance: *link_distance,
+                merge_distance: *merge_distance,
+                min_sections: *min_sections as usize,
+                samples,
+            };
+            trace(facade, c, &p, &tick)
+        }
+        SegAlgorithmSpec::LongestElastica {
+            precision,
+            max_step,
+        } => {
+            progress.start("longest elastica (section parts)", 0);
+            let p = LongestParams {
+                precision: precision.unwrap_or(params.default_precision),
+                max_step: *max_step,
+                samples,
+                ..LongestParams::default()
+            };
+            longest_elastica(facade, c, &p, &tick)
+        }
+    };
+    progress.finish();
+    seg
+}
+
+/// Every piece rationalized, in parallel, in piece order.
+fn rationalize(
+    facade: &Facade,
+    seg: &Segmentation,
+    params: &SegmentationParams,
+    progress: &dyn Progress,
+) -> std::result::Result<Vec<PosedPiece>, facade_seg::SegError> {
+    let rp = RationalizeParams {
+        constraint: match params.constraint {
+            FitConstraintSpec::EndPointsAndLength => FitConstraint::EndPointsAndLength,
+            _ => FitConstraint::EndPoints,
+        },
+        samples: params.samples,
+        blade: params.blade,
+        tolerance_max: params.constraints.tolerance_max,
+    };
+    progress.start("rationalizing pieces", seg.pieces.len() as u64);
+    let posed: Vec<_> = seg
+        .pieces
+        .par_iter()
+        .map(|piece| {
+            let p = pose_piece(facade, piece, &rp);
+            progress.tick();
+            p
+        })
+        .collect();
+    progress.finish();
+    posed.into_iter().collect()
+}

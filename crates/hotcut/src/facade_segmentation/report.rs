@@ -1,0 +1,63 @@
+//! The report a `FacadeSegmentation` run writes as `report.json`; its JSON Schema is
+//! `schemas/facade-segmentation-report.schema.json`. Lengths in the job's units, positions
+//! in the job's frame. The pieces and counts are [`facade_seg::report`]'s.
+
+use facade_seg::report::{PieceReport, SegmentationCounts};
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use super::SegAlgorithmSpec;
+use crate::report::SurfaceInfo;
+use crate::spec::{FitConstraintSpec, Units};
+
+/// The result of the `FacadeSegmentation` task.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct SegmentationReport {
+    /// Job name.
+    pub job: String,
+    /// Task name, `FacadeSegmentation`.
+    pub task: String,
+    /// Length unit.
+    pub units: Units,
+    /// The surface as loaded.
+    pub surface: SurfaceInfo,
+    /// The settings used (defaults filled in).
+    pub settings: SegmentationSettings,
+    /// How many pieces and blocks, and how many break each constraint.
+    pub counts: SegmentationCounts,
+    /// The pieces, by band (from the facade's start edge across the cut) then by row.
+    pub pieces: Vec<PieceReport>,
+    /// Seams between bands, as 3D polylines (one point per section).
+    pub seams: Vec<Vec<[f64; 3]>>,
+}
+
+/// Settings of the run.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct SegmentationSettings {
+    /// The algorithm and its options as the job gives them.
+    pub algorithm: SegAlgorithmSpec,
+    /// Sections (planes) the facade was cut into.
+    pub sections: usize,
+    /// Points per section part for checks and fits.
+    pub samples: usize,
+    /// Block size along the cut, across it and up.
+    pub block: [f64; 3],
+    /// Blade length.
+    pub blade_length: f64,
+    /// Largest |curvature| the blade takes.
+    pub max_curvature: f64,
+    /// Most inflections a blade shape may have.
+    pub max_inflections: u32,
+    /// RMS tolerance of an elastica fit.
+    pub tolerance_rms: f64,
+    /// Largest-distance tolerance of an elastica fit.
+    pub tolerance_max: f64,
+    /// Whether the pieces were rationalized and posed.
+    pub rationalized: bool,
+    /// What each piece's fits keep.
+    pub constraint: FitConstraintSpec,
+    /// Cutting speed.
+    pub speed: f64,
+    /// Approach and retreat distance.
+    pub approach: f64,
+}

@@ -1,0 +1,222 @@
+//! Reading a curves file: JSON `{"curves": [{"id", "points": [[x, y], ...]}, ...]}` or CSV
+//! with the header `id,x,y`. The file is checked when the job is loaded.
+
+use std::path::Path;
+
+use serde::Deserialize;
+
+/// A planar curve to fit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InputCurve {
+    /// Its id.
+    pub id: String,
+    /// The points, in job units.
+    pub points: Vec<[f64; 2]>,
+    /// Arc length at every point when known exactly (surface sections); `None` uses the
+    /// polyline's chord lengths.
+    pub arc_length: Option<Vec<f64>>,
+}
+
+#[derive(Deserialize)]
+struct JsonCurves {
+    curves: Vec<JsonCurve>,
+}
+
+#[derive(Deserialize)]
+struct JsonCurve {
+    id: serde_json::Value,
+    points: Vec<[f64; 2]>,
+}
+
+/// Reads a curves file: JSON `{"curves": [{"id", "points": [[x, y], ...]}, ...]}` (other
+/// fields ignored; ids may be strings or numbers) or, for a `.csv` name, CSV with the header
+/// `id,x,y` and one row per point, a curve's rows consecutive.
+///
+/// # Errors
+/// A message naming the file and, where it applies, the line or curve: unreadable file,
+/// malformed JSON or CSV, no curves, a repeated id, a curve with fewer than 3 points, a
+/// non-finite coordinate, or two equal consecutive points.
+pub fn read_curves(path: &Path) -> std::result::Result<Vec<InputCurve>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let csv = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("csv"));
+    let curves = if csv {
+        parse_csv(&text)
+    } else {
+        parse_json(&text)
+    }
+    .map_err(|e| format!("{}: {e}", path.display()))?;
+    check(&curves).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(curves)
+}
+
+fn parse_json(text: &str) -> std::result::Result<Vec<InputCurve>, String> {
+    let file: JsonCurves = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    file.curves
+        .into_iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let id = match c.id {
+                serde_json::Value::String(s) => s,
+                serde_json::Value::Number(n) => n.to_string(),
+                other => {
+                    return Err(format!(
+                        "curve {i}: id must be a string or number, got {other}"
+                    ))
+                }
+            };
+            Ok(InputCurve {
+                id,
+                points: c.points,
+                arc_length: None,
+            })
+        })
+        .collect()
+}
+
+fn parse_csv(text: &str) -> std::result::Result<Vec<InputCurve>, String> {
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty());
+    let header = lines.next().map(|(_, l)| l).unwrap_or_default();
+    let cols: Vec<String> = header
+        .split(',')
+        .map(|c| c.trim().to_ascii_lowercase())
+        .collect();
+    if cols != ["id", "x", "y"] {
+        return Err(format!(
+            "the first line must be the header `id,x,y`, got `{header}`"
+        ));
+    }
+    let mut curves: Vec<InputCurve> = Vec::new();
+    for (n, line) in lines {
+        let f: Vec<&str> = line.split(',').map(str::trim).collect();
+        if f.len() != 3 {
+            return Err(format!(
+                "line {}: expected 3 fields `id,x,y`, got {}",
+                n + 1,
+                f.len()
+            ));
+        }
+        let num = |s: &str| {
+            s.parse::<f64>()
+                .map_err(|_| format!("line {}: `{s}` is not a number", n + 1))
+        };
+        let p = [num(f[1])?, num(f[2])?];
+        match curves.last_mut() {
+            Some(c) if c.id == f[0] => c.points.push(p),
+            _ => curves.push(InputCurve {
+                id: f[0].to_string(),
+                points: vec![p],
+                arc_length: None,
+            }),
+        }
+    }
+    Ok(curves)
+}
+
+fn check(curves: &[InputCurve]) -> std::result::Result<(), String> {
+    if curves.is_empty() {
+        return Err("no curves".into());
+    }
+    let mut seen = std::collections::BTreeSet::new();
+    for c in curves {
+        if !seen.insert(c.id.as_str()) {
+            return Err(format!(
+                "curve `{}` appears twice (CSV rows of a curve must be consecutive)",
+                c.id
+            ));
+        }
+        if c.points.len() < 3 {
+            return Err(format!(
+                "curve `{}` has {} point(s); a fit needs at least 3",
+                c.id,
+                c.points.len()
+            ));
+        }
+        for (i, p) in c.points.iter().enumerate() {
+            if !(p[0].is_finite() && p[1].is_finite()) {
+                return Err(format!("curve `{}`: point {i} is not finite", c.id));
+            }
+            if i > 0 && *p == c.points[i - 1] {
+                return Err(format!(
+                    "curve `{}`: points {} and {i} coincide",
+                    c.id,
+                    i - 1
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn write(name: &str, text: &str) -> (tempfile::TempDir, std::path::PathBuf) {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join(name);
+        std::fs::write(&p, text).unwrap();
+        (dir, p)
+    }
+
+    #[test]
+    fn json_and_csv_give_the_same_curves() {
+        let (_a, json) = write(
+            "c.json",
+            r#"{"curves": [{"id": "a", "class": "x", "points": [[0, 0], [1, 0.5], [2, 0]]},
+                           {"id": 7, "points": [[0, 1], [1, 1], [2, 1.5]]}]}"#,
+        );
+        let (_b, csv) = write(
+            "c.csv",
+            "id,x,y\na,0,0\na,1,0.5\na,2,0\n\n7,0,1\n7,1,1\n7,2,1.5\n",
+        );
+        let (j, c) = (read_curves(&json).unwrap(), read_curves(&csv).unwrap());
+        assert_eq!(j, c);
+        assert_eq!(j.len(), 2);
+        assert_eq!(j[1].id, "7");
+        assert_eq!(j[0].points[1], [1.0, 0.5]);
+    }
+
+    #[test]
+    fn bad_curve_files_are_rejected_with_a_reason() {
+        let cases = [
+            ("a.json", "{\"curves\": []}", "no curves"),
+            (
+                "b.json",
+                "{\"curves\": [{\"id\": \"a\"}]}",
+                "missing field `points`",
+            ),
+            ("c.json", "{\"curves\": [", "EOF"),
+            (
+                "d.json",
+                "{\"curves\": [{\"id\": \"a\", \"points\": [[0, 0], [1, 1]]}]}",
+                "at least 3",
+            ),
+            (
+                "e.json",
+                "{\"curves\": [{\"id\": \"a\", \"points\": [[0, 0], [1, 1], [1, 1]]}]}",
+                "coincide",
+            ),
+            ("f.csv", "x,y\n0,0\n", "header"),
+            ("g.csv", "id,x,y\na,0,0\na,1,nan\na,2,0\n", "not finite"),
+            ("h.csv", "id,x,y\na,0,zero\n", "line 2"),
+            ("i.csv", "id,x,y\na,0,0,1\n", "3 fields"),
+            (
+                "j.csv",
+                "id,x,y\na,0,0\na,1,1\na,2,0\nb,0,0\nb,1,1\nb,2,0\na,5,5\n",
+                "twice",
+            ),
+        ];
+        for (name, text, expect) in cases {
+            let (_d, p) = write(name, text);
+            let e = read_curves(&p).unwrap_err();
+            assert!(e.contains(expect), "{name}: `{e}` lacks `{expect}`");
+        }
+        let missing = read_curves(Path::new("/nonexistent/curves.json")).unwrap_err();
+        assert!(missing.contains("curves.json"));
+    }
+}

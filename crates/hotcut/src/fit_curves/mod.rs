@@ -1,0 +1,216 @@
+//! The `FitCurves` task: fit every curve of an input file, or every section of the
+//! surface, by one elastica, line or arc ([`elastica::fit`]), in parallel and in input
+//! order.
+
+/// Reading the curves file.
+pub mod curves;
+/// Its file: `fit.svg`.
+mod outputs;
+/// Its report.
+pub mod report;
+
+use std::path::Path;
+
+use elastica::fit::{fit_points_with_arclength, FitError, FitParams, FitResult};
+use geom::planar::{ArcLength, PlanarCurve};
+use geom::surface::Section;
+use rayon::prelude::*;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::context::{Context, JobFields};
+use crate::error::{JobError, Result};
+use crate::progress::Progress;
+use crate::report::surface_kind;
+use crate::spec::{FitConstraintSpec, OutputKind};
+use crate::task::{Output, Task};
+use curves::{read_curves, InputCurve};
+use report::{entry, summary, CurveFit, FitCurvesReport};
+
+/// Fit every curve of `input` (or, without `input`, every section of the surface) by
+/// one elastica, line or arc — the shapes a hot blade takes ("Hot Blade Cuttings" §5.1).
+/// Writes `report.json` (per curve the segment, its distances to the curve and the
+/// fitted curve sampled at 400 points) and `fit.svg` (input and fit overlaid). Write
+/// `FitCurves(input: "curves.json", constraint: Free)`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FitCurves {
+    /// Curves file, relative to the job file: JSON
+    /// `{"curves": [{"id": "a", "points": [[x, y], ...]}, ...]}` (other fields are
+    /// ignored) or CSV with a header `id,x,y` and one row per point, a curve's rows
+    /// consecutive. Coordinates in job units. Default: the sections of `surface`.
+    #[serde(default)]
+    #[schemars(length(min = 1))]
+    pub input: Option<String>,
+    /// What the fitted segment must reproduce exactly. Default: `Free`.
+    #[serde(default)]
+    pub constraint: FitConstraintSpec,
+    /// Points each surface section is sampled at, equally spaced in arc length (≥ 3;
+    /// unused with `input`). Default: 200.
+    #[serde(default = "default_fit_samples")]
+    #[schemars(range(min = 3, max = 100000))]
+    pub samples: u32,
+}
+
+fn default_fit_samples() -> u32 {
+    200
+}
+
+const INPUT: &str = "/task/FitCurves/input";
+
+/// Parameters of a `FitCurves` run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitCurvesParams {
+    /// The curves file (resolved path, and as written), or `None` for the sections.
+    pub input: Option<(std::path::PathBuf, String)>,
+    /// The boundary constraint.
+    pub constraint: FitConstraintSpec,
+    /// Points per surface section.
+    pub samples: usize,
+}
+
+/// Curves and fits of a `FitCurves` run.
+#[derive(Debug, Clone)]
+pub struct FitRun {
+    /// Where the curves came from: `file <path>` or `sections of the <kind> surface`.
+    pub source: String,
+    /// The curves, in report order.
+    pub curves: Vec<InputCurve>,
+    /// Their fits (segment and matched parameters), or why not.
+    pub fits: Vec<std::result::Result<FitResult, FitError>>,
+}
+
+impl Task for FitCurves {
+    const NAME: &'static str = "FitCurves";
+    const REPORT_SCHEMA: &'static str = "fit-curves-report.schema.json";
+    const OUTPUTS: &'static [Output<Self>] = &[Output::new(OutputKind::Svg, outputs::svg)];
+    type Params = FitCurvesParams;
+    type Run = FitRun;
+    type Report = FitCurvesReport;
+
+    fn check(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+        match &self.input {
+            Some(rel) => {
+                if let Err(m) = read_curves(&job.base.join(rel)) {
+                    errors.push(job.error(INPUT, m));
+                }
+            }
+            None if job.surface.is_none() => errors.push(job.error(
+                INPUT,
+                "task FitCurves needs `input` (a curves file) or a surface to section",
+            )),
+            None => {}
+        }
+    }
+
+    fn params(&self, job: &Context) -> Result<FitCurvesParams> {
+        let base = job.path.parent().unwrap_or(Path::new("."));
+        Ok(FitCurvesParams {
+            input: self.input.as_ref().map(|rel| (base.join(rel), rel.clone())),
+            constraint: self.constraint,
+            samples: self.samples as usize,
+        })
+    }
+
+    fn run(params: &FitCurvesParams, job: &Context, progress: &dyn Progress) -> Result<FitRun> {
+        let (curves, source) = match &params.input {
+            Some((file, rel)) => {
+                let curves = read_curves(file)
+                    .map_err(|message| JobError::semantic(&job.path, INPUT, message))?;
+                (curves, format!("file {rel}"))
+            }
+            None => {
+                let surface = job.surface(Self::NAME)?;
+                progress.start("sectioning", job.cutting.sections as u64);
+                let (_, sections) = surface
+                    .sections(&job.sectioning(), &|| progress.tick())
+                    .map_err(job.geom_err("sectioning the surface"))?;
+                progress.finish();
+                let samples = params.samples.max(3);
+                (
+                    sections.iter().map(|s| section_curve(s, samples)).collect(),
+                    format!("sections of the {} surface", surface_kind(surface)),
+                )
+            }
+        };
+        let fit_params = FitParams {
+            constraint: params.constraint.to_fit(),
+            ..Default::default()
+        };
+        progress.start("fitting curves", curves.len() as u64);
+        let fits: Vec<std::result::Result<FitResult, FitError>> = curves
+            .par_iter()
+            .map(|c| {
+                let r = match &c.arc_length {
+                    Some(s) => fit_points_with_arclength(&c.points, s, &fit_params),
+                    None => elastica::fit::fit_points(&c.points, &fit_params),
+                };
+                progress.tick();
+                r
+            })
+            .collect();
+        progress.finish();
+        Ok(FitRun {
+            source,
+            curves,
+            fits,
+        })
+    }
+
+    fn report(params: &FitCurvesParams, run: &FitRun, job: &Context) -> FitCurvesReport {
+        let entries: Vec<CurveFit> = run
+            .curves
+            .iter()
+            .zip(&run.fits)
+            .map(|(c, f)| entry(c, f))
+            .collect();
+        FitCurvesReport {
+            job: job.name.clone(),
+            task: Self::NAME.into(),
+            units: job.units,
+            source: run.source.clone(),
+            constraint: params.constraint,
+            summary: summary(&entries),
+            curves: entries,
+        }
+    }
+
+    fn summary(r: &FitCurvesReport, job: &Context) -> String {
+        let units = job.units.symbol();
+        let s = &r.summary;
+        let mut out = format!(
+            "{} (FitCurves, {:?}, {}):\n  {} curve(s): {} inflectional, {} non-inflectional elastica, {} arc(s), {} line(s)\n  RMS distance: median {:.3e} {units}, max {:.3e} {units}; largest distance {:.3e} {units}",
+            r.job, r.constraint, r.source,
+            s.curves, s.inflectional, s.noninflectional, s.arcs, s.lines,
+            s.median_rms, s.max_rms, s.max_distance
+        );
+        for c in &r.curves {
+            if let Some(e) = &c.error {
+                out.push_str(&format!(
+                    "\n  warning: curve `{}` was not fitted: {e}",
+                    c.id
+                ));
+            }
+        }
+        out
+    }
+}
+
+/// A section as a curve sampled at `samples` points of equal arc length.
+fn section_curve(s: &Section, samples: usize) -> InputCurve {
+    let arc = ArcLength::new(&s.curve, 4 * samples);
+    let total = arc.length();
+    let mut points = Vec::with_capacity(samples);
+    let mut arc_length = Vec::with_capacity(samples);
+    for i in 0..samples {
+        let si = total * i as f64 / (samples - 1) as f64;
+        let p = s.curve.point(arc.t_at(&s.curve, si));
+        points.push([p.x, p.y]);
+        arc_length.push(si);
+    }
+    InputCurve {
+        id: format!("section {}.{}", s.index, s.piece),
+        points,
+        arc_length: Some(arc_length),
+    }
+}

@@ -1,0 +1,189 @@
+//! Reading a job file in three layers, then resolving it into checked geometry.
+//!
+//! 1. **Syntax and structure** ([`parse_job`](crate::load::parse_job)): RON parsed straight into
+//!    [`Job`](crate::job::Job).
+//! 2. **Schema** ([`validate_schema`](crate::load::validate_schema)): the value ranges the JSON Schema carries.
+//! 3. **Semantics** ([`resolve`](crate::load::resolve)): what a schema cannot say (the mesh file exists and is a
+//!    valid mesh, the expression parses, the direction is non-zero, the task has what it
+//!    needs and writes the outputs asked for). The task's own checks come through
+//!    [`TaskSpec::visit`](crate::job::TaskSpec::visit); this module names no task.
+//!
+//! Entry points: [`load_job`](crate::load::load_job), [`ResolvedJob`](crate::load::ResolvedJob).
+
+use std::path::Path;
+
+use nalgebra::Vector3;
+
+use crate::context::{Blade, Context, JobFields};
+use crate::error::JobError;
+use crate::job::{Job, TaskSpec};
+use crate::spec::OutputSpec;
+use crate::task::Check;
+
+/// Layer 1: RON syntax and structure.
+mod parse;
+/// Layer 2: the JSON Schema.
+mod schema;
+/// Loading the surface.
+mod surface;
+
+pub use parse::parse_job;
+pub use schema::{job_schema, validate_schema};
+
+/// A job whose every field was checked, with its surface loaded.
+#[derive(Debug, Clone)]
+pub struct ResolvedJob {
+    /// The common fields, resolved: what the task's run sees.
+    pub context: Context,
+    /// The task and its fields.
+    pub task: TaskSpec,
+    /// Files to write.
+    pub outputs: Vec<OutputSpec>,
+}
+
+impl ResolvedJob {
+    /// The job file.
+    pub fn path(&self) -> &Path {
+        &self.context.path
+    }
+}
+
+/// Checks a cutting-direction curve and returns its unit chord.
+fn check_curve(curve: &[(f64, f64)]) -> Result<Vector3<f64>, String> {
+    if curve.len() < 2 {
+        return Err(format!("needs at least 2 points, got {}", curve.len()));
+    }
+    if let Some(i) = curve
+        .iter()
+        .position(|p| !p.0.is_finite() || !p.1.is_finite())
+    {
+        return Err(format!("point {i} is not finite"));
+    }
+    let (a, b) = (curve[0], curve[curve.len() - 1]);
+    let chord = Vector3::new(b.0 - a.0, b.1 - a.1, 0.0);
+    if !(chord.norm() > 0.0) {
+        return Err("the first and last points coincide".into());
+    }
+    let d = chord.normalize();
+    for i in 1..curve.len() {
+        let step = (curve[i].0 - curve[i - 1].0) * d.x + (curve[i].1 - curve[i - 1].1) * d.y;
+        if !(step > 0.0) {
+            return Err(format!(
+                "point {i} does not advance along the chord from the first to the last point (planes would cross)"
+            ));
+        }
+    }
+    Ok(d)
+}
+
+/// The unit cutting direction: the chord of `cutting.curve` when given, else
+/// `cutting.direction` (+x when that is zero, which is reported).
+fn direction(path: &Path, job: &Job, errors: &mut Vec<JobError>) -> Vector3<f64> {
+    let (dx, dy, dz) = job.cutting.direction;
+    let direction = Vector3::new(dx, dy, dz);
+    let mut unit = if direction.norm() > 0.0 {
+        direction.normalize()
+    } else {
+        errors.push(JobError::semantic(
+            path,
+            "/cutting/direction",
+            "the cutting direction must be a non-zero vector",
+        ));
+        Vector3::x()
+    };
+    if let Some(curve) = &job.cutting.curve {
+        match check_curve(curve) {
+            Ok(chord) => unit = chord,
+            Err(m) => errors.push(JobError::semantic(path, "/cutting/curve", m)),
+        }
+    }
+    unit
+}
+
+/// Layer 3 and resolution: checks what the schema cannot and loads the surface.
+///
+/// # Errors
+/// Every semantic problem found, each with its JSON pointer.
+pub fn resolve(path: &Path, job: Job) -> Result<ResolvedJob, Vec<JobError>> {
+    let mut errors = Vec::new();
+    let mut warnings = Vec::new();
+    let base = path.parent().unwrap_or(Path::new("."));
+    let direction = direction(path, &job, &mut errors);
+    if let Some(b) = &job.block {
+        for (i, v) in [b.size.0, b.size.1, b.size.2].into_iter().enumerate() {
+            if !(v > 0.0) {
+                errors.push(JobError::semantic(
+                    path,
+                    &format!("/block/size/{i}"),
+                    format!("block edge lengths must be > 0, got {v}"),
+                ));
+            }
+        }
+    }
+    let surface = job
+        .surface
+        .as_ref()
+        .and_then(|spec| surface::load(path, base, spec, &direction, &mut errors, &mut warnings));
+    let fields = JobFields {
+        path,
+        base,
+        units: job.units,
+        surface: job.surface.as_ref(),
+        block: job.block.as_ref(),
+        blade: job.blade.as_ref(),
+        wire: job.wire.as_ref(),
+        outputs: &job.outputs,
+    };
+    job.task.visit(Check {
+        job: fields,
+        has_curve: job.cutting.curve.is_some(),
+        errors: &mut errors,
+    });
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    let context = Context {
+        path: path.to_path_buf(),
+        blade: Blade::of(job.blade.as_ref(), job.units),
+        name: job.name,
+        units: job.units,
+        surface,
+        warnings,
+        block: job.block,
+        wire: job.wire,
+        cutting: job.cutting,
+        direction,
+        tolerance: job.tolerance,
+        seed: job.seed,
+    };
+    Ok(ResolvedJob {
+        context,
+        task: job.task,
+        outputs: job.outputs,
+    })
+}
+
+/// Reads, validates (all three layers) and resolves one job file.
+///
+/// # Errors
+/// Every problem found, in layer order; a later layer runs only when the earlier ones pass.
+///
+/// # Example
+/// ```
+/// let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("demo.ron");
+/// std::fs::write(&path, r#"Job(name: "demo", surface: HeightField(z: "x*y", x: (0, 1), y: (0, 1)), task: Analyze())"#).unwrap();
+/// let job = hotcut::load::load_job(&path).unwrap();
+/// assert_eq!(job.context.cutting.sections, 26);
+/// ```
+pub fn load_job(path: &Path) -> Result<ResolvedJob, Vec<JobError>> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        vec![JobError::Read {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        }]
+    })?;
+    let job = parse_job(path, &text).map_err(|e| vec![e])?;
+    validate_schema(path, &job)?;
+    resolve(path, job)
+}

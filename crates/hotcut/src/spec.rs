@@ -1,0 +1,371 @@
+//! The job-file types every task shares: units, surface, block, blade, wire, cutting,
+//! tolerances, fit constraints and the output files. Raw serde types with
+//! `deny_unknown_fields`; their doc comments become the descriptions in
+//! `schemas/job.schema.json`. Each task's own fields live in its module.
+//!
+//! Every omitted field has the default documented on it. Lengths are in the job's
+//! [`Units`](crate::spec::Units); curvatures in 1/length; angles in radians.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Length unit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+pub enum Units {
+    /// Millimetres (the default).
+    #[default]
+    Millimetre,
+    /// Metres.
+    Metre,
+}
+
+impl Units {
+    /// Short symbol for messages: `mm` or `m`.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Self::Millimetre => "mm",
+            Self::Metre => "m",
+        }
+    }
+
+    /// How many job units one millimetre is.
+    pub fn per_mm(self) -> f64 {
+        match self {
+            Self::Millimetre => 1.0,
+            Self::Metre => 1e-3,
+        }
+    }
+}
+
+/// Where the surface comes from.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub enum SurfaceSpec {
+    /// `z = f(x, y)` over a rectangle, sectioned exactly. Operators `+ - * / ^`, unary minus,
+    /// parentheses, `sin cos tan exp ln sqrt abs`, constants `pi` and `e`, variables `x`, `y`
+    /// in job units.
+    HeightField {
+        /// The expression for `z`.
+        #[schemars(length(min = 1))]
+        z: String,
+        /// `(min, max)` of `x`.
+        x: (f64, f64),
+        /// `(min, max)` of `y`.
+        y: (f64, f64),
+    },
+    /// A triangle mesh from a Wavefront OBJ file (path relative to the job file).
+    Mesh {
+        /// Path of the `.obj` file, relative to the job file.
+        #[schemars(length(min = 1))]
+        path: String,
+        /// Require a closed (watertight) mesh. Default: `false` (a facade is an open sheet).
+        #[serde(default)]
+        closed: bool,
+    },
+    /// A tensor-product B-spline surface from a JSON control-grid file (path relative to
+    /// the job file); see the README for the format.
+    Spline {
+        /// Path of the control-grid `.json` file, relative to the job file.
+        #[schemars(length(min = 1))]
+        path: String,
+    },
+}
+
+/// The foam block, an axis-aligned box in the job's frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename = "Block")]
+pub struct BlockSpec {
+    /// Edge lengths `(x, y, z)`, each > 0.
+    pub size: (f64, f64, f64),
+    /// Minimum corner `(x, y, z)`; when given, the surface must also lie inside the placed
+    /// block. Default: not placed (only the size is checked).
+    #[serde(default)]
+    pub origin: Option<(f64, f64, f64)>,
+}
+
+/// A 4-axis hot-wire machine: two towers `tower_distance` apart across the block.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename = "Wire")]
+pub struct WireSpec {
+    /// Distance between the tower planes (> the block's width across the cut).
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub tower_distance: f64,
+    /// Kerf width (≥ 0): the wire's cut is offset by half of it into the removed material.
+    #[schemars(range(min = 0))]
+    pub kerf: f64,
+    /// Wire speed through the foam, job units per minute (> 0). Default: 300 mm/min.
+    #[serde(default)]
+    pub speed: Option<f64>,
+    /// Lead-in and lead-out along the cut outside the block (≥ 0). Default: 20 mm.
+    #[serde(default)]
+    pub lead: Option<f64>,
+    /// Clearance above the block for rapid moves (> 0). Default: 50 mm.
+    #[serde(default)]
+    pub clearance: Option<f64>,
+}
+
+/// The hot blade.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename = "Blade")]
+pub struct BladeSpec {
+    /// Blade length (> 0): sections longer than this need segmentation.
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub length: f64,
+    /// Largest |curvature| the blade takes without permanent deformation (> 0), 1/length.
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub max_curvature: f64,
+    /// Most inflection points a blade shape may have. Default: 2 (thesis §5.1.3).
+    #[serde(default = "default_max_inflections")]
+    pub max_inflections: u32,
+}
+
+fn default_max_inflections() -> u32 {
+    2
+}
+
+/// How the surface is cut into sections.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename = "Cutting")]
+pub struct CuttingSpec {
+    /// Cutting direction, the normal of the section planes. Default: `(1, 0, 0)`. Height
+    /// fields need a horizontal direction (z = 0).
+    #[serde(default = "default_direction")]
+    pub direction: (f64, f64, f64),
+    /// Number of section planes, at the centres of equal slabs of the surface's extent
+    /// along the direction (≥ 1). Default: 26. `HotBlade` places its own planes per block
+    /// (`targets_per_block`) and does not use this.
+    #[serde(default = "default_sections")]
+    #[schemars(range(min = 1, max = 100000))]
+    pub sections: u32,
+    /// `HotBlade` only: a cutting-direction curve, as plan points `[(x, y), ...]` (at least
+    /// 2, strictly advancing from the first towards the last). The section planes then
+    /// follow it (thesis §5.1.5, eq. 5.4): each plane is vertical, through a point of the
+    /// curve, with the curve's horizontal tangent as its normal; the block grid is aligned
+    /// with the chord from the first to the last point, which replaces `direction`.
+    /// Default: none (parallel planes normal to `direction`).
+    #[serde(default)]
+    pub curve: Option<Vec<(f64, f64)>>,
+}
+
+fn default_direction() -> (f64, f64, f64) {
+    (1.0, 0.0, 0.0)
+}
+
+fn default_sections() -> u32 {
+    26
+}
+
+impl Default for CuttingSpec {
+    fn default() -> Self {
+        Self {
+            direction: default_direction(),
+            sections: default_sections(),
+            curve: None,
+        }
+    }
+}
+
+/// Tolerances, in job units.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename = "Tolerance")]
+pub struct ToleranceSpec {
+    /// RMS distance allowed between the surface and what is cut (> 0). Default: 0.5 mm.
+    #[serde(default = "default_rms")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub rms: f64,
+    /// Largest distance allowed between the surface and what is cut (> 0). Default: 2 mm.
+    #[serde(default = "default_max")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub max: f64,
+    /// Largest deviation allowed when a polyline section (mesh, spline surface) is replaced
+    /// by a smoothing spline before curvature is taken (≥ 0). For meshes, a point may also
+    /// deviate by its chordal sagitta (how far a facet can be from the true surface there).
+    /// Default: 0.05 mm.
+    #[serde(default = "default_smoothing")]
+    #[schemars(range(min = 0))]
+    pub smoothing: f64,
+    /// Inflections are located by bisection to within this arc length (> 0). Default: 1e-6 mm.
+    #[serde(default = "default_bisection")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub bisection: f64,
+    /// A stretch between inflections that turns the tangent by less than this many radians
+    /// is noise, and its inflections are dropped (≥ 0). Default: 0.002.
+    #[serde(default = "default_min_turning")]
+    #[schemars(range(min = 0))]
+    pub min_turning: f64,
+}
+
+fn default_rms() -> f64 {
+    0.5
+}
+fn default_max() -> f64 {
+    2.0
+}
+fn default_smoothing() -> f64 {
+    0.05
+}
+fn default_bisection() -> f64 {
+    1e-6
+}
+fn default_min_turning() -> f64 {
+    0.002
+}
+
+impl Default for ToleranceSpec {
+    fn default() -> Self {
+        Self {
+            rms: default_rms(),
+            max: default_max(),
+            smoothing: default_smoothing(),
+            bisection: default_bisection(),
+            min_turning: default_min_turning(),
+        }
+    }
+}
+
+/// Boundary constraints of a fit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+pub enum FitConstraintSpec {
+    /// Nothing: the segment closest to the curve.
+    #[default]
+    Free,
+    /// The segment starts and ends at the curve's end points.
+    EndPoints,
+    /// End points, and the segment is as long as the curve (the skater-ramp setting of the
+    /// hot-blade paper §7: the blade keeps its length).
+    EndPointsAndLength,
+}
+
+impl FitConstraintSpec {
+    /// The `elastica` option.
+    pub fn to_fit(self) -> elastica::fit::FitConstraint {
+        match self {
+            Self::Free => elastica::fit::FitConstraint::Free,
+            Self::EndPoints => elastica::fit::FitConstraint::EndPoints,
+            Self::EndPointsAndLength => elastica::fit::FitConstraint::EndPointsAndLength,
+        }
+    }
+}
+
+/// A file to write.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub enum OutputSpec {
+    /// `report.json`: the task's full result.
+    Report,
+    /// `sections.svg` (Analyze): plan and profile drawing of the sections; `fit.svg`
+    /// (FitCurves): every curve with its fit overlaid; `segmentation.svg`
+    /// (FacadeSegmentation): plan view of the pieces, sections, inflections and seams;
+    /// `progress.svg` (BlockSegmentation): blocks and E per iteration.
+    Svg,
+    /// `sections.obj`: the section curves as 3D polylines (BlockSegmentation:
+    /// `blocks.obj`, the blocks as boxes).
+    Obj,
+    /// `model.gltf` (HotBlade: blocks as boxes, the rationalized surfaces coloured by
+    /// deviation; FacadeSegmentation: the pieces in colours, and their blocks;
+    /// BlockSegmentation: the model and its blocks).
+    Gltf,
+    /// `sections.csv` (HotBlade: one row per fitted section; FacadeSegmentation: one row
+    /// per section part of a piece).
+    Csv,
+    /// `targets.json` and `targets.csv`: blade poses per block (HotBlade) or per piece
+    /// (FacadeSegmentation: one pose per section the piece crosses).
+    RobotTargets {
+        /// HotBlade: targets per block; when given, must equal the task's
+        /// `targets_per_block`. FacadeSegmentation: leave out. Default: none.
+        #[serde(default)]
+        #[schemars(range(min = 2))]
+        per_block: Option<u32>,
+    },
+    /// ABB RAPID program for a MultiMove cell, one module and `.pgf` per blade robot
+    /// (HotBlade).
+    Rapid,
+    /// Hot-wire G-code (pre-cut task).
+    GCode,
+    /// `blocks.json` (BlockSegmentation): every block's centre, rotation `[w, x, y, z]`
+    /// (block axes to model axes) and size, in the mesh's coordinates.
+    Blocks,
+    /// `precut.json` (PreCut): per direction, per section along the cut, the polygon of
+    /// rulings as 3D points, so anyone can re-check the cut.
+    PreCut,
+}
+
+impl OutputSpec {
+    /// The kind of file, without its options.
+    pub fn kind(&self) -> OutputKind {
+        match self {
+            Self::Report => OutputKind::Report,
+            Self::Svg => OutputKind::Svg,
+            Self::Obj => OutputKind::Obj,
+            Self::Gltf => OutputKind::Gltf,
+            Self::Csv => OutputKind::Csv,
+            Self::RobotTargets { .. } => OutputKind::RobotTargets,
+            Self::Rapid => OutputKind::Rapid,
+            Self::GCode => OutputKind::GCode,
+            Self::Blocks => OutputKind::Blocks,
+            Self::PreCut => OutputKind::PreCut,
+        }
+    }
+
+    /// Name as written in job files.
+    pub fn name(&self) -> &'static str {
+        self.kind().name()
+    }
+}
+
+/// The kinds of output file, as [`OutputSpec`] names them without their options. Each task
+/// declares the kinds it writes once ([`crate::task::Task::OUTPUTS`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OutputKind {
+    /// `report.json`, written by every task.
+    Report,
+    /// A drawing.
+    Svg,
+    /// Wavefront OBJ.
+    Obj,
+    /// glTF 2.0.
+    Gltf,
+    /// CSV tables.
+    Csv,
+    /// `targets.json` and `targets.csv`.
+    RobotTargets,
+    /// ABB RAPID modules.
+    Rapid,
+    /// Hot-wire G-code.
+    GCode,
+    /// `blocks.json`.
+    Blocks,
+    /// `precut.json`.
+    PreCut,
+}
+
+impl OutputKind {
+    /// Name as written in job files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Report => "Report",
+            Self::Svg => "Svg",
+            Self::Obj => "Obj",
+            Self::Gltf => "Gltf",
+            Self::Csv => "Csv",
+            Self::RobotTargets => "RobotTargets",
+            Self::Rapid => "Rapid",
+            Self::GCode => "GCode",
+            Self::Blocks => "Blocks",
+            Self::PreCut => "PreCut",
+        }
+    }
+}
+
+/// Default cutting speed of the blade, mm/s (converted by the job's units).
+pub const BLADE_SPEED_MM_PER_S: f64 = 7.0;
+
+/// Default approach and retreat distance of the blade along the cut, mm (converted by the
+/// job's units).
+pub const APPROACH_MM: f64 = 50.0;
+
+/// The fit constraint of a blade that keeps its length: the default of the tasks that
+/// pose the blade.
+pub(crate) fn keep_length() -> FitConstraintSpec {
+    FitConstraintSpec::EndPointsAndLength
+}

@@ -1,0 +1,159 @@
+//! The [`Task`](crate::task::Task) trait every task implements, the [`Output`](crate::task::Output) table through which it
+//! declares and writes its files, and [`Visit`](crate::task::Visit), the way code that works for any task (the
+//! checks, the runner) is handed the job's task as its own type.
+//!
+//! A task is its job-file struct (`HotBlade { targets_per_block, .. }`); the trait turns
+//! it into parameters, runs it, makes its report and writes its files.
+
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use crate::context::{Context, JobFields};
+use crate::error::{JobError, Result};
+use crate::output::Files;
+use crate::progress::Progress;
+use crate::spec::{OutputKind, OutputSpec};
+
+/// One task of a job file.
+pub trait Task: Sized + 'static {
+    /// The task's name as job files write it (`HotBlade`).
+    const NAME: &'static str;
+    /// File name of its report's JSON Schema in `schemas/`.
+    const REPORT_SCHEMA: &'static str;
+    /// The files it writes besides `report.json`, each kind once with its writer.
+    /// Validation accepts exactly these kinds (and `Report`); the runner writes through them.
+    const OUTPUTS: &'static [Output<Self>];
+    /// Whether the task follows a cutting-direction curve (`cutting.curve`). Default: no.
+    const CUTTING_CURVE: bool = false;
+
+    /// Parameters of a run, built from the resolved job.
+    type Params: 'static;
+    /// What a run produces, kept for the report and the writers.
+    type Run: 'static;
+    /// `report.json`.
+    type Report: Serialize + JsonSchema + 'static;
+
+    /// Layer-3 checks of the task's own fields and of the common fields it needs: every
+    /// problem is pushed to `errors`, with its JSON pointer.
+    fn check(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>);
+
+    /// The parameters for a resolved job.
+    ///
+    /// # Errors
+    /// What validation would have reported, should the job lack something.
+    fn params(&self, job: &Context) -> Result<Self::Params>;
+
+    /// Runs the task.
+    ///
+    /// # Errors
+    /// Failures of the geometry or of the algorithm on valid input.
+    fn run(params: &Self::Params, job: &Context, progress: &dyn Progress) -> Result<Self::Run>;
+
+    /// The report of a run.
+    fn report(params: &Self::Params, run: &Self::Run, job: &Context) -> Self::Report;
+
+    /// What the CLI prints after a run: lines without a trailing newline.
+    fn summary(report: &Self::Report, job: &Context) -> String;
+}
+
+/// A finished run, as the writers see it.
+pub struct Finished<'a, T: Task> {
+    /// The job.
+    pub job: &'a Context,
+    /// The parameters it ran with.
+    pub params: &'a T::Params,
+    /// What it produced.
+    pub run: &'a T::Run,
+    /// Its report.
+    pub report: &'a T::Report,
+}
+
+/// Writes the files of one output (`spec` carries its options) into `files`.
+pub type Writer<T> = fn(&Finished<'_, T>, &OutputSpec, &mut Files) -> export::Result<()>;
+
+/// An output kind a task writes, and its writer.
+pub struct Output<T: Task> {
+    /// The kind, as job files name it.
+    pub kind: OutputKind,
+    /// Its writer.
+    pub write: Writer<T>,
+}
+
+impl<T: Task> Output<T> {
+    /// Kind `kind`, written by `write`.
+    pub const fn new(kind: OutputKind, write: Writer<T>) -> Self {
+        Self { kind, write }
+    }
+}
+
+/// The output kinds `T` writes, `Report` first.
+pub fn output_kinds<T: Task>() -> Vec<OutputKind> {
+    std::iter::once(OutputKind::Report)
+        .chain(T::OUTPUTS.iter().map(|o| o.kind))
+        .collect()
+}
+
+/// Code that works for any task: [`crate::job::TaskSpec::visit`] calls
+/// [`visit`](Visit::visit) with the job's task as its own type.
+pub trait Visit {
+    /// What the visit returns.
+    type Output;
+    /// Does the work for task `task` of type `T`.
+    fn visit<T: Task>(self, task: &T) -> Self::Output;
+}
+
+/// The checks every task gets: its own ([`Task::check`]), that it writes every output the
+/// job asks for, and that only a task that follows a cutting-direction curve is given one.
+pub struct Check<'a, 'e> {
+    /// The job's common fields.
+    pub job: JobFields<'a>,
+    /// Whether the job gives `cutting.curve`.
+    pub has_curve: bool,
+    /// Where problems go.
+    pub errors: &'e mut Vec<JobError>,
+}
+
+impl Visit for Check<'_, '_> {
+    type Output = ();
+
+    fn visit<T: Task>(self, task: &T) {
+        let Check {
+            job,
+            has_curve,
+            errors,
+        } = self;
+        if has_curve && !T::CUTTING_CURVE {
+            errors.push(job.error(
+                "/cutting/curve",
+                format!("a cutting-direction curve is not used by task {}", T::NAME),
+            ));
+        }
+        task.check(&job, errors);
+        let kinds = output_kinds::<T>();
+        for (i, o) in job.outputs.iter().enumerate() {
+            if !kinds.contains(&o.kind()) {
+                let names: Vec<&str> = kinds.iter().map(|k| k.name()).collect();
+                errors.push(job.error(
+                    &format!("/outputs/{i}"),
+                    format!(
+                        "output {} is not produced by task {} (it writes {})",
+                        o.name(),
+                        T::NAME,
+                        names.join(", ")
+                    ),
+                ));
+            }
+        }
+    }
+}
+
+/// The task's name.
+pub struct Name;
+
+impl Visit for Name {
+    type Output = &'static str;
+
+    fn visit<T: Task>(self, _: &T) -> &'static str {
+        T::NAME
+    }
+}
