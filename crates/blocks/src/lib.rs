@@ -147,6 +147,18 @@ impl Placement {
             Vector3::from(self.size) / 2.0,
         )
     }
+
+    /// The block as a closed box mesh (corners of [`Cuboid::corners`], faces of
+    /// [`geom::mesh::BOX_FACES`]).
+    ///
+    /// # Errors
+    /// A degenerate box (a zero edge).
+    pub fn mesh(&self) -> std::result::Result<geom::mesh::TriMesh, geom::GeomError> {
+        geom::mesh::TriMesh::try_new(
+            self.cuboid().corners().to_vec(),
+            geom::mesh::BOX_FACES.to_vec(),
+        )
+    }
 }
 
 /// Which step of the loop an iteration was.

@@ -30,6 +30,9 @@ pub enum ExportError {
     /// The value could not be serialised.
     #[error("cannot serialise: {0}")]
     Serialize(#[from] serde_json::Error),
+    /// The geometry to write could not be made (e.g. a degenerate mesh).
+    #[error("geometry: {0}")]
+    Geom(#[from] geom::GeomError),
 }
 
 /// Result alias of this crate.

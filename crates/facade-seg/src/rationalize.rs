@@ -2,12 +2,14 @@
 //! pipeline fits a block's sections (warm-started sweeps along the cut), extended to the
 //! blade and posed for the two robots, one pose per section the piece crosses.
 //!
-//! Entry point: [`pose_piece`](crate::rationalize::pose_piece).
+//! Entry points: [`pose_piece`](crate::rationalize::pose_piece),
+//! [`pose_pieces`](crate::rationalize::pose_pieces).
 
 use elastica::blade::Blade;
 use elastica::fit::{fit_points_with_arclength, FitConstraint, FitParams, FitResult};
 use elastica::sweep::{blade_pose, frame_quaternion, BladePose};
 use hotblade::{make_blade, sweep_fits, BladeLimits, Clipped, SHORTEST_PART};
+use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::{Facade, Piece, SegError};
@@ -124,6 +126,29 @@ pub fn pose_piece(
         rotation: frame_quaternion(&facade.frame.normal, &facade.frame.v),
         parts,
     })
+}
+
+/// Every piece of `seg` rationalized ([`pose_piece`]), in parallel, in piece order;
+/// `tick` is called once per piece (from worker threads).
+///
+/// # Errors
+/// The first piece's error, in piece order.
+pub fn pose_pieces(
+    facade: &Facade,
+    seg: &crate::Segmentation,
+    params: &RationalizeParams,
+    tick: &(dyn Fn() + Sync),
+) -> Result<Vec<PosedPiece>, SegError> {
+    let posed: Vec<Result<PosedPiece, SegError>> = seg
+        .pieces
+        .par_iter()
+        .map(|piece| {
+            let p = pose_piece(facade, piece, params);
+            tick();
+            p
+        })
+        .collect();
+    posed.into_iter().collect()
 }
 
 /// A length-keeping fit over tolerance may sit in a poor local minimum that neither a

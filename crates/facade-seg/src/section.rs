@@ -80,6 +80,48 @@ impl Facade {
         let sec = &self.sections[j];
         self.frame.to_world(sec.offset, &sec.point(s))
     }
+
+    /// `n + 1` world points of a piece's part, equally spaced in arc length (none when its
+    /// section is not in the facade).
+    pub fn part_points(&self, part: &crate::PiecePart, n: usize) -> Vec<Vector3<f64>> {
+        let Some(j) = self.sections.iter().position(|s| s.index == part.plane) else {
+            return Vec::new();
+        };
+        (0..=n)
+            .map(|m| {
+                let s = part.s[0] + (part.s[1] - part.s[0]) * m as f64 / n as f64;
+                self.world(j, s)
+            })
+            .collect()
+    }
+
+    /// A piece as a triangle strip between its consecutive parts, each sampled at `n + 1`
+    /// points: the positions (part after part) and the triangles' vertex indices. `None`
+    /// for a piece of fewer than two parts.
+    pub fn piece_strip(
+        &self,
+        piece: &crate::Piece,
+        n: usize,
+    ) -> Option<(Vec<Vector3<f64>>, Vec<u32>)> {
+        if piece.parts.len() < 2 {
+            return None;
+        }
+        let positions: Vec<Vector3<f64>> = piece
+            .parts
+            .iter()
+            .flat_map(|part| self.part_points(part, n))
+            .collect();
+        let row = (n + 1) as u32;
+        let mut indices = Vec::new();
+        for k in 0..piece.parts.len() as u32 - 1 {
+            for m in 0..n as u32 {
+                let a = k * row + m;
+                let b = a + row;
+                indices.extend([a, b, a + 1, a + 1, b, b + 1]);
+            }
+        }
+        Some((positions, indices))
+    }
 }
 
 impl PreparedSection {

@@ -309,6 +309,21 @@ fn spline_grid_points(s: &BSplineSurface, n: usize) -> (Vec<Vector3<f64>>, Vec<(
     (pts, uv)
 }
 
+impl Surface {
+    /// The surface as a triangle mesh: a mesh as it is, a height field on `n × n` cells of
+    /// its rectangle, a B-spline surface at `n × n` samples of its parameter domain.
+    ///
+    /// # Errors
+    /// [`GeomError::InvalidDomain`] for `n < 2`; mesh errors for a degenerate grid.
+    pub fn to_mesh(&self, n: usize) -> Result<TriMesh> {
+        match self {
+            Surface::Mesh(m) => Ok(m.clone()),
+            Surface::HeightField(h) => h.to_mesh(n, n),
+            Surface::Spline(s) => s.to_mesh(n),
+        }
+    }
+}
+
 impl BSplineSurface {
     /// The surface tessellated on an `n × n` grid of its parameter domain (`n ≥ 2`).
     ///

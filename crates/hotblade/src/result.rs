@@ -5,6 +5,7 @@
 use elastica::blade::Blade;
 use elastica::fit::FitResult;
 use elastica::sweep::BladePose;
+use geom::mesh::TriMesh;
 use nalgebra::Vector3;
 use schemars::JsonSchema;
 use serde::Serialize;
@@ -71,6 +72,39 @@ pub struct BlockResult {
     pub sections: Vec<FittedSection>,
     /// The rationalized surface: one row of vertices per grid plane, in cutting order.
     pub surface: Vec<Vec<SurfaceVertex>>,
+}
+
+impl BlockResult {
+    /// The rationalized surface as a triangle mesh: consecutive grid rows of equal length
+    /// joined by triangles. `None` for a degenerate grid.
+    pub fn surface_mesh(&self) -> Option<TriMesh> {
+        let (verts, faces) = self.surface_grid();
+        TriMesh::try_new(verts, faces).ok()
+    }
+
+    /// The rationalized surface's vertices (row after row, as [`Self::surface`] holds them)
+    /// and the triangles joining consecutive rows of equal length.
+    pub fn surface_grid(&self) -> (Vec<Vector3<f64>>, Vec<[u32; 3]>) {
+        let mut verts = Vec::new();
+        let mut faces = Vec::new();
+        let mut prev: Option<(u32, usize)> = None;
+        for row in &self.surface {
+            let start = verts.len() as u32;
+            verts.extend(row.iter().map(|v| v.position));
+            if let Some((p0, len)) = prev {
+                if len == row.len() {
+                    for i in 0..len.saturating_sub(1) as u32 {
+                        let (a, bb) = (p0 + i, p0 + i + 1);
+                        let (c, d) = (start + i, start + i + 1);
+                        faces.push([a, c, bb]);
+                        faces.push([bb, c, d]);
+                    }
+                }
+            }
+            prev = Some((start, row.len()));
+        }
+        (verts, faces)
+    }
 }
 
 /// The block grid.

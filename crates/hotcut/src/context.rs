@@ -9,50 +9,29 @@ use std::path::{Path, PathBuf};
 
 use geom::fit::SmoothingParams;
 use geom::surface::{SectionParams, Surface};
+use hotblade::BladeLimits;
 use nalgebra::Vector3;
 
 use crate::error::{HotcutError, JobError};
 use crate::spec::{BladeSpec, BlockSpec, CuttingSpec, OutputSpec, SurfaceSpec, ToleranceSpec};
 use crate::spec::{Units, WireSpec};
 
-/// Blade constraints in job units.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Blade {
-    /// Blade length.
-    pub length: f64,
-    /// Largest allowed |curvature|.
-    pub max_curvature: f64,
-    /// Most inflections a blade shape may have.
-    pub max_inflections: u32,
-}
-
-impl Blade {
-    /// The job's blade, or the default blade (1000 mm, 0.011 /mm, 2 inflections) converted
-    /// to `units`.
-    pub fn of(spec: Option<&BladeSpec>, units: Units) -> Self {
-        match spec {
-            Some(b) => Self {
-                length: b.length,
-                max_curvature: b.max_curvature,
-                max_inflections: b.max_inflections,
-            },
-            None => {
-                let f = units.per_mm();
-                Self {
-                    length: 1000.0 * f,
-                    max_curvature: 0.011 / f,
-                    max_inflections: 2,
-                }
+/// The job's blade, or the default blade (1000 mm, 0.011 /mm, 2 inflections) converted to
+/// `units`.
+pub fn blade_of(spec: Option<&BladeSpec>, units: Units) -> BladeLimits {
+    match spec {
+        Some(b) => BladeLimits {
+            length: b.length,
+            max_curvature: b.max_curvature,
+            max_inflections: b.max_inflections,
+        },
+        None => {
+            let f = units.per_mm();
+            BladeLimits {
+                length: 1000.0 * f,
+                max_curvature: 0.011 / f,
+                max_inflections: 2,
             }
-        }
-    }
-
-    /// The limits as the `hotblade` pipeline takes them.
-    pub fn limits(&self) -> hotblade::BladeLimits {
-        hotblade::BladeLimits {
-            length: self.length,
-            max_curvature: self.max_curvature,
-            max_inflections: self.max_inflections,
         }
     }
 }
@@ -73,7 +52,7 @@ pub struct Context {
     /// The block, as written.
     pub block: Option<BlockSpec>,
     /// Blade constraints (defaults applied, in job units).
-    pub blade: Blade,
+    pub blade: BladeLimits,
     /// The hot-wire machine, as written.
     pub wire: Option<WireSpec>,
     /// Cutting direction, sections and curve, as written.

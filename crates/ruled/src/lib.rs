@@ -156,6 +156,40 @@ pub struct DirectionCut {
     pub clearance: f64,
 }
 
+impl DirectionCut {
+    /// The cut surface (the lower envelope of the legs, capped at height `top`) as a grid
+    /// mesh: one row per section, `across + 1` points across each section's chord. `None`
+    /// for an empty section or a degenerate grid.
+    pub fn surface_mesh(&self, top: f64, across: usize) -> Option<geom::mesh::TriMesh> {
+        let along = nalgebra::Vector2::new(self.direction[0], self.direction[1]);
+        let dir_across = nalgebra::Vector2::new(self.across[0], self.across[1]);
+        let mut v = Vec::new();
+        for (s, lines) in self.sections.iter().zip(&self.lines) {
+            let w_of = |p: &[f64; 3]| dir_across.dot(&nalgebra::Vector2::new(p[0], p[1]));
+            let (first, last) = (s.polygon.first()?, s.polygon.last()?);
+            let (w0, w1) = (w_of(first), w_of(last));
+            for k in 0..=across {
+                let w = w0 + (w1 - w0) * k as f64 / across as f64;
+                let t = (w - self.w_mid) / self.w_half;
+                let z = lines.iter().map(|l| l.a + l.m * t).fold(top, f64::min);
+                let p = along * s.offset + dir_across * w;
+                v.push(nalgebra::Vector3::new(p.x, p.y, z));
+            }
+        }
+        let rows = self.sections.len();
+        let n = (across + 1) as u32;
+        let mut f = Vec::new();
+        for i in 0..rows.saturating_sub(1) as u32 {
+            for k in 0..across as u32 {
+                let a = i * n + k;
+                f.push([a, a + n, a + n + 1]);
+                f.push([a, a + n + 1, a + 1]);
+            }
+        }
+        geom::mesh::TriMesh::try_new(v, f).ok()
+    }
+}
+
 /// The result of [`pre_cut`].
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct PreCut {

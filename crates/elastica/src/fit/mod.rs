@@ -34,6 +34,8 @@
 
 /// The generic 7-parameter comparison baseline of the benchmarks.
 pub mod baseline;
+/// A fit described for a report: family, named parameters, quality, sampled curve.
+pub mod describe;
 mod error;
 mod guess;
 mod lm;

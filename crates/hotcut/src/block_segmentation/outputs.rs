@@ -10,7 +10,6 @@ use export::svg::SvgDoc;
 use serde::Serialize;
 
 use super::BlockSegmentation;
-use crate::output::mesh::block_mesh;
 use crate::output::Files;
 use crate::spec::OutputSpec;
 use crate::task::Finished;
@@ -38,7 +37,7 @@ pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
     files.add("blocks.obj", |buf| {
         let mut w = ObjWriter::new(6);
         for (i, b) in done.run.segmentation.blocks.iter().enumerate() {
-            w.mesh(&format!("block_{i}"), &block_mesh(b)?);
+            w.mesh(&format!("block_{i}"), &b.mesh()?);
         }
         w.write(buf)
     })
@@ -62,7 +61,7 @@ pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export
         ];
         let mut meshes = vec![Mesh::from_trimesh("model", &run.mesh, 0)];
         for (i, b) in run.segmentation.blocks.iter().enumerate() {
-            meshes.push(Mesh::from_trimesh(format!("block_{i}"), &block_mesh(b)?, 1));
+            meshes.push(Mesh::from_trimesh(format!("block_{i}"), &b.mesh()?, 1));
         }
         write_gltf("hotcut BlockSegmentation", &meshes, &materials, buf)
     })

@@ -33,11 +33,10 @@ pub mod report;
 use elastica::fit::FitConstraint;
 use facade_seg::inflection::{inflection_points, InflectionParams};
 use facade_seg::longest::{longest_elastica, LongestParams};
-use facade_seg::rationalize::{pose_piece, PosedPiece, RationalizeParams};
+use facade_seg::rationalize::{pose_pieces, PosedPiece, RationalizeParams};
 use facade_seg::trace::{trace, TraceParams};
 use facade_seg::{Constraints, Facade, Segmentation};
 use geom::surface::SectionParams;
-use rayon::prelude::*;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -250,7 +249,7 @@ impl Task for FacadeSegmentation {
                 tolerance_rms: job.tolerance.rms,
                 tolerance_max: job.tolerance.max,
             },
-            blade: job.blade.limits(),
+            blade: job.blade,
             sectioning: job.sectioning(),
             default_precision: per_mm,
         })
@@ -446,7 +445,7 @@ fn segment(
     seg
 }
 
-/// Every piece rationalized, in parallel, in piece order.
+/// Every piece rationalized, in piece order.
 fn rationalize(
     facade: &Facade,
     seg: &Segmentation,
@@ -463,15 +462,7 @@ fn rationalize(
         tolerance_max: params.constraints.tolerance_max,
     };
     progress.start("rationalizing pieces", seg.pieces.len() as u64);
-    let posed: Vec<_> = seg
-        .pieces
-        .par_iter()
-        .map(|piece| {
-            let p = pose_piece(facade, piece, &rp);
-            progress.tick();
-            p
-        })
-        .collect();
+    let posed = pose_pieces(facade, seg, &rp, &|| progress.tick());
     progress.finish();
-    posed.into_iter().collect()
+    posed
 }

@@ -7,6 +7,7 @@ use export::fmt_float;
 use export::gltf::{f32s, write_gltf, Material, Mesh};
 use export::obj::ObjWriter;
 use export::svg::{bounds, SvgDoc, Viewport};
+use facade_seg::Piece;
 use nalgebra::Vector3;
 
 use super::report::SegmentationReport;
@@ -100,25 +101,6 @@ pub(super) fn csv(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
     files.add("sections.csv", |buf| parts_csv(done.report, buf))
 }
 
-/// World points of piece part `k` of piece `i`, `n + 1` of them.
-fn part_points(run: &SegmentationRun, i: usize, k: usize, n: usize) -> Vec<Vector3<f64>> {
-    let part = &run.segmentation.pieces[i].parts[k];
-    let Some(j) = run
-        .facade
-        .sections
-        .iter()
-        .position(|s| s.index == part.plane)
-    else {
-        return Vec::new();
-    };
-    (0..=n)
-        .map(|m| {
-            let s = part.s[0] + (part.s[1] - part.s[0]) * m as f64 / n as f64;
-            run.facade.world(j, s)
-        })
-        .collect()
-}
-
 /// Plan view in the facade frame: x along the cut, y across it (`u`); for a horizontal
 /// cut through a facade lying in plan this is the view from above. Pieces filled in
 /// colours (each reaching half a section spacing beyond its first and last section, where
@@ -173,51 +155,7 @@ fn plan_svg(run: &SegmentationRun, r: &SegmentationReport, units: &str) -> SvgDo
     let vp = Viewport::fit(lo, hi, page);
     let map = |p: (f64, f64)| vp.map(p.0, p.1);
     for piece in &run.segmentation.pieces {
-        let n = piece.parts.len();
-        if n == 0 {
-            continue;
-        }
-        let starts: Vec<(f64, f64)> = piece
-            .parts
-            .iter()
-            .map(|p| plan(&Vector3::from(p.start)))
-            .collect();
-        let ends: Vec<(f64, f64)> = piece
-            .parts
-            .iter()
-            .map(|p| plan(&Vector3::from(p.end)))
-            .collect();
-        let shift = |p: (f64, f64), d: f64| (p.0 + d, p.1);
-        let mut poly = vec![shift(starts[0], -half)];
-        poly.extend(starts.iter().copied());
-        poly.push(shift(starts[n - 1], half));
-        poly.push(shift(ends[n - 1], half));
-        poly.extend(ends.iter().rev().copied());
-        poly.push(shift(ends[0], -half));
-        let title = format!(
-            "piece {} (band {}, row {}): {} sections, verdicts {}",
-            piece.id,
-            piece.band,
-            piece.row,
-            n,
-            if piece.verdicts.all() {
-                "all met"
-            } else {
-                "broken"
-            }
-        );
-        let pts: Vec<(f64, f64)> = poly.into_iter().map(map).collect();
-        let stroke = if piece.verdicts.all() {
-            "none"
-        } else {
-            "#d00000"
-        };
-        doc.polygon(&pts, &hex(colour(piece.id)), stroke, 1.5, Some(&title));
-        // the part boundaries of the piece, as seams
-        for side in [&starts, &ends] {
-            let pts: Vec<(f64, f64)> = side.iter().copied().map(map).collect();
-            doc.polyline(&pts, "black", 1.2, None);
-        }
+        draw_piece(&mut doc, piece, &plan, &map, half);
     }
     for (j, pts) in sections.iter().enumerate() {
         let page: Vec<(f64, f64)> = pts.iter().copied().map(map).collect();
@@ -250,6 +188,63 @@ fn plan_svg(run: &SegmentationRun, r: &SegmentationReport, units: &str) -> SvgDo
     doc
 }
 
+/// A piece in the plan: its region filled in its colour (outlined red when it breaks a
+/// constraint), reaching `half` beyond its first and last section, and its part
+/// boundaries as seams.
+fn draw_piece(
+    doc: &mut SvgDoc,
+    piece: &Piece,
+    plan: &dyn Fn(&Vector3<f64>) -> (f64, f64),
+    map: &dyn Fn((f64, f64)) -> (f64, f64),
+    half: f64,
+) {
+    let n = piece.parts.len();
+    if n == 0 {
+        return;
+    }
+    let starts: Vec<(f64, f64)> = piece
+        .parts
+        .iter()
+        .map(|p| plan(&Vector3::from(p.start)))
+        .collect();
+    let ends: Vec<(f64, f64)> = piece
+        .parts
+        .iter()
+        .map(|p| plan(&Vector3::from(p.end)))
+        .collect();
+    let shift = |p: (f64, f64), d: f64| (p.0 + d, p.1);
+    let mut poly = vec![shift(starts[0], -half)];
+    poly.extend(starts.iter().copied());
+    poly.push(shift(starts[n - 1], half));
+    poly.push(shift(ends[n - 1], half));
+    poly.extend(ends.iter().rev().copied());
+    poly.push(shift(ends[0], -half));
+    let title = format!(
+        "piece {} (band {}, row {}): {} sections, verdicts {}",
+        piece.id,
+        piece.band,
+        piece.row,
+        n,
+        if piece.verdicts.all() {
+            "all met"
+        } else {
+            "broken"
+        }
+    );
+    let pts: Vec<(f64, f64)> = poly.into_iter().map(map).collect();
+    let stroke = if piece.verdicts.all() {
+        "none"
+    } else {
+        "#d00000"
+    };
+    doc.polygon(&pts, &hex(colour(piece.id)), stroke, 1.5, Some(&title));
+    // the part boundaries of the piece, as seams
+    for side in [&starts, &ends] {
+        let pts: Vec<(f64, f64)> = side.iter().copied().map(map).collect();
+        doc.polyline(&pts, "black", 1.2, None);
+    }
+}
+
 /// Pieces as coloured triangle strips between their consecutive section parts, and their
 /// blocks as translucent boxes.
 fn model(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
@@ -267,7 +262,7 @@ fn model(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
     }
     let mut meshes = Vec::new();
     let n = DRAW_SAMPLES;
-    for (i, piece) in run.segmentation.pieces.iter().enumerate() {
+    for piece in &run.segmentation.pieces {
         let f = &run.facade.frame;
         meshes.push(Mesh::from_box(
             format!("block_{}", piece.id),
@@ -276,25 +271,12 @@ fn model(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
             piece.block.size,
             0,
         ));
-        if piece.parts.len() < 2 {
+        let Some((positions, indices)) = run.facade.piece_strip(piece, n) else {
             continue;
-        }
-        let mut positions = Vec::new();
-        for k in 0..piece.parts.len() {
-            positions.extend(part_points(run, i, k, n).iter().map(f32s));
-        }
-        let row = (n + 1) as u32;
-        let mut indices = Vec::new();
-        for k in 0..piece.parts.len() as u32 - 1 {
-            for m in 0..n as u32 {
-                let a = k * row + m;
-                let b = a + row;
-                indices.extend([a, b, a + 1, a + 1, b, b + 1]);
-            }
-        }
+        };
         meshes.push(Mesh {
             name: format!("piece_{}", piece.id),
-            positions,
+            positions: positions.iter().map(f32s).collect(),
             colors: None,
             indices,
             material: 1 + (piece.id + PALETTE.len() - 1) % PALETTE.len(),
@@ -306,11 +288,11 @@ fn model(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
 /// Every piece's section parts as 3D polylines.
 fn parts_obj(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
     let mut w = ObjWriter::new(6);
-    for (i, piece) in run.segmentation.pieces.iter().enumerate() {
-        for (k, part) in piece.parts.iter().enumerate() {
+    for piece in &run.segmentation.pieces {
+        for part in &piece.parts {
             w.polyline(
                 &format!("piece_{}_section_{}", piece.id, part.plane),
-                &part_points(run, i, k, 4 * DRAW_SAMPLES),
+                &run.facade.part_points(part, 4 * DRAW_SAMPLES),
             );
         }
     }

@@ -25,7 +25,8 @@ use crate::report::surface_kind;
 use crate::spec::{FitConstraintSpec, OutputKind};
 use crate::task::{Output, Task};
 use curves::{read_curves, InputCurve};
-use report::{entry, summary, CurveFit, FitCurvesReport};
+use elastica::fit::describe::{CurveFit, FitSummary};
+use report::{input_length, FitCurvesReport};
 
 /// Fit every curve of `input` (or, without `input`, every section of the surface) by
 /// one elastica, line or arc — the shapes a hot blade takes ("Hot Blade Cuttings" §5.1).
@@ -162,7 +163,7 @@ impl Task for FitCurves {
             .curves
             .iter()
             .zip(&run.fits)
-            .map(|(c, f)| entry(c, f))
+            .map(|(c, f)| CurveFit::new(&c.id, c.points.len(), input_length(c), f))
             .collect();
         FitCurvesReport {
             job: job.name.clone(),
@@ -170,7 +171,7 @@ impl Task for FitCurves {
             units: job.units,
             source: run.source.clone(),
             constraint: params.constraint,
-            summary: summary(&entries),
+            summary: FitSummary::of(&entries),
             curves: entries,
         }
     }

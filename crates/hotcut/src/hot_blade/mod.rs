@@ -179,7 +179,7 @@ impl Task for HotBlade {
                 max_plane_angle: self.max_plane_angle,
                 refine: self.refine as usize,
                 grid_points: 60,
-                blade: job.blade.limits(),
+                blade: job.blade,
                 tolerance_rms: job.tolerance.rms,
                 tolerance_max: job.tolerance.max,
                 sectioning: job.sectioning(),

@@ -7,7 +7,6 @@ use export::fmt_float;
 use export::gltf::{f32s, write_gltf, Material, Mesh};
 use export::obj::ObjWriter;
 use export::svg::{bounds, SvgDoc, Viewport};
-use geom::mesh::TriMesh;
 use hotblade::{BlockResult, Rationalization};
 use nalgebra::Vector3;
 
@@ -57,7 +56,7 @@ pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
     for b in &done.run.cut.blocks {
         files.add(format!("surface_block_{:03}.obj", b.report.block), |buf| {
             let mut w = ObjWriter::new(6);
-            if let Some(m) = surface_mesh(b) {
+            if let Some(m) = b.surface_mesh() {
                 w.mesh(&format!("block_{}", b.report.block), &m);
             }
             w.write(buf)
@@ -117,35 +116,6 @@ fn sections_csv(run: &Rationalization, buf: &mut Vec<u8>) -> export::Result<()> 
     Ok(())
 }
 
-/// The rationalized surface of a block as a triangle mesh (consecutive grid rows of equal
-/// length are joined).
-fn surface_mesh(b: &BlockResult) -> Option<TriMesh> {
-    let (verts, faces) = surface_grid(b);
-    TriMesh::try_new(verts, faces).ok()
-}
-
-fn surface_grid(b: &BlockResult) -> (Vec<Vector3<f64>>, Vec<[u32; 3]>) {
-    let mut verts = Vec::new();
-    let mut faces = Vec::new();
-    let mut prev: Option<(u32, usize)> = None;
-    for row in &b.surface {
-        let start = verts.len() as u32;
-        verts.extend(row.iter().map(|v| v.position));
-        if let Some((p0, len)) = prev {
-            if len == row.len() {
-                for i in 0..len.saturating_sub(1) as u32 {
-                    let (a, bb) = (p0 + i, p0 + i + 1);
-                    let (c, d) = (start + i, start + i + 1);
-                    faces.push([a, c, bb]);
-                    faces.push([bb, c, d]);
-                }
-            }
-        }
-        prev = Some((start, row.len()));
-    }
-    (verts, faces)
-}
-
 /// Deviation colour: blue at 0, green at half the tolerance, red at or beyond it.
 fn deviation_color(dev: f64, tolerance: f64) -> [f32; 4] {
     let t = if tolerance > 0.0 {
@@ -182,7 +152,7 @@ fn model(run: &Rationalization, tol: f64, buf: &mut Vec<u8>) -> export::Result<(
             b.report.size,
             0,
         ));
-        let (verts, faces) = surface_grid(b);
+        let (verts, faces) = b.surface_grid();
         let colors = b
             .surface
             .iter()

@@ -14,7 +14,7 @@ use std::path::Path;
 
 use nalgebra::Vector3;
 
-use crate::context::{Blade, Context, JobFields};
+use crate::context::{blade_of, Context, JobFields};
 use crate::error::JobError;
 use crate::job::{Job, TaskSpec};
 use crate::spec::OutputSpec;
@@ -144,7 +144,7 @@ pub fn resolve(path: &Path, job: Job) -> Result<ResolvedJob, Vec<JobError>> {
     }
     let context = Context {
         path: path.to_path_buf(),
-        blade: Blade::of(job.blade.as_ref(), job.units),
+        blade: blade_of(job.blade.as_ref(), job.units),
         name: job.name,
         units: job.units,
         surface,

@@ -1,10 +1,8 @@
-//! Writers shared by the tasks: the [`Files`](crate::output::Files) a run renders, block meshes, and the robot
+//! Writers shared by the tasks: the [`Files`](crate::output::Files) a run renders, and the robot
 //! files (`targets.json`/`targets.csv`, ABB RAPID) of every task that poses the blade.
 //! Format-generic helpers (glTF meshes from `geom` meshes and boxes, SVG bounds) live in
 //! the `export` crate.
 
-/// Block boxes as meshes.
-pub mod mesh;
 /// Robot targets and RAPID programs from blade poses.
 pub mod robot;
 

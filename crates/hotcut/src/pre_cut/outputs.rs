@@ -9,12 +9,10 @@ use export::json::REPORT_DIGITS;
 use export::obj::ObjWriter;
 use export::svg::{SvgDoc, Viewport};
 use geom::mesh::TriMesh;
-use geom::surface::Surface;
 use nalgebra::Vector3;
 use serde::Serialize;
 
 use super::{PreCut, PreCutRun};
-use crate::output::mesh::block_mesh;
 use crate::output::Files;
 use crate::spec::{OutputKind, OutputSpec};
 use crate::task::Finished;
@@ -59,21 +57,17 @@ pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export
 /// The block as a box mesh.
 fn block_box(b: &ruled::Block) -> export::Result<TriMesh> {
     let (lo, hi) = (Vector3::from(b.min), Vector3::from(b.max));
-    block_mesh(&blocks::Placement {
+    let placement = blocks::Placement {
         center: ((lo + hi) / 2.0).into(),
         rotation: [1.0, 0.0, 0.0, 0.0],
         size: (hi - lo).into(),
-    })
+    };
+    Ok(placement.mesh()?)
 }
 
 /// The design surface as a mesh (height fields and splines tessellated).
 fn design_mesh(run: &PreCutRun) -> export::Result<TriMesh> {
-    let to_err = |e: geom::GeomError| export::ExportError::Io(std::io::Error::other(e.to_string()));
-    match &run.surface {
-        Surface::Mesh(m) => Ok(m.clone()),
-        Surface::HeightField(h) => h.to_mesh(DESIGN_GRID, DESIGN_GRID).map_err(to_err),
-        Surface::Spline(s) => s.to_mesh(DESIGN_GRID).map_err(to_err),
-    }
+    Ok(run.surface.to_mesh(DESIGN_GRID)?)
 }
 
 /// Grid cells per side of the tessellated design surface.
@@ -81,42 +75,11 @@ const DESIGN_GRID: usize = 64;
 /// Points across the block per section of a cut surface mesh.
 const ACROSS: usize = 40;
 
-/// Direction `d`'s cut surface (the lower envelope of its legs, capped at the block's
-/// top) as a grid mesh over its sections and `ACROSS` points across each chord.
-fn cut_mesh(d: &ruled::DirectionCut, top: f64) -> Option<TriMesh> {
-    let along = nalgebra::Vector2::new(d.direction[0], d.direction[1]);
-    let across = nalgebra::Vector2::new(d.across[0], d.across[1]);
-    let mut v = Vec::new();
-    for (s, lines) in d.sections.iter().zip(&d.lines) {
-        let w_of = |p: &[f64; 3]| across.dot(&nalgebra::Vector2::new(p[0], p[1]));
-        let (first, last) = (s.polygon.first()?, s.polygon.last()?);
-        let (w0, w1) = (w_of(first), w_of(last));
-        for k in 0..=ACROSS {
-            let w = w0 + (w1 - w0) * k as f64 / ACROSS as f64;
-            let t = (w - d.w_mid) / d.w_half;
-            let z = lines.iter().map(|l| l.a + l.m * t).fold(top, f64::min);
-            let p = along * s.offset + across * w;
-            v.push(Vector3::new(p.x, p.y, z));
-        }
-    }
-    let rows = d.sections.len();
-    let n = (ACROSS + 1) as u32;
-    let mut f = Vec::new();
-    for i in 0..rows.saturating_sub(1) as u32 {
-        for k in 0..ACROSS as u32 {
-            let a = i * n + k;
-            f.push([a, a + n, a + n + 1]);
-            f.push([a, a + n + 1, a + 1]);
-        }
-    }
-    TriMesh::try_new(v, f).ok()
-}
-
 fn meshes_obj(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> export::Result<()> {
     let mut w = ObjWriter::new(6);
     w.mesh("design", &design_mesh(run)?);
     for (i, d) in run.cut.directions.iter().enumerate() {
-        if let Some(m) = cut_mesh(d, block.max[2]) {
+        if let Some(m) = d.surface_mesh(block.max[2], ACROSS) {
             w.mesh(&format!("cut_d{}", i + 1), &m);
         }
     }
@@ -144,7 +107,7 @@ fn model(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> export::Re
     ];
     let mut meshes = vec![Mesh::from_trimesh("design", &design_mesh(run)?, 0)];
     for (i, d) in run.cut.directions.iter().enumerate() {
-        if let Some(m) = cut_mesh(d, block.max[2]) {
+        if let Some(m) = d.surface_mesh(block.max[2], ACROSS) {
             meshes.push(Mesh::from_trimesh(format!("cut_d{}", i + 1), &m, 1));
         }
     }
