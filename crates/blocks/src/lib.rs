@@ -284,6 +284,102 @@ pub struct Progress {
     pub energy: f64,
 }
 
+/// A parameter out of range: the field (`operations`), the index of the offending element
+/// for a list, and what is wrong.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ParamProblem {
+    /// The field of [`Params`].
+    pub field: &'static str,
+    /// The element of a list field.
+    pub index: Option<usize>,
+    /// What is wrong, e.g. `must be 1–256, got 0`.
+    pub message: String,
+}
+
+impl Params {
+    /// Every parameter [`segment`] refuses, in field order (none: it runs).
+    pub fn problems(&self) -> Vec<ParamProblem> {
+        let mut out = Vec::new();
+        let mut bad = |field: &'static str, index: Option<usize>, message: String| {
+            out.push(ParamProblem {
+                field,
+                index,
+                message,
+            });
+        };
+        if self
+            .block_size
+            .iter()
+            .any(|&s| !(s > 0.0) || !s.is_finite())
+        {
+            bad(
+                "block_size",
+                None,
+                format!(
+                    "edges must be positive and finite, got {:?}",
+                    self.block_size
+                ),
+            );
+        }
+        if self.operations.is_empty() {
+            bad(
+                "operations",
+                None,
+                "at least one of Translate, Rotate, Align".into(),
+            );
+        }
+        for (i, o) in self.operations.iter().enumerate() {
+            if self.operations[..i].contains(o) {
+                bad("operations", Some(i), "is listed twice".into());
+            }
+        }
+        if !(self.p >= 1.0) || !self.p.is_finite() {
+            bad(
+                "p",
+                None,
+                format!("must be a finite number ≥ 1, got {}", self.p),
+            );
+        }
+        if !(self.epsilon > 0.0) || !self.epsilon.is_finite() {
+            bad(
+                "epsilon",
+                None,
+                format!("must be positive and finite, got {}", self.epsilon),
+            );
+        }
+        if !(1..=256).contains(&self.restarts) {
+            bad(
+                "restarts",
+                None,
+                format!("must be 1–256, got {}", self.restarts),
+            );
+        }
+        if self.max_iterations == 0 {
+            bad("max_iterations", None, "must be at least 1".into());
+        }
+        if let Some(t) = self.time_limit {
+            if !(t > 0.0) || !t.is_finite() {
+                bad(
+                    "time_limit",
+                    None,
+                    format!("must be positive seconds, got {t}"),
+                );
+            }
+        }
+        if !(self.sample_spacing > 0.0 && self.sample_spacing <= 0.25) {
+            bad(
+                "sample_spacing",
+                None,
+                format!(
+                    "must be in (0, 0.25] of the shortest block edge, got {}",
+                    self.sample_spacing
+                ),
+            );
+        }
+        out
+    }
+}
+
 /// The seed of restart `k` (SplitMix64 of the job's seed and `k`).
 pub fn restart_seed(seed: u64, k: usize) -> u64 {
     let mut z = seed.wrapping_add((k as u64 + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15));
@@ -427,47 +523,14 @@ pub fn initial_grid(
 }
 
 fn validate(p: &Params) -> Result<()> {
-    let invalid = |what: &'static str, message: String| Err(BlockError::Invalid { what, message });
-    if p.block_size.iter().any(|&s| !(s > 0.0) || !s.is_finite()) {
-        return invalid(
-            "block.size",
-            format!("edges must be positive and finite, got {:?}", p.block_size),
-        );
+    match p.problems().into_iter().next() {
+        Some(e) => Err(BlockError::Invalid {
+            what: e.field,
+            message: match e.index {
+                Some(i) => format!("{} {i} {}", e.field, e.message),
+                None => e.message,
+            },
+        }),
+        None => Ok(()),
     }
-    if p.operations.is_empty() {
-        return invalid(
-            "operations",
-            "at least one of Translate, Rotate, Align".into(),
-        );
-    }
-    if !(p.p >= 1.0) || !p.p.is_finite() {
-        return invalid("p", format!("must be a finite number ≥ 1, got {}", p.p));
-    }
-    if !(p.epsilon > 0.0) || !p.epsilon.is_finite() {
-        return invalid(
-            "epsilon",
-            format!("must be positive and finite, got {}", p.epsilon),
-        );
-    }
-    if p.restarts == 0 || p.restarts > 256 {
-        return invalid("restarts", format!("must be 1–256, got {}", p.restarts));
-    }
-    if p.max_iterations == 0 {
-        return invalid("max_iterations", "must be at least 1".into());
-    }
-    if let Some(t) = p.time_limit {
-        if !(t > 0.0) || !t.is_finite() {
-            return invalid("time_limit", format!("must be positive seconds, got {t}"));
-        }
-    }
-    if !(p.sample_spacing > 0.0 && p.sample_spacing <= 0.25) {
-        return invalid(
-            "sample_spacing",
-            format!(
-                "must be in (0, 0.25] of the shortest block edge, got {}",
-                p.sample_spacing
-            ),
-        );
-    }
-    Ok(())
 }

@@ -180,6 +180,28 @@ impl JobFields<'_> {
         }
     }
 
+    /// Reports the problems an algorithm crate finds in its parameters, each as
+    /// `(field, index of a list element, what is wrong)`, at `{ptr}/{field}[/{index}]`.
+    /// `element(i)` names list element `i` as the job writes it.
+    pub fn param_problems(
+        &self,
+        ptr: &str,
+        problems: impl IntoIterator<Item = (&'static str, Option<usize>, String)>,
+        element: impl Fn(usize) -> String,
+        errors: &mut Vec<JobError>,
+    ) {
+        for (field, index, message) in problems {
+            let (at, message) = match index {
+                Some(i) => (
+                    format!("{ptr}/{field}/{i}"),
+                    format!("{} {message}", element(i)),
+                ),
+                None => (format!("{ptr}/{field}"), format!("{field} {message}")),
+            };
+            errors.push(self.error(&at, message));
+        }
+    }
+
     /// Checks a task's cutting speed (> 0) and approach distance (≥ 0), when given; `ptr`
     /// is the task's pointer.
     pub fn check_motion(

@@ -347,6 +347,12 @@ fn no_task_imports_another_and_report_and_load_import_none() {
 #[test]
 fn modules_import_each_other_without_circles() {
     let (graph, _, _) = graph();
+    for (from, tos) in &graph {
+        println!(
+            "{from} → {}",
+            tos.iter().cloned().collect::<Vec<_>>().join(", ")
+        );
+    }
     assert!(graph.len() > 10, "{graph:?}");
     if let Some(cycle) = find_cycle(&graph) {
         panic!("import circle: {}", cycle.join(" → "));

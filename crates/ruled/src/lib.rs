@@ -441,60 +441,89 @@ fn grid_points(
 }
 
 fn validate(block: &Block, p: &Params) -> Result<()> {
-    let bad =
-        |name: &'static str, reason: String| Err(PreCutError::InvalidParameter { name, reason });
     let size = block.size();
     if !(size.iter().all(|s| s.is_finite() && *s > 0.0) && block.min.iter().all(|v| v.is_finite()))
     {
-        return bad(
-            "block",
-            format!("size {:?} must be finite and positive", size.as_slice()),
-        );
+        return Err(PreCutError::InvalidParameter {
+            name: "block",
+            reason: format!("size {:?} must be finite and positive", size.as_slice()),
+        });
     }
-    if p.legs == 0 || p.legs > 32 {
-        return bad("legs", format!("{} must be in 1..=32", p.legs));
+    match p.problems().into_iter().next() {
+        Some(e) => Err(PreCutError::InvalidParameter {
+            name: e.field,
+            reason: match e.index {
+                Some(i) => format!("{} {i} {}", e.field, e.message),
+                None => e.message,
+            },
+        }),
+        None => Ok(()),
     }
-    if p.directions.is_empty() {
-        return bad("directions", "at least one direction is needed".into());
+}
+
+/// A parameter out of range: the field (`directions`), the index of the offending element
+/// for a list, and what is wrong.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ParamProblem {
+    /// The field of [`Params`].
+    pub field: &'static str,
+    /// The element of a list field.
+    pub index: Option<usize>,
+    /// What is wrong, e.g. `must be 1–32, got 0`.
+    pub message: String,
+}
+
+impl Params {
+    /// Every parameter [`pre_cut`] refuses, in field order (none: it runs).
+    pub fn problems(&self) -> Vec<ParamProblem> {
+        let mut out = Vec::new();
+        let mut bad = |field: &'static str, index: Option<usize>, message: String| {
+            out.push(ParamProblem {
+                field,
+                index,
+                message,
+            });
+        };
+        let mut range = |field: &'static str, v: usize, lo: usize, hi: usize| {
+            if !(lo..=hi).contains(&v) {
+                bad(field, None, format!("must be {lo}–{hi}, got {v}"));
+            }
+        };
+        range("legs", self.legs, 1, 32);
+        range("degree", self.degree, 1, 5);
+        range("controls", self.controls, self.degree + 1, 64);
+        range("sections", self.sections, 2, 500);
+        range("samples", self.samples, 2, 500);
+        range("check_density", self.check_density, 2, 32);
+        range("max_rounds", self.max_rounds, 1, 10_000);
+        range("volume_grid", self.volume_grid, 10, 4000);
+        if !(self.margin.is_finite() && self.margin > 0.0 && self.margin < 0.01) {
+            bad(
+                "margin",
+                None,
+                format!("must be in (0, 0.01), got {}", self.margin),
+            );
+        }
+        if self.directions.is_empty() {
+            bad(
+                "directions",
+                None,
+                "at least one cutting direction, e.g. [X]".into(),
+            );
+        }
+        for (i, &[x, y]) in self.directions.iter().enumerate() {
+            if !(x.is_finite() && y.is_finite()) || x.hypot(y) < 1e-9 {
+                bad(
+                    "directions",
+                    Some(i),
+                    "is not a direction in the xy plane (finite, not zero)".into(),
+                );
+            } else if self.directions[..i].iter().any(|&[a, b]| {
+                (a * y - b * x).abs() < 1e-9 * x.hypot(y) * a.hypot(b) && a * x + b * y > 0.0
+            }) {
+                bad("directions", Some(i), "repeats an earlier direction".into());
+            }
+        }
+        out
     }
-    if p.degree == 0 || p.degree > 5 {
-        return bad("degree", format!("{} must be in 1..=5", p.degree));
-    }
-    if p.controls < p.degree + 1 || p.controls > 64 {
-        return bad(
-            "controls",
-            format!("{} must be in degree + 1 ..= 64", p.controls),
-        );
-    }
-    if p.sections < 2 || p.samples < 2 {
-        return bad(
-            "sections",
-            format!(
-                "N × M = {} × {} must be at least 2 × 2",
-                p.sections, p.samples
-            ),
-        );
-    }
-    if p.sections * p.samples > 250_000 {
-        return bad("sections", "N × M above 250 000".into());
-    }
-    if p.check_density < 2 || p.check_density > 32 {
-        return bad(
-            "check_density",
-            format!("{} must be in 2..=32", p.check_density),
-        );
-    }
-    if !(p.margin.is_finite() && p.margin > 0.0 && p.margin < 0.01) {
-        return bad("margin", format!("{} must be in (0, 0.01)", p.margin));
-    }
-    if p.max_rounds == 0 {
-        return bad("max_rounds", "must be at least 1".into());
-    }
-    if p.volume_grid < 10 || p.volume_grid > 4000 {
-        return bad(
-            "volume_grid",
-            format!("{} must be in 10..=4000", p.volume_grid),
-        );
-    }
-    Ok(())
 }

@@ -167,24 +167,16 @@ impl Task for BlockSegmentation {
                 "BlockSegmentation places its blocks itself: leave origin out",
             ));
         }
-        self.check_fields(job, errors);
+        // the optimizer's own checks, on these fields (the block's size is checked by load)
+        let problems = self.optimizer([1.0; 3], 0).problems();
+        let problems = problems.into_iter().map(|e| (e.field, e.index, e.message));
+        let element = |i: usize| format!("{:?}", self.operations[i]);
+        job.param_problems(PTR, problems, element, errors);
     }
 
     fn params(&self, job: &Context) -> Result<blocks::Params> {
-        let block = job.block(Self::NAME)?;
-        Ok(blocks::Params {
-            block_size: [block.size.0, block.size.1, block.size.2],
-            operations: self.operations.clone(),
-            coverage: self.coverage,
-            p: self.p,
-            epsilon: self.epsilon,
-            restarts: self.restarts,
-            seed: job.seed,
-            max_iterations: self.max_iterations,
-            time_limit: self.time_limit,
-            sample_spacing: self.sample_spacing,
-            ..blocks::Params::default()
-        })
+        let b = job.block(Self::NAME)?;
+        Ok(self.optimizer([b.size.0, b.size.1, b.size.2], job.seed))
     }
 
     fn run(params: &blocks::Params, job: &Context, progress: &dyn Progress) -> Result<BlockSegRun> {
@@ -245,57 +237,20 @@ impl Task for BlockSegmentation {
 }
 
 impl BlockSegmentation {
-    /// The optimizer's own fields.
-    fn check_fields(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
-        let mut bad = |field: &str, message: String| {
-            errors.push(job.error(&format!("{PTR}/{field}"), message));
-        };
-        if !(1..=256).contains(&self.restarts) {
-            bad(
-                "restarts",
-                format!("restarts must be 1–256, got {}", self.restarts),
-            );
-        }
-        if self.max_iterations == 0 {
-            bad("max_iterations", "max_iterations must be at least 1".into());
-        }
-        let ops = &self.operations;
-        if ops.is_empty() {
-            bad(
-                "operations",
-                "at least one of Translate, Rotate, Align".into(),
-            );
-        }
-        for (i, o) in ops.iter().enumerate() {
-            if ops[..i].contains(o) {
-                bad(&format!("operations/{i}"), format!("{o:?} is listed twice"));
-            }
-        }
-        let p = self.p;
-        if !(p >= 1.0) || !p.is_finite() {
-            bad("p", format!("p must be a finite number ≥ 1, got {p}"));
-        }
-        let epsilon = self.epsilon;
-        if !(epsilon > 0.0) || !epsilon.is_finite() {
-            bad(
-                "epsilon",
-                format!("epsilon must be positive, got {epsilon}"),
-            );
-        }
-        if let Some(t) = self.time_limit {
-            if !(t > 0.0) || !t.is_finite() {
-                bad(
-                    "time_limit",
-                    format!("time_limit must be positive seconds, got {t}"),
-                );
-            }
-        }
-        let s = self.sample_spacing;
-        if !(s > 0.0 && s <= 0.25) {
-            bad(
-                "sample_spacing",
-                format!("sample_spacing must be in (0, 0.25] of the shortest block edge, got {s}"),
-            );
+    /// The optimizer's parameters for blocks of `block_size`.
+    fn optimizer(&self, block_size: [f64; 3], seed: u64) -> blocks::Params {
+        blocks::Params {
+            block_size,
+            operations: self.operations.clone(),
+            coverage: self.coverage,
+            p: self.p,
+            epsilon: self.epsilon,
+            restarts: self.restarts,
+            seed,
+            max_iterations: self.max_iterations,
+            time_limit: self.time_limit,
+            sample_spacing: self.sample_spacing,
+            ..blocks::Params::default()
         }
     }
 }

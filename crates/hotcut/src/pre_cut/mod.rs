@@ -201,8 +201,11 @@ impl Task for PreCut {
 
     fn check(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
         job.require_surface_and_block(Self::NAME, "", "cuts are", errors);
-        self.check_counts(job, errors);
-        self.check_directions(job, errors);
+        // the optimizer's own checks, on these fields
+        let problems = self.optimizer().problems();
+        let problems = problems.into_iter().map(|e| (e.field, e.index, e.message));
+        let element = |i: usize| format!("{:?}", self.directions[i]);
+        job.param_problems(PTR, problems, element, errors);
         for (i, o) in job.outputs.iter().enumerate() {
             if matches!(o, OutputSpec::GCode | OutputSpec::Csv) && job.wire.is_none() {
                 errors.push(job.error(
@@ -252,16 +255,7 @@ impl Task for PreCut {
                 origin[2] + size[2],
             ],
         };
-        let cut = ruled::Params {
-            legs: self.legs as usize,
-            directions: self.directions.iter().map(|d| d.vector()).collect(),
-            degree: self.degree as usize,
-            controls: self.controls as usize,
-            sections: self.sections as usize,
-            samples: self.samples as usize,
-            max_rounds: self.max_rounds as usize,
-            ..ruled::Params::default()
-        };
+        let cut = self.optimizer();
         let wire = wire_params(job).map(|w| ruled::wire::WireParams {
             steps: cut.sections + 1,
             ..w
@@ -337,49 +331,17 @@ impl Task for PreCut {
 }
 
 impl PreCut {
-    /// The counts `legs`, `degree`, `controls`, `sections`, `samples`, `max_rounds`.
-    fn check_counts(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
-        let mut range = |field: &str, v: u32, lo: u32, hi: u32| {
-            if !(lo..=hi).contains(&v) {
-                errors.push(job.error(
-                    &format!("{PTR}/{field}"),
-                    format!("{field} must be {lo}–{hi}, got {v}"),
-                ));
-            }
-        };
-        range("legs", self.legs, 1, 32);
-        range("degree", self.degree, 1, 5);
-        range("controls", self.controls, self.degree + 1, 64);
-        range("sections", self.sections, 2, 500);
-        range("samples", self.samples, 2, 500);
-        range("max_rounds", self.max_rounds, 1, 10_000);
-    }
-
-    /// At least one direction, each in the xy plane and none repeated.
-    fn check_directions(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
-        let directions = &self.directions;
-        if directions.is_empty() {
-            errors.push(job.error(
-                &format!("{PTR}/directions"),
-                "at least one cutting direction, e.g. [X]",
-            ));
-        }
-        for (i, d) in directions.iter().enumerate() {
-            let [x, y] = d.vector();
-            if !(x.is_finite() && y.is_finite()) || x.hypot(y) < 1e-9 {
-                errors.push(job.error(
-                    &format!("{PTR}/directions/{i}"),
-                    format!("{d:?} is not a direction in the xy plane (finite, not zero)"),
-                ));
-            } else if directions[..i].iter().any(|e| {
-                let [a, b] = e.vector();
-                (a * y - b * x).abs() < 1e-9 * x.hypot(y) * a.hypot(b) && a * x + b * y > 0.0
-            }) {
-                errors.push(job.error(
-                    &format!("{PTR}/directions/{i}"),
-                    format!("{d:?} repeats an earlier direction"),
-                ));
-            }
+    /// The optimizer's parameters.
+    fn optimizer(&self) -> ruled::Params {
+        ruled::Params {
+            legs: self.legs as usize,
+            directions: self.directions.iter().map(|d| d.vector()).collect(),
+            degree: self.degree as usize,
+            controls: self.controls as usize,
+            sections: self.sections as usize,
+            samples: self.samples as usize,
+            max_rounds: self.max_rounds as usize,
+            ..ruled::Params::default()
         }
     }
 }
