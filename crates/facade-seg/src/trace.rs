@@ -124,7 +124,6 @@ pub fn trace(
 ) -> Result<Segmentation, SegError> {
     c.validate()?;
     let across = Across::all(facade, progress)?;
-    let n = across.len();
     let link_distance = p.link_distance.unwrap_or(0.25 * c.block[1]);
     let merge_distance = p.merge_distance.unwrap_or(0.02 * c.block[1]);
     let mut traces: Vec<Trace> = link(&across, link_distance)
@@ -143,6 +142,59 @@ pub fn trace(
         across.iter().map(|a| a.u_range().0).collect(),
         across.iter().map(|a| a.u_range().1).collect(),
     ];
+    let full = extend(traces, &edges, link_distance, merge_distance);
+    let mut curves: Vec<Vec<f64>> = Vec::with_capacity(full.len() + 2);
+    curves.push(edges[0].clone());
+    curves.extend(full);
+    curves.push(edges[1].clone());
+    add_middle_traces(facade, c, &across, &mut curves);
+    // bands between consecutive curves
+    let bands: Vec<Vec<Option<(f64, f64)>>> = curves
+        .windows(2)
+        .map(|w| {
+            (0..across.len())
+                .map(|j| {
+                    let prep = &facade.sections[j];
+                    let (s0, s1) = (across[j].s_at(prep, w[0][j]), across[j].s_at(prep, w[1][j]));
+                    (s1 > s0).then_some((s0, s1))
+                })
+                .collect()
+        })
+        .collect();
+    let seams = curves[1..curves.len() - 1]
+        .iter()
+        .map(|curve| Seam {
+            points: (0..across.len())
+                .map(|j| {
+                    let s = across[j].s_at(&facade.sections[j], curve[j]);
+                    let w = facade.world(j, s);
+                    [w.x, w.y, w.z]
+                })
+                .collect(),
+        })
+        .collect();
+    let pieces = pieces_from_bands(facade, c, &bands, false, p.samples);
+    Ok(Segmentation {
+        algorithm: "Trace".into(),
+        rows: pieces.iter().map(|q| q.row + 1).max().unwrap_or(0),
+        bands: bands.len(),
+        pieces,
+        seams,
+    })
+}
+
+/// The traces (longest first) extended over every section, each keeping the ratio of its
+/// distances to its neighbours (the facade's `edges` and the curves made so far) and
+/// absorbing the pending traces it meets; a curve closer than `merge_distance` to one made
+/// before or to an edge is dropped. Returns the curves across the facade, in order, each
+/// no left of the one before on any section.
+fn extend(
+    traces: Vec<Trace>,
+    edges: &[Vec<f64>; 2],
+    link_distance: f64,
+    merge_distance: f64,
+) -> Vec<Vec<f64>> {
+    let n = edges[0].len();
     let mut full: Vec<Vec<f64>> = Vec::new();
     let mut pending: Vec<Option<Trace>> = traces.into_iter().map(Some).collect();
     for i in 0..pending.len() {
@@ -183,23 +235,7 @@ pub fn trace(
                 let (l1, h1) = neighbours(u0, to, &full);
                 let u1 = l1 + ratio * (h1 - l1);
                 tr.u[to] = Some(u1);
-                // meeting a pending trace that starts (or ends) there: absorb it
-                let hit = pending.iter().position(|q| {
-                    q.as_ref().is_some_and(|q| {
-                        let (qf, ql) = q.span();
-                        let at = if forward { qf } else { ql };
-                        at == to && q.u[to].is_some_and(|v| (v - u1).abs() <= link_distance)
-                    })
-                });
-                if let Some(h) = hit {
-                    if let Some(q) = pending[h].take() {
-                        for (j, v) in q.u.iter().enumerate() {
-                            if v.is_some() && tr.u[j].is_none() || j == to {
-                                tr.u[j] = *v;
-                            }
-                        }
-                    }
-                }
+                absorb(&mut tr, &mut pending, to, forward, u1, link_distance);
             }
         }
         let curve: Vec<f64> = tr.u.iter().map(|v| v.unwrap_or(0.0)).collect();
@@ -225,11 +261,45 @@ pub fn trace(
             *v = v.max(*prev);
         }
     }
-    // bands too wide, too long or with too many inflections: a trace down the middle
-    let mut curves: Vec<Vec<f64>> = Vec::with_capacity(full.len() + 2);
-    curves.push(edges[0].clone());
-    curves.extend(full);
-    curves.push(edges[1].clone());
+    full
+}
+
+/// Trace `tr`, just extended to section `to` at `u1`, meets a pending trace that starts
+/// (or, going backward, ends) there within `link_distance`: it absorbs it.
+fn absorb(
+    tr: &mut Trace,
+    pending: &mut [Option<Trace>],
+    to: usize,
+    forward: bool,
+    u1: f64,
+    link_distance: f64,
+) {
+    let hit = pending.iter().position(|q| {
+        q.as_ref().is_some_and(|q| {
+            let (qf, ql) = q.span();
+            let at = if forward { qf } else { ql };
+            at == to && q.u[to].is_some_and(|v| (v - u1).abs() <= link_distance)
+        })
+    });
+    if let Some(q) = hit.and_then(|h| pending[h].take()) {
+        for (j, v) in q.u.iter().enumerate() {
+            if v.is_some() && tr.u[j].is_none() || j == to {
+                tr.u[j] = *v;
+            }
+        }
+    }
+}
+
+/// Bands between consecutive `curves` that are too wide for the block (within a row of
+/// blocks, or on one section), too long for the blade or hold too many inflections get a
+/// curve down their middle, until none does (or a band is too thin to halve).
+fn add_middle_traces(
+    facade: &Facade,
+    c: &Constraints,
+    across: &[Across],
+    curves: &mut Vec<Vec<f64>>,
+) {
+    let n = across.len();
     let k = c.max_inflections as usize;
     let rows = rows_of(facade, c);
     // a piece is cut from one block: its band, within a row of blocks, must fit the block's
@@ -266,37 +336,4 @@ pub fn trace(
             i += 1;
         }
     }
-    // bands between consecutive curves
-    let bands: Vec<Vec<Option<(f64, f64)>>> = curves
-        .windows(2)
-        .map(|w| {
-            (0..n)
-                .map(|j| {
-                    let prep = &facade.sections[j];
-                    let (s0, s1) = (across[j].s_at(prep, w[0][j]), across[j].s_at(prep, w[1][j]));
-                    (s1 > s0).then_some((s0, s1))
-                })
-                .collect()
-        })
-        .collect();
-    let seams = curves[1..curves.len() - 1]
-        .iter()
-        .map(|curve| Seam {
-            points: (0..n)
-                .map(|j| {
-                    let s = across[j].s_at(&facade.sections[j], curve[j]);
-                    let w = facade.world(j, s);
-                    [w.x, w.y, w.z]
-                })
-                .collect(),
-        })
-        .collect();
-    let pieces = pieces_from_bands(facade, c, &bands, false, p.samples);
-    Ok(Segmentation {
-        algorithm: "Trace".into(),
-        rows: pieces.iter().map(|q| q.row + 1).max().unwrap_or(0),
-        bands: bands.len(),
-        pieces,
-        seams,
-    })
 }

@@ -10,9 +10,10 @@ use hotcut::load::{load_job, ResolvedJob};
 use hotcut::Progress;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-/// hotcut: from freeform designs to hot-wire and hot-blade cutting data.
+/// hotcut: from freeform designs to hot-wire and hot-blade cutting data (job files in,
+/// robot programs, G-code, meshes, drawings and reports out).
 #[derive(Parser)]
-#[command(version, about)]
+#[command(version)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -38,8 +39,8 @@ enum Command {
     /// Print the JSON Schema of job files or of a task's report.json, or write every schema
     /// to a folder.
     Schema {
-        /// Print the schema of TASK's report.json instead (default TASK: Analyze): Analyze,
-        /// FitCurves, HotBlade, FacadeSegmentation, BlockSegmentation or PreCut.
+        /// Print the schema of TASK's report.json instead; TASK is a task's name as job files
+        /// write it (default: Analyze).
         #[arg(long, value_name = "TASK", num_args = 0..=1, default_missing_value = "Analyze")]
         report: Option<String>,
         /// Same as `--report FitCurves`.

@@ -226,155 +226,13 @@ pub fn pre_cut(
 ) -> Result<PreCut> {
     validate(block, params)?;
     let height = Height::new(surface)?;
-    let scale = block.scale();
-    let z_top = block.max[2];
     let mut directions = Vec::new();
     let mut samples_used = 0;
     for (di, &dir) in params.directions.iter().enumerate() {
         let frame = CutFrame::new(dir, block)?;
-        // Normalised heights: (z − z_top)/scale, so the numbers the QP sees are O(1).
-        let norm = |z: f64| (z - z_top) / scale;
-        let samples = grid_points(
-            &frame,
-            &height,
-            params.sections,
-            params.samples,
-            false,
-            block,
-        )?;
-        let check = grid_points(
-            &frame,
-            &height,
-            params.sections * params.check_density,
-            params.samples * params.check_density,
-            true,
-            block,
-        )?;
-        if samples.is_empty() {
-            return Err(PreCutError::Placement(
-                "no part of the surface lies over the block".into(),
-            ));
-        }
-        samples_used = samples.len();
-        let to_norm = |p: &Point| Point { f: norm(p.f), ..*p };
-        let samples: Vec<Point> = samples.iter().map(to_norm).collect();
-        let check: Vec<Point> = check.iter().map(to_norm).collect();
-        let legs = Legs::new(
-            params.legs,
-            params.degree,
-            params.controls,
-            frame.u,
-            frame.w,
-        );
-        let design = |u: f64, w: f64| -> Option<f64> {
-            let p = frame.xy(u, w);
-            if !block.covers(p.x, p.y) {
-                return None;
-            }
-            height.at(p.x, p.y).map(norm)
-        };
-        let chord = |u: f64| frame.chord(u);
-        let n_check = (params.sections * params.check_density) as f64;
-        let m_check = (params.samples * params.check_density) as f64;
-        let domain = solve::Domain {
-            design: &design,
-            chord: &chord,
-            u: frame.u,
-            step: (
-                (frame.u.1 - frame.u.0) / n_check,
-                (frame.w.1 - frame.w.0) / m_check,
-            ),
-        };
-        let solved = solve::solve(
-            &legs,
-            &samples,
-            &check,
-            &domain,
-            &SolveOptions {
-                margin: params.margin,
-                max_rounds: params.max_rounds,
-                max_exchanges: 50,
-                proximal: 1e-8,
-                direction: di,
-            },
-            &|round, objective| {
-                progress(Progress {
-                    direction: di,
-                    round,
-                    objective,
-                })
-            },
-        )?;
-        // Back to model units: a = z_top + scale·a', m = scale·m'.
-        let x: Vec<f64> = solved
-            .x
-            .iter()
-            .enumerate()
-            .map(|(i, v)| {
-                let is_a = (i / params.controls) % 2 == 0;
-                if is_a {
-                    z_top + scale * v
-                } else {
-                    scale * v
-                }
-            })
-            .collect();
-        let mut sections = Vec::new();
-        let mut lines = Vec::new();
-        for s in 0..=params.sections {
-            let u = frame.u.0 + (frame.u.1 - frame.u.0) * s as f64 / params.sections as f64;
-            let Some((w0, w1)) = frame.chord(u) else {
-                continue;
-            };
-            let (verts, which) = legs.polygon(&x, u, w0, w1);
-            let polygon = verts
-                .iter()
-                .map(|&(w, z)| {
-                    let p = frame.xy(u, w);
-                    [p.x, p.y, z]
-                })
-                .collect();
-            let basis = legs.basis(u);
-            lines.push(
-                (0..params.legs)
-                    .map(|j| {
-                        let (a, m) = legs.line(&x, &basis, j);
-                        LegLine { a, m }
-                    })
-                    .collect(),
-            );
-            sections.push(SectionPolygon {
-                offset: u,
-                polygon,
-                legs: which,
-            });
-        }
-        let result = DirectionCut {
-            degree: legs.degree,
-            knots: legs.knots().to_vec(),
-            w_mid: legs.w_mid,
-            w_half: legs.w_half,
-            legs: (0..params.legs)
-                .map(|j| {
-                    let k = params.controls;
-                    LegSpline {
-                        a: x[2 * j * k..(2 * j + 1) * k].to_vec(),
-                        m: x[(2 * j + 1) * k..(2 * j + 2) * k].to_vec(),
-                    }
-                })
-                .collect(),
-            direction: [frame.along.x, frame.along.y, 0.0],
-            across: [frame.across.x, frame.across.y, 0.0],
-            u: frame.u,
-            w: frame.w,
-            sections,
-            lines,
-            rounds: solved.rounds,
-            qps: solved.qps,
-            constraint_points: solved.constraint_points,
-            objective_history: solved.history.iter().map(|o| o * scale * scale).collect(),
-            clearance: solved.clearance * scale,
-        };
+        let (legs, x, result, samples) =
+            cut_direction(&frame, &height, block, params, di, progress)?;
+        samples_used = samples;
         directions.push((frame, legs, x, result));
     }
     let cut = |x: f64, y: f64| -> f64 {
@@ -394,6 +252,160 @@ pub fn pre_cut(
         volumes,
         samples: samples_used,
     })
+}
+
+/// The cut of direction `di` (frame `frame`): the legs, their coefficients in model units,
+/// the result, and the number of samples the optimizer used.
+fn cut_direction(
+    frame: &CutFrame,
+    height: &Height,
+    block: &Block,
+    params: &Params,
+    di: usize,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> Result<(Legs, Vec<f64>, DirectionCut, usize)> {
+    let scale = block.scale();
+    let z_top = block.max[2];
+    // Normalised heights: (z − z_top)/scale, so the numbers the QP sees are O(1).
+    let norm = |z: f64| (z - z_top) / scale;
+    let (n, m, dense) = (params.sections, params.samples, params.check_density);
+    let samples = grid_points(frame, height, n, m, false, block)?;
+    let check = grid_points(frame, height, n * dense, m * dense, true, block)?;
+    if samples.is_empty() {
+        return Err(PreCutError::Placement(
+            "no part of the surface lies over the block".into(),
+        ));
+    }
+    let to_norm = |p: &Point| Point { f: norm(p.f), ..*p };
+    let samples: Vec<Point> = samples.iter().map(to_norm).collect();
+    let check: Vec<Point> = check.iter().map(to_norm).collect();
+    let legs = Legs::new(
+        params.legs,
+        params.degree,
+        params.controls,
+        frame.u,
+        frame.w,
+    );
+    let design = |u: f64, w: f64| -> Option<f64> {
+        let p = frame.xy(u, w);
+        if !block.covers(p.x, p.y) {
+            return None;
+        }
+        height.at(p.x, p.y).map(norm)
+    };
+    let chord = |u: f64| frame.chord(u);
+    let domain = solve::Domain {
+        design: &design,
+        chord: &chord,
+        u: frame.u,
+        step: (
+            (frame.u.1 - frame.u.0) / (n * dense) as f64,
+            (frame.w.1 - frame.w.0) / (m * dense) as f64,
+        ),
+    };
+    let solved = solve::solve(
+        &legs,
+        &samples,
+        &check,
+        &domain,
+        &SolveOptions {
+            margin: params.margin,
+            max_rounds: params.max_rounds,
+            max_exchanges: 50,
+            proximal: 1e-8,
+            direction: di,
+        },
+        &|round, objective| {
+            progress(Progress {
+                direction: di,
+                round,
+                objective,
+            })
+        },
+    )?;
+    // Back to model units: a = z_top + scale·a', m = scale·m'.
+    let x: Vec<f64> = solved
+        .x
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let is_a = (i / params.controls) % 2 == 0;
+            if is_a {
+                z_top + scale * v
+            } else {
+                scale * v
+            }
+        })
+        .collect();
+    let (sections, lines) = polygons(frame, &legs, &x, params);
+    let result = DirectionCut {
+        degree: legs.degree,
+        knots: legs.knots().to_vec(),
+        w_mid: legs.w_mid,
+        w_half: legs.w_half,
+        legs: (0..params.legs)
+            .map(|j| {
+                let k = params.controls;
+                LegSpline {
+                    a: x[2 * j * k..(2 * j + 1) * k].to_vec(),
+                    m: x[(2 * j + 1) * k..(2 * j + 2) * k].to_vec(),
+                }
+            })
+            .collect(),
+        direction: [frame.along.x, frame.along.y, 0.0],
+        across: [frame.across.x, frame.across.y, 0.0],
+        u: frame.u,
+        w: frame.w,
+        sections,
+        lines,
+        rounds: solved.rounds,
+        qps: solved.qps,
+        constraint_points: solved.constraint_points,
+        objective_history: solved.history.iter().map(|o| o * scale * scale).collect(),
+        clearance: solved.clearance * scale,
+    };
+    Ok((legs, x, result, samples.len()))
+}
+
+/// The cut polygon and every leg's line at `sections + 1` planes from block end to block
+/// end (planes where the block has no chord are left out).
+fn polygons(
+    frame: &CutFrame,
+    legs: &Legs,
+    x: &[f64],
+    params: &Params,
+) -> (Vec<SectionPolygon>, Vec<Vec<LegLine>>) {
+    let mut sections = Vec::new();
+    let mut lines = Vec::new();
+    for s in 0..=params.sections {
+        let u = frame.u.0 + (frame.u.1 - frame.u.0) * s as f64 / params.sections as f64;
+        let Some((w0, w1)) = frame.chord(u) else {
+            continue;
+        };
+        let (verts, which) = legs.polygon(x, u, w0, w1);
+        let polygon = verts
+            .iter()
+            .map(|&(w, z)| {
+                let p = frame.xy(u, w);
+                [p.x, p.y, z]
+            })
+            .collect();
+        let basis = legs.basis(u);
+        lines.push(
+            (0..params.legs)
+                .map(|j| {
+                    let (a, m) = legs.line(x, &basis, j);
+                    LegLine { a, m }
+                })
+                .collect(),
+        );
+        sections.push(SectionPolygon {
+            offset: u,
+            polygon,
+            legs: which,
+        });
+    }
+    (sections, lines)
 }
 
 /// Design points on an `n × m` grid of the frame: slab centres (or, with `ends`, evenly
