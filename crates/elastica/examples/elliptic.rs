@@ -8,16 +8,21 @@ mod common;
 
 use common::{num, number};
 use elastica::elliptic::Elliptic;
-use serde_json::{json, Value};
+use serde_json::Value;
 
-fn answer(v: &Value) -> Result<Value, String> {
+fn answer(v: &Value) -> Result<Vec<(&'static str, String)>, String> {
     let (u, m) = (number(v, "u")?, number(v, "m")?);
     let e = Elliptic::new(m).map_err(|e| e.to_string())?;
     let r = e.eval(u);
-    Ok(json!({
-        "sn": num(r.sn), "cn": num(r.cn), "dn": num(r.dn), "am": num(r.am),
-        "eps": num(r.eps), "K": num(e.k()), "E": num(e.e()),
-    }))
+    Ok(vec![
+        ("sn", num(r.sn)),
+        ("cn", num(r.cn)),
+        ("dn", num(r.dn)),
+        ("am", num(r.am)),
+        ("eps", num(r.eps)),
+        ("K", num(e.k())),
+        ("E", num(e.e())),
+    ])
 }
 
 fn main() {

@@ -10,9 +10,9 @@ mod common;
 use common::{num, number};
 use elastica::segment::{ElasticaParams, ElasticaSegment};
 use elastica::unit::Family;
-use serde_json::{json, Value};
+use serde_json::Value;
 
-fn answer(v: &Value) -> Result<Value, String> {
+fn answer(v: &Value) -> Result<Vec<(&'static str, String)>, String> {
     let family = match v.get("family").and_then(Value::as_str) {
         Some("inflectional") => Family::Inflectional,
         Some("noninflectional") => Family::NonInflectional,
@@ -34,9 +34,12 @@ fn answer(v: &Value) -> Result<Value, String> {
     };
     let seg = ElasticaSegment::new(params).map_err(|e| e.to_string())?;
     let p = seg.eval(number(v, "t")?);
-    Ok(json!({
-        "x": num(p.p[0]), "y": num(p.p[1]), "theta": num(p.angle), "kappa": num(p.curvature),
-    }))
+    Ok(vec![
+        ("x", num(p.p[0])),
+        ("y", num(p.p[1])),
+        ("theta", num(p.angle)),
+        ("kappa", num(p.curvature)),
+    ])
 }
 
 fn main() {

@@ -1,7 +1,7 @@
 //! The cross-check programs of `examples/` (issue 3): one JSON line piped through each.
 //!
-//! `cargo test` builds the examples next to this test (`target/<profile>/examples/`); when
-//! they are missing (`cargo test --test examples` alone), they are built first.
+//! Each example is built (`cargo build --example`, a no-op when current) and run as the
+//! user runs it, with one request on stdin.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -9,7 +9,8 @@ use std::process::{Command, Stdio};
 
 use serde_json::Value;
 
-/// The built example `name`, building the examples when it is missing.
+/// The example `name`, built first (a no-op when it is current): `cargo test` builds the
+/// examples too, but `cargo test --test examples` alone would find a stale binary.
 fn example(name: &str) -> PathBuf {
     let exe = std::env::current_exe().expect("test executable");
     // target/<profile>/deps/examples-<hash> → target/<profile>/examples/<name>
@@ -18,26 +19,25 @@ fn example(name: &str) -> PathBuf {
         .and_then(|d| d.parent())
         .expect("target profile folder")
         .join("examples");
-    let path = dir.join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
-    if !path.is_file() {
-        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-        let profile = dir
-            .parent()
-            .and_then(|d| d.file_name())
-            .and_then(|d| d.to_str());
-        let mut build = Command::new(cargo);
-        build.args(["build", "-q", "-p", "elastica", "--examples"]);
-        if profile == Some("release") {
-            build.arg("--release");
-        }
-        let status = build.status().expect("cargo runs");
-        assert!(status.success(), "building the examples failed");
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let profile = dir.parent().and_then(|d| d.file_name()).and_then(|d| d.to_str());
+    let mut build = Command::new(cargo);
+    build.args(["build", "-q", "-p", "elastica", "--example", name]);
+    if profile == Some("release") {
+        build.arg("--release");
     }
-    path
+    let status = build.status().expect("cargo runs");
+    assert!(status.success(), "building example {name} failed");
+    dir.join(format!("{name}{}", std::env::consts::EXE_SUFFIX))
 }
 
 /// Pipes `line` through example `name` and returns the one JSON line it answers.
 fn pipe(name: &str, line: &str) -> Value {
+    serde_json::from_str(&pipe_text(name, line)).expect("a JSON line")
+}
+
+/// The answer line as text.
+fn pipe_text(name: &str, line: &str) -> String {
     let mut child = Command::new(example(name))
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
@@ -54,13 +54,34 @@ fn pipe(name: &str, line: &str) -> Value {
     let text = String::from_utf8(out.stdout).expect("utf-8");
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines.len(), 1, "{text}");
-    serde_json::from_str(lines[0]).expect("a JSON line")
+    lines[0].to_string()
 }
 
 fn number(v: &Value, key: &str) -> f64 {
     v[key]
         .as_f64()
         .unwrap_or_else(|| panic!("{key} missing in {v}"))
+}
+
+/// The answer line's keys in order, and every number written with 17 significant digits.
+fn check_line(line: &str, keys: &[&str]) {
+    let mut rest = line;
+    let mut seen: Vec<String> = Vec::new();
+    while let Some(i) = rest.find("\":") {
+        let start = rest[..i].rfind('"').unwrap_or(0);
+        let key = rest[start + 1..i].to_string();
+        let value = &rest[i + 2..];
+        let end = value.find([',', '}']).unwrap_or(value.len());
+        let v = &value[..end];
+        if key != "id" {
+            let mantissa = v.trim_start_matches('-').split(['e', 'E']).next().unwrap_or("");
+            let digits = mantissa.chars().filter(char::is_ascii_digit).count();
+            assert_eq!(digits, 17, "{key} = {v} in {line}");
+        }
+        seen.push(key);
+        rest = &value[end..];
+    }
+    assert_eq!(seen, keys, "{line}");
 }
 
 #[test]
@@ -77,6 +98,8 @@ fn elliptic_answers_with_every_field() {
     // E(K|m) is the complete integral E(1/2) = 1.3506438810476755...
     assert!((number(&v, "E") - 1.350_643_881_047_675_5).abs() < 1e-15);
     assert!((number(&v, "eps") - number(&v, "E")).abs() < 1e-14);
+    let text = pipe_text("elliptic", r#"{"id": 2, "u": 0.3, "m": 0.7}"#);
+    check_line(&text, &["id", "sn", "cn", "dn", "am", "eps", "K", "E"]);
     // a bad request gets an error with its id, not a crash
     let bad = pipe("elliptic", r#"{"id": 7, "u": 1, "m": 2}"#);
     assert_eq!(bad["id"], 7);
@@ -103,6 +126,11 @@ fn segment_answers_with_point_angle_and_curvature() {
         r#"{"id": 4, "family": "noninflectional", "k": 0.5, "s0": 0, "l": 1, "S": 2, "phi": 0.3, "x0": 1, "y0": -1, "t": 0}"#,
     );
     expect(&w, [1.0, -1.0, 0.3, 2.0]);
+    let text = pipe_text(
+        "segment",
+        r#"{"id": "s", "family": "noninflectional", "k": 0.5, "s0": 0.2, "l": 1, "S": 2, "phi": 0.3, "x0": 1, "y0": -1, "t": 0.7}"#,
+    );
+    check_line(&text, &["id", "x", "y", "theta", "kappa"]);
     let bad = pipe("segment", r#"{"id": 5, "family": "circle"}"#);
     assert!(bad["error"].as_str().unwrap_or("").contains("family"));
 }

@@ -1,14 +1,17 @@
-//! Shared by the cross-check examples: a JSON-lines loop and 17-digit number output.
+//! Shared by the cross-check examples: a JSON-lines loop whose answers print every number
+//! with 17 significant digits (enough to round-trip any f64), the request's `id` first.
 
-use serde_json::{json, Value};
 use std::io::{BufRead, Write};
 
-/// A finite number with 17 significant digits (round-trips every f64); ±inf/NaN as strings.
-pub fn num(x: f64) -> Value {
+use serde_json::Value;
+
+/// A finite number with 17 significant digits, as JSON text (`4.7421562271182080e-1`);
+/// ±inf and NaN as the strings `"inf"`, `"-inf"`, `"NaN"`.
+pub fn num(x: f64) -> String {
     if x.is_finite() {
-        serde_json::from_str(&format!("{x:.16e}")).unwrap_or(Value::Null)
+        format!("{x:.16e}")
     } else {
-        Value::String(format!("{x}"))
+        format!("\"{x}\"")
     }
 }
 
@@ -19,30 +22,41 @@ pub fn number(v: &Value, key: &str) -> Result<f64, String> {
         .ok_or_else(|| format!("missing number {key}"))
 }
 
-/// Reads JSON lines on stdin and answers each with `answer(request)` (an object to which the
-/// request's `id` is added, or `{"id", "error"}`), one line per request; blank lines are
-/// skipped, and a line that is not JSON gets `{"error": "line N: ..."}`.
-pub fn serve(answer: impl Fn(&Value) -> Result<Value, String>) {
+/// One answer line: `{"id": <the request's id>, "<name>": <value>, ...}` in the given order.
+fn line(id: &Value, fields: &[(&str, String)]) -> String {
+    let mut s = format!("{{\"id\":{id}");
+    for (k, v) in fields {
+        s.push_str(&format!(",\"{k}\":{v}"));
+    }
+    s.push('}');
+    s
+}
+
+/// Reads JSON lines on stdin and answers each with `answer(request)`: the fields it
+/// returns (values as JSON text, see [`num`]) after the request's `id`, or
+/// `{"id", "error"}`; blank lines are skipped, and a line that is not JSON gets
+/// `{"id": null, "error": "line N: ..."}`.
+pub fn serve(answer: impl Fn(&Value) -> Result<Vec<(&'static str, String)>, String>) {
     let stdin = std::io::stdin();
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
-    for (lineno, line) in stdin.lock().lines().enumerate() {
-        let Ok(line) = line else { break };
-        if line.trim().is_empty() {
+    for (lineno, text) in stdin.lock().lines().enumerate() {
+        let Ok(text) = text else { break };
+        if text.trim().is_empty() {
             continue;
         }
-        let reply = match serde_json::from_str::<Value>(&line) {
+        let reply = match serde_json::from_str::<Value>(&text) {
             Ok(v) => {
                 let id = v.get("id").cloned().unwrap_or(Value::Null);
                 match answer(&v) {
-                    Ok(mut r) => {
-                        r["id"] = id;
-                        r
-                    }
-                    Err(e) => json!({"id": id, "error": e}),
+                    Ok(fields) => line(&id, &fields),
+                    Err(e) => line(&id, &[("error", Value::String(e).to_string())]),
                 }
             }
-            Err(e) => json!({"error": format!("line {}: {e}", lineno + 1)}),
+            Err(e) => {
+                let message = Value::String(format!("line {}: {e}", lineno + 1));
+                line(&Value::Null, &[("error", message.to_string())])
+            }
         };
         // a closed stdout (`| head -1`) ends the loop quietly
         if writeln!(out, "{reply}").is_err() {
