@@ -194,7 +194,7 @@ fn neighbouring_blocks_share_end_points_and_tangents() {
     let facade = Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs/hot-blade-facade.ron");
     let mut job = parse_job(&facade, &std::fs::read_to_string(&facade).unwrap()).unwrap();
     if let TaskSpec::HotBlade(task) = &mut job.task {
-        task.continuity = Continuity::C1;
+        task.continuity = hotcut::spec::Continuity::C1;
     }
     let facade_c1 = rationalize(&resolve(&facade, job).unwrap());
     let runs = JOBS

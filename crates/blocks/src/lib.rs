@@ -325,7 +325,7 @@ impl Params {
             bad(
                 "operations",
                 None,
-                "at least one of Translate, Rotate, Align".into(),
+                "needs at least one of Translate, Rotate, Align".into(),
             );
         }
         for (i, o) in self.operations.iter().enumerate() {

@@ -20,7 +20,10 @@ fn example(name: &str) -> PathBuf {
         .expect("target profile folder")
         .join("examples");
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let profile = dir.parent().and_then(|d| d.file_name()).and_then(|d| d.to_str());
+    let profile = dir
+        .parent()
+        .and_then(|d| d.file_name())
+        .and_then(|d| d.to_str());
     let mut build = Command::new(cargo);
     build.args(["build", "-q", "-p", "elastica", "--example", name]);
     if profile == Some("release") {
@@ -74,7 +77,11 @@ fn check_line(line: &str, keys: &[&str]) {
         let end = value.find([',', '}']).unwrap_or(value.len());
         let v = &value[..end];
         if key != "id" {
-            let mantissa = v.trim_start_matches('-').split(['e', 'E']).next().unwrap_or("");
+            let mantissa = v
+                .trim_start_matches('-')
+                .split(['e', 'E'])
+                .next()
+                .unwrap_or("");
             let digits = mantissa.chars().filter(char::is_ascii_digit).count();
             assert_eq!(digits, 17, "{key} = {v} in {line}");
         }

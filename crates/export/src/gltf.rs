@@ -21,6 +21,17 @@ pub struct Material {
     pub blend: bool,
 }
 
+impl Material {
+    /// Material `name` of linear RGBA `color`, alpha-blended when `blend`.
+    pub fn new(name: impl Into<String>, color: [f32; 4], blend: bool) -> Self {
+        Self {
+            name: name.into(),
+            color,
+            blend,
+        }
+    }
+}
+
 /// A triangle mesh.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Mesh {

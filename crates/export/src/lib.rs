@@ -9,6 +9,8 @@
 //! assert_eq!(String::from_utf8(out).unwrap(), "{\n  \"length\": 0.333333\n}\n");
 //! ```
 
+/// CSV tables with fixed-decimal numbers.
+pub mod csv;
 /// glTF 2.0 (JSON with an embedded buffer) for meshes with colours.
 pub mod gltf;
 /// Deterministic JSON with rounded floats.
@@ -30,6 +32,9 @@ pub enum ExportError {
     /// The value could not be serialised.
     #[error("cannot serialise: {0}")]
     Serialize(#[from] serde_json::Error),
+    /// The data cannot be written as asked (what is wrong).
+    #[error("{0}")]
+    Data(String),
     /// The geometry to write could not be made (e.g. a degenerate mesh).
     #[error("geometry: {0}")]
     Geom(#[from] geom::GeomError),

@@ -6,6 +6,41 @@
 //! [`geom::surface::Surface::sections`]) and the constraints, and returns pieces: per
 //! section the part each piece holds, the block it is cut from, and a verdict per
 //! constraint.
+//!
+//! - The algorithms: [`inflection::inflection_points`] (§5.2), [`trace::trace`] (§5.3),
+//!   [`longest::longest_elastica`] (§5.4), each returning a [`Segmentation`].
+//! - [`rationalize::pose_pieces`]: every piece's parts fitted by elastica with the
+//!   `hotblade` fit sweeps, extended to the blade and posed for the two robots;
+//!   [`report::summarize`] folds those fits into each piece's verdicts and counts.
+//! - [`survey::survey`]: every section checked against §5.1 before anything is cut.
+//!
+//! ```
+//! use facade_seg::inflection::{inflection_points, InflectionParams};
+//! use facade_seg::{Constraints, Facade};
+//! use geom::expr::Expr;
+//! use geom::heightfield::HeightField;
+//! use geom::surface::{SectionParams, Surface};
+//!
+//! // a wavy facade, an inflection every ~470 mm across the cut, 6 sections along it
+//! let z = Expr::parse("60*sin(y/150)").unwrap();
+//! let surface = Surface::HeightField(HeightField::try_new(z, (0.0, 600.0), (0.0, 1800.0)).unwrap());
+//! let (frame, sections) = surface
+//!     .sections(&SectionParams { count: 6, ..SectionParams::default() }, &|| {})
+//!     .unwrap();
+//! let facade = Facade::new(frame, &sections).unwrap();
+//! let c = Constraints {
+//!     block: [600.0, 600.0, 400.0],
+//!     blade_length: 800.0,
+//!     max_curvature: 0.011,
+//!     max_inflections: 2,
+//!     tolerance_rms: 0.5,
+//!     tolerance_max: 2.0,
+//! };
+//! let seg = inflection_points(&facade, &c, &InflectionParams::default(), &|| {}).unwrap();
+//! // every part of every piece holds at most two inflections
+//! assert!(seg.pieces.iter().all(|p| p.verdicts.shape));
+//! assert!(seg.pieces.len() > 1);
+//! ```
 
 /// Sections seen across the facade (`u` ↔ arc length, curvature, inflections).
 mod across;

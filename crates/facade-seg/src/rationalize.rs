@@ -92,17 +92,15 @@ pub fn pose_piece(
     piece: &Piece,
     params: &RationalizeParams,
 ) -> Result<PosedPiece, SegError> {
-    let constraint = match params.constraint {
-        FitConstraint::EndPointsAndLength => FitConstraint::EndPointsAndLength,
-        _ => FitConstraint::EndPoints,
-    };
+    let constraint = params.constraint.with_end_points();
     let fail = |k: usize, message: String| SegError::Rationalize {
         piece: piece.id,
         plane: piece.parts[k].plane,
         message,
     };
     let designs = designs(facade, piece, params);
-    let mut fits = sweep_fits(&designs, constraint).map_err(|(k, e)| fail(k, e.to_string()))?;
+    let mut fits =
+        sweep_fits(&designs, constraint).map_err(|e| fail(e.plane, e.source.to_string()))?;
     if constraint == FitConstraint::EndPointsAndLength {
         restart_poor_fits(&designs, &mut fits, params.tolerance_max);
     }

@@ -81,12 +81,15 @@ impl Facade {
         self.frame.to_world(sec.offset, &sec.point(s))
     }
 
-    /// `n + 1` world points of a piece's part, equally spaced in arc length (none when its
-    /// section is not in the facade).
+    /// `n + 1` world points of a piece's part, equally spaced in arc length (`n ≥ 1`; none
+    /// when its section is not in the facade or `n = 0`).
     pub fn part_points(&self, part: &crate::PiecePart, n: usize) -> Vec<Vector3<f64>> {
         let Some(j) = self.sections.iter().position(|s| s.index == part.plane) else {
             return Vec::new();
         };
+        if n == 0 {
+            return Vec::new();
+        }
         (0..=n)
             .map(|m| {
                 let s = part.s[0] + (part.s[1] - part.s[0]) * m as f64 / n as f64;
@@ -96,21 +99,25 @@ impl Facade {
     }
 
     /// A piece as a triangle strip between its consecutive parts, each sampled at `n + 1`
-    /// points: the positions (part after part) and the triangles' vertex indices. `None`
-    /// for a piece of fewer than two parts.
+    /// points (`n ≥ 1`): the positions (part after part) and the triangles' vertex indices.
+    /// `None` for a piece of fewer than two parts, `n = 0`, or a part whose section is not
+    /// in the facade.
     pub fn piece_strip(
         &self,
         piece: &crate::Piece,
         n: usize,
     ) -> Option<(Vec<Vector3<f64>>, Vec<u32>)> {
-        if piece.parts.len() < 2 {
+        if piece.parts.len() < 2 || n == 0 {
             return None;
         }
-        let positions: Vec<Vector3<f64>> = piece
-            .parts
-            .iter()
-            .flat_map(|part| self.part_points(part, n))
-            .collect();
+        let mut positions = Vec::with_capacity(piece.parts.len() * (n + 1));
+        for part in &piece.parts {
+            let points = self.part_points(part, n);
+            if points.len() != n + 1 {
+                return None;
+            }
+            positions.extend(points);
+        }
         let row = (n + 1) as u32;
         let mut indices = Vec::new();
         for k in 0..piece.parts.len() as u32 - 1 {

@@ -5,6 +5,14 @@ use elastica::fit::FitError;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum HotBladeError {
+    /// A parameter out of range (see [`crate::Params::problems`]).
+    #[error("invalid {field}: {message}")]
+    Invalid {
+        /// The field of [`crate::Params`].
+        field: &'static str,
+        /// What is wrong.
+        message: String,
+    },
     /// The geometry failed (cutting direction, sectioning, surface normals).
     #[error("{context}: {source}")]
     Geom {

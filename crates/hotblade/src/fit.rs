@@ -47,6 +47,17 @@ fn design_part(ctx: &Context<'_>, plane: usize, range: (f64, f64), n: usize) -> 
         })
 }
 
+/// A section part of [`sweep_fits`] that no elastica could be fitted to.
+#[derive(Debug, thiserror::Error)]
+#[error("plane {plane}: {source}")]
+pub struct SweepError {
+    /// Index of the part in the sweep.
+    pub plane: usize,
+    /// The fit's error.
+    #[source]
+    pub source: FitError,
+}
+
 /// Sweeps of warm-started fits over a part's planes (§7: each section starts from its
 /// neighbour's fit). Forward, each plane keeps the better of a cold fit and one warm-started
 /// from the plane before; then backward and forward again with warm starts from the plane
@@ -57,7 +68,7 @@ fn design_part(ctx: &Context<'_>, plane: usize, range: (f64, f64), n: usize) -> 
 pub fn sweep_fits(
     designs: &[Option<Clipped>],
     constraint: FitConstraint,
-) -> std::result::Result<Vec<Option<FitResult>>, (usize, FitError)> {
+) -> Result<Vec<Option<FitResult>>, SweepError> {
     const MAX_SWEEPS: usize = 4;
     let fit_from = |design: &Clipped, warm_start: Option<Segment>| {
         let fit_params = FitParams {
@@ -85,7 +96,7 @@ pub fn sweep_fits(
                 }
             }
             (Some(Ok(w)), Err(_)) => w,
-            (_, c) => c.map_err(|e| (plane, e))?,
+            (_, c) => c.map_err(|source| SweepError { plane, source })?,
         };
         fits.push(Some(fit));
     }
@@ -127,10 +138,7 @@ pub(crate) fn fit_part(
     progress: &ProgressFn<'_>,
 ) -> Result<FittedPart, HotBladeError> {
     let p = ctx.params;
-    let constraint = match p.constraint {
-        FitConstraint::EndPointsAndLength => FitConstraint::EndPointsAndLength,
-        _ => FitConstraint::EndPoints,
-    };
+    let constraint = p.constraint.with_end_points();
     // a plane that only grazes the block's surface (a corner of a rotated plane, the edge
     // of a surface) gives a sliver no blade pose can be extrapolated from: left out
     let shortest = SHORTEST_PART * p.blade.length;
@@ -139,11 +147,11 @@ pub(crate) fn fit_part(
             design_part(ctx, plane, part.range, p.samples).filter(|d| d.length >= shortest)
         })
         .collect();
-    let c0 = sweep_fits(&designs, constraint).map_err(|(plane, source)| HotBladeError::Fit {
+    let c0 = sweep_fits(&designs, constraint).map_err(|e| HotBladeError::Fit {
         column: part.column,
         range: part.range,
-        plane,
-        source,
+        plane: e.plane,
+        source: e.source,
     })?;
     let mut fitted: Vec<Option<(Clipped, FitResult, bool)>> = designs
         .into_iter()

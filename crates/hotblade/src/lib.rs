@@ -51,6 +51,8 @@ pub mod error;
 pub mod fit;
 /// Block grid, cutting planes, clipping a section to a block.
 pub mod grid;
+/// The parameters and their checks.
+mod params;
 /// The run: planes, sections, fits with splits, blocks, totals.
 mod pipeline;
 /// The result: blocks with their fitted sections, swept surfaces and report entries.
@@ -58,15 +60,10 @@ pub mod result;
 /// Serializers for the geometry types of `geom` and `nalgebra`, which carry no serde.
 mod ser;
 
-use elastica::fit::FitConstraint;
-use geom::surface::SectionParams;
-use nalgebra::Vector3;
-use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
-
 pub use error::HotBladeError;
-pub use fit::{make_blade, sweep_fits};
+pub use fit::{make_blade, sweep_fits, SweepError};
 pub use grid::Clipped;
+pub use params::{curve_chord, BladeLimits, Continuity, ParamProblem, Params};
 pub use pipeline::rationalize;
 pub use result::{BlockResult, FittedSection, Rationalization};
 
@@ -79,95 +76,6 @@ pub const SWEEP_SHARE: f64 = 0.1;
 /// where a plane grazes the surface inside the block) get no blade pose and count as missing
 /// sections, since extending a fit of a few millimetres to the whole blade is meaningless.
 pub const SHORTEST_PART: f64 = 0.05;
-
-/// Continuity of the rationalized surface across block faces.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
-pub enum Continuity {
-    /// Neighbouring blades share their end points.
-    #[default]
-    C0,
-    /// Neighbouring blades share their end points and end tangents.
-    C1,
-}
-
-/// What the blade takes, in the surface's length unit.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BladeLimits {
-    /// Blade length.
-    pub length: f64,
-    /// Largest allowed |curvature|.
-    pub max_curvature: f64,
-    /// Most inflections a blade shape may have.
-    pub max_inflections: u32,
-}
-
-/// Parameters of [`rationalize`]. Lengths are in the surface's unit; the defaults are the
-/// paper's cell in millimetres.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Params {
-    /// Block edge lengths along the cut, across it and along `v = d × u`.
-    pub block: [f64; 3],
-    /// World position of the grid's min corner; `None`: the surface's extent's min corner.
-    pub origin: Option<[f64; 3]>,
-    /// Unit cutting direction `d`; replaced by the curve's chord when `curve` is given.
-    pub direction: Vector3<f64>,
-    /// Plan points `(x, y)` of a cutting-direction curve the planes follow (eq. 5.4),
-    /// strictly advancing along its chord; `None`: parallel planes normal to `direction`.
-    pub curve: Option<Vec<(f64, f64)>>,
-    /// Poses (target planes) per block, ≥ 2. Default 51.
-    pub targets: usize,
-    /// What each fit keeps: `EndPoints` or `EndPointsAndLength` (`Free` is taken as
-    /// `EndPoints`: neighbouring blocks must meet). Default `EndPointsAndLength`.
-    pub constraint: FitConstraint,
-    /// Continuity across block faces. Default `C0`.
-    pub continuity: Continuity,
-    /// Largest number of halvings of a column over tolerance. Default 2.
-    pub split_depth: u32,
-    /// Fit samples per section. Default 100.
-    pub samples: usize,
-    /// Flat-blade limit: largest angle between a cutting plane and the surface normal,
-    /// radians. Default π/6.
-    pub max_plane_angle: f64,
-    /// Extra planes between two targets on the deviation grid. Default 3.
-    pub refine: usize,
-    /// Points per curve on the deviation grid and in the meshes. Default 60.
-    pub grid_points: usize,
-    /// Blade limits. Default 1000 mm, 0.011 /mm, 2 inflections.
-    pub blade: BladeLimits,
-    /// RMS fit tolerance. Default 0.5 mm.
-    pub tolerance_rms: f64,
-    /// Largest-distance fit tolerance. Default 2 mm.
-    pub tolerance_max: f64,
-    /// Sectioning of polyline surfaces (`direction` and `count` are not used).
-    pub sectioning: SectionParams,
-}
-
-impl Default for Params {
-    fn default() -> Self {
-        Self {
-            block: [600.0, 600.0, 600.0],
-            origin: None,
-            direction: Vector3::x(),
-            curve: None,
-            targets: 51,
-            constraint: FitConstraint::EndPointsAndLength,
-            continuity: Continuity::C0,
-            split_depth: 2,
-            samples: 100,
-            max_plane_angle: std::f64::consts::FRAC_PI_6,
-            refine: 3,
-            grid_points: 60,
-            blade: BladeLimits {
-                length: 1000.0,
-                max_curvature: 0.011,
-                max_inflections: 2,
-            },
-            tolerance_rms: 0.5,
-            tolerance_max: 2.0,
-            sectioning: SectionParams::default(),
-        }
-    }
-}
 
 /// Progress of a run, reported through the callback (from worker threads too).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

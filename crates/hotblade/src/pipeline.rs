@@ -61,7 +61,8 @@ fn geom_err(context: &'static str) -> impl FnOnce(geom::GeomError) -> HotBladeEr
 /// Runs the pipeline on `surface` (see the [crate] documentation).
 ///
 /// # Errors
-/// [`HotBladeError::Geom`] when the direction is zero or sectioning fails;
+/// [`HotBladeError::Invalid`] for parameters out of range ([`Params::problems`]);
+/// [`HotBladeError::Geom`] when sectioning fails;
 /// [`HotBladeError::Fit`] when a section cannot be fitted; [`HotBladeError::Blade`] when a
 /// fit cannot be extended to the blade.
 pub fn rationalize(
@@ -69,6 +70,12 @@ pub fn rationalize(
     params: &Params,
     progress: &ProgressFn<'_>,
 ) -> Result<Rationalization, HotBladeError> {
+    if let Some(p) = params.problems().into_iter().next() {
+        return Err(HotBladeError::Invalid {
+            field: p.field,
+            message: p.message,
+        });
+    }
     let layout = layout(surface, params)?;
     let sections = section(surface, &layout.planes, params, progress)?;
     let normals = SurfaceNormals::new(surface, 200).map_err(geom_err("surface normals"))?;

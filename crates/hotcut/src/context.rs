@@ -139,8 +139,6 @@ pub struct JobFields<'a> {
     pub path: &'a Path,
     /// The folder relative paths start from.
     pub base: &'a Path,
-    /// Length unit.
-    pub units: Units,
     /// The surface.
     pub surface: Option<&'a SurfaceSpec>,
     /// The block.
@@ -149,6 +147,8 @@ pub struct JobFields<'a> {
     pub blade: Option<&'a BladeSpec>,
     /// The hot-wire machine.
     pub wire: Option<&'a WireSpec>,
+    /// Cutting direction, sections and curve.
+    pub cutting: &'a CuttingSpec,
     /// Files to write.
     pub outputs: &'a [OutputSpec],
 }

@@ -1,9 +1,12 @@
 //! The job file as the user writes it (RON): raw serde types with `deny_unknown_fields`,
 //! whose doc comments become the descriptions in `schemas/job.schema.json`.
 //!
-//! [`TaskSpec`](crate::job::TaskSpec) is the one list of every task: each variant holds the task's own struct,
-//! defined in the task's module, and [`TaskSpec::visit`](crate::job::TaskSpec::visit) hands it to code that works for
-//! any task (checks, runner). The fields every task shares are in [`crate::spec`].
+//! [`TaskSpec`](crate::job::TaskSpec) is the one list of every task: each variant holds
+//! the task's own struct, defined in the task's module;
+//! [`TaskSpec::visit`](crate::job::TaskSpec::visit) hands the job's task to code that
+//! works for any task (checks, runner), and [`TaskSpec::each`](crate::job::TaskSpec::each)
+//! visits every task type (report schemas). The fields every task shares are in
+//! [`crate::spec`].
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -16,7 +19,7 @@ use crate::hot_blade::HotBlade;
 use crate::pre_cut::PreCut;
 use crate::spec::{BladeSpec, BlockSpec, CuttingSpec, OutputSpec, SurfaceSpec, ToleranceSpec};
 use crate::spec::{Units, WireSpec};
-use crate::task::{Name, Visit};
+use crate::task::{Name, Visit, VisitType};
 
 /// A hotcut job: what to cut, with which tool and constraints, which task to run and which
 /// files to write.
@@ -32,10 +35,12 @@ pub struct Job {
     /// Length unit of every length in the job and its outputs. Default: `Millimetre`.
     #[serde(default)]
     pub units: Units,
-    /// The surface to cut. Required by `Analyze`, and by `FitCurves` without `input`.
+    /// The surface to cut. Required by every task but `FitCurves` with an `input` file.
     #[serde(default)]
     pub surface: Option<SurfaceSpec>,
-    /// The foam block. When omitted, the block-size constraint is not checked.
+    /// The foam block. Required by `HotBlade`, `FacadeSegmentation`, `BlockSegmentation` and
+    /// `PreCut`; optional for `Analyze` (when omitted, the block-size constraint is not
+    /// checked).
     #[serde(default)]
     pub block: Option<BlockSpec>,
     /// The hot blade. Default: `Blade(length: 1000 mm, max_curvature: 0.011 /mm, max_inflections: 2)`
@@ -65,8 +70,9 @@ fn default_outputs() -> Vec<OutputSpec> {
     vec![OutputSpec::Report, OutputSpec::Svg]
 }
 
-/// The task to run: its name, and in parentheses its fields (`HotBlade(targets_per_block:
-/// 51)`; a task whose fields all have defaults is written `Analyze()`).
+/// The task to run: its name, and in parentheses its fields, e.g.
+/// `HotBlade(targets_per_block: 51)`; a task whose fields all have defaults is written
+/// `Analyze()`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub enum TaskSpec {
@@ -95,6 +101,17 @@ impl TaskSpec {
             Self::BlockSegmentation(t) => v.visit(t),
             Self::PreCut(t) => v.visit(t),
         }
+    }
+
+    /// Calls `v` once per task type, in the order of the variants: the one list of task
+    /// types for code that needs no task value (the report schemas).
+    pub fn each<V: VisitType>(v: &mut V) {
+        v.visit::<Analyze>();
+        v.visit::<FitCurves>();
+        v.visit::<HotBlade>();
+        v.visit::<FacadeSegmentation>();
+        v.visit::<BlockSegmentation>();
+        v.visit::<PreCut>();
     }
 
     /// Name as written in job files.

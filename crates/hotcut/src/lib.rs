@@ -39,13 +39,13 @@ pub mod hot_blade;
 pub mod job;
 /// Reading, validating and resolving job files.
 pub mod load;
-/// Writers shared by the tasks: rendered files, block meshes, robot files.
+/// Writers shared by the tasks: the rendered files and the robot files.
 pub mod output;
 /// The `PreCut` task: hot-wire cuts removing the bulk above a design surface.
 pub mod pre_cut;
 /// Progress of long steps.
 pub mod progress;
-/// What every report shares.
+/// What reports share.
 pub mod report;
 /// Running a job and writing its outputs atomically.
 pub mod run;
@@ -57,13 +57,7 @@ pub mod task;
 pub use error::{HotcutError, JobError, Result};
 pub use progress::{NoProgress, Progress};
 
-use analyze::Analyze;
-use block_segmentation::BlockSegmentation;
-use facade_segmentation::FacadeSegmentation;
-use fit_curves::FitCurves;
-use hot_blade::HotBlade;
-use pre_cut::PreCut;
-use task::Task;
+use task::{Task, VisitType};
 
 /// Pretty JSON with a final newline, as the files in `schemas/` hold it.
 fn pretty(v: &serde_json::Value) -> String {
@@ -98,19 +92,20 @@ fn report_schema<T: Task>() -> SchemaFile {
     }
 }
 
-/// Every schema file of `schemas/`: the job file's, then one per task's report.
+/// Every schema file of `schemas/`: the job file's, then one per task's report, in the
+/// order of [`job::TaskSpec`].
 pub fn schema_files() -> Vec<SchemaFile> {
-    vec![
-        SchemaFile {
-            task: None,
-            file: "job.schema.json",
-            text: job_schema_json(),
-        },
-        report_schema::<Analyze>(),
-        report_schema::<FitCurves>(),
-        report_schema::<HotBlade>(),
-        report_schema::<FacadeSegmentation>(),
-        report_schema::<BlockSegmentation>(),
-        report_schema::<PreCut>(),
-    ]
+    struct Reports(Vec<SchemaFile>);
+    impl VisitType for Reports {
+        fn visit<T: Task>(&mut self) {
+            self.0.push(report_schema::<T>());
+        }
+    }
+    let mut files = Reports(vec![SchemaFile {
+        task: None,
+        file: "job.schema.json",
+        text: job_schema_json(),
+    }]);
+    job::TaskSpec::each(&mut files);
+    files.0
 }

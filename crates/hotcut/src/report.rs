@@ -1,5 +1,5 @@
-//! What every report shares. Each task's report type lives in its module
-//! (`<task>/report.rs`); all are written as `report.json`, floats rounded to
+//! What reports share (the surface as loaded). Each task's report type lives in its module;
+//! all are written as `report.json`, floats rounded to
 //! [`REPORT_DIGITS`](export::json::REPORT_DIGITS) significant digits.
 
 use geom::surface::Surface;

@@ -110,14 +110,20 @@ pub fn run_task<T: Task>(
         report: &report,
     };
     let dir = out.join(&job.name);
-    let files = render(&done, outputs).map_err(|(file, source)| HotcutError::Export {
-        path: dir.join(file),
-        source,
-    })?;
-    let names = write_atomically(&files, out, &job.name)?;
+    std::fs::create_dir_all(out).map_err(io(out))?;
+    let tmp = tempfile::Builder::new()
+        .prefix(&format!(".{}.tmp-", job.name))
+        .tempdir_in(out)
+        .map_err(io(out))?;
+    let files =
+        render(&done, outputs, tmp.path()).map_err(|(file, source)| HotcutError::Export {
+            path: dir.join(file),
+            source,
+        })?;
+    move_into_place(tmp, &dir)?;
     Ok(TaskOutcome {
         dir,
-        files: names,
+        files,
         params,
         run,
         report,
@@ -127,54 +133,44 @@ pub fn run_task<T: Task>(
 /// A file that could not be rendered, and why.
 type FileError = (String, export::ExportError);
 
-/// Renders every output into memory, in the job's order, through the task's declared
+/// Writes every output into `dir`, in the job's order, through the task's declared
 /// writers; an output the task does not declare is an error (validation rejects it first).
+/// Returns the file names in order.
 fn render<T: Task>(
     done: &Finished<'_, T>,
     outputs: &[OutputSpec],
-) -> std::result::Result<Vec<(String, Vec<u8>)>, FileError> {
-    let mut files = Files::default();
+    dir: &Path,
+) -> std::result::Result<Vec<String>, FileError> {
+    let mut files = Files::new(dir);
     for o in outputs {
         let result = if o.kind() == OutputKind::Report {
             files.json("report.json", done.report, REPORT_DIGITS)
         } else {
             match T::OUTPUTS.iter().find(|w| w.kind == o.kind()) {
                 Some(w) => (w.write)(done, o, &mut files),
-                None => Err(export::ExportError::Io(std::io::Error::other(format!(
+                None => Err(export::ExportError::Data(format!(
                     "task {} does not write {} files",
                     T::NAME,
                     o.name()
-                )))),
+                ))),
             }
         };
         result.map_err(|e| (files.last_name().unwrap_or(o.name()).to_string(), e))?;
     }
-    Ok(files.into_vec())
+    Ok(files.into_names())
 }
 
-/// Writes `files` into a temporary folder in `out`, then renames it to `out/name`
-/// (replacing an earlier run's). Returns the file names in order.
-fn write_atomically(files: &[(String, Vec<u8>)], out: &Path, name: &str) -> Result<Vec<String>> {
-    std::fs::create_dir_all(out).map_err(io(out))?;
-    let tmp = tempfile::Builder::new()
-        .prefix(&format!(".{name}.tmp-"))
-        .tempdir_in(out)
-        .map_err(io(out))?;
-    for (file, bytes) in files {
-        let p = tmp.path().join(file);
-        std::fs::write(&p, bytes).map_err(io(&p))?;
-    }
-    let dir = out.join(name);
+/// Renames the finished temporary folder to `dir`, replacing an earlier run's.
+fn move_into_place(tmp: tempfile::TempDir, dir: &Path) -> Result<()> {
     if dir.exists() {
-        std::fs::remove_dir_all(&dir).map_err(io(&dir))?;
+        std::fs::remove_dir_all(dir).map_err(io(dir))?;
     }
     let kept = tmp.keep();
-    std::fs::rename(&kept, &dir).map_err(|e| {
+    std::fs::rename(&kept, dir).map_err(|e| {
         let _ = std::fs::remove_dir_all(&kept);
         HotcutError::Io {
-            path: dir.clone(),
+            path: dir.to_path_buf(),
             source: e,
         }
-    })?;
-    Ok(files.iter().map(|(n, _)| n.clone()).collect())
+    })
 }

@@ -247,26 +247,54 @@ impl FitConstraintSpec {
     }
 }
 
-/// A file to write.
+/// Continuity of the rationalized surface across block faces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+pub enum Continuity {
+    /// Neighbouring blades share their end points.
+    #[default]
+    C0,
+    /// Neighbouring blades share their end points and end tangents.
+    C1,
+}
+
+impl Continuity {
+    /// The `hotblade` option.
+    pub fn to_hotblade(self) -> hotblade::Continuity {
+        match self {
+            Self::C0 => hotblade::Continuity::C0,
+            Self::C1 => hotblade::Continuity::C1,
+        }
+    }
+}
+
+/// A file to write. Each task writes the kinds it declares; the files per task:
+/// `Analyze` Report, Svg (`sections.svg`), Obj (`sections.obj`); `FitCurves` Report, Svg
+/// (`fit.svg`); `HotBlade` Report, Svg (`block_NNN.svg`), Obj (`surface_block_NNN.obj`),
+/// Gltf, Csv (`sections.csv`), RobotTargets, Rapid; `FacadeSegmentation` Report, Svg
+/// (`segmentation.svg`), Obj (`segmentation.obj`), Gltf, Csv (`sections.csv`),
+/// RobotTargets, Rapid; `BlockSegmentation` Report, Blocks, Svg (`progress.svg`), Obj
+/// (`blocks.obj`), Gltf; `PreCut` Report, PreCut, Svg (`sections.svg`), Obj
+/// (`precut.obj`), Gltf, GCode and Csv (`wire_dD_cC.gcode/.csv`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub enum OutputSpec {
     /// `report.json`: the task's full result.
     Report,
-    /// `sections.svg` (Analyze): plan and profile drawing of the sections; `fit.svg`
-    /// (FitCurves): every curve with its fit overlaid; `segmentation.svg`
-    /// (FacadeSegmentation): plan view of the pieces, sections, inflections and seams;
-    /// `progress.svg` (BlockSegmentation): blocks and E per iteration.
+    /// A drawing: the sections in plan and profile (Analyze), every curve with its fit
+    /// (FitCurves), each block's worst section (HotBlade), the pieces in plan
+    /// (FacadeSegmentation), blocks and E per iteration (BlockSegmentation), cross sections
+    /// of the cuts (PreCut).
     Svg,
-    /// `sections.obj`: the section curves as 3D polylines (BlockSegmentation:
-    /// `blocks.obj`, the blocks as boxes).
+    /// Wavefront OBJ: the section curves (Analyze), each block's rationalized surface
+    /// (HotBlade), every piece's section parts (FacadeSegmentation), the blocks as boxes
+    /// (BlockSegmentation), the design, cut surfaces and block (PreCut).
     Obj,
-    /// `model.gltf` (HotBlade: blocks as boxes, the rationalized surfaces coloured by
-    /// deviation; FacadeSegmentation: the pieces in colours, and their blocks;
-    /// BlockSegmentation: the model and its blocks).
+    /// `model.gltf`: blocks as boxes and the rationalized surfaces coloured by deviation
+    /// (HotBlade), the pieces in colours and their blocks (FacadeSegmentation), the model
+    /// and its blocks (BlockSegmentation), the design, cut surfaces and block (PreCut).
     Gltf,
-    /// `sections.csv` (HotBlade: one row per fitted section; FacadeSegmentation: one row
-    /// per section part of a piece).
+    /// CSV: one row per fitted section (HotBlade), per section part of a piece
+    /// (FacadeSegmentation), per wire step of each cut (PreCut, `wire_dD_cC.csv`).
     Csv,
     /// `targets.json` and `targets.csv`: blade poses per block (HotBlade) or per piece
     /// (FacadeSegmentation: one pose per section the piece crosses).
@@ -277,10 +305,10 @@ pub enum OutputSpec {
         #[schemars(range(min = 2))]
         per_block: Option<u32>,
     },
-    /// ABB RAPID program for a MultiMove cell, one module and `.pgf` per blade robot
-    /// (HotBlade).
+    /// ABB RAPID programs for a MultiMove cell, one module and `.pgf` per blade robot
+    /// (HotBlade, FacadeSegmentation).
     Rapid,
-    /// Hot-wire G-code (pre-cut task).
+    /// Hot-wire G-code, one file per cut (PreCut, `wire_dD_cC.gcode`).
     GCode,
     /// `blocks.json` (BlockSegmentation): every block's centre, rotation `[w, x, y, z]`
     /// (block axes to model axes) and size, in the mesh's coordinates.

@@ -102,6 +102,13 @@ pub trait Visit {
     fn visit<T: Task>(self, task: &T) -> Self::Output;
 }
 
+/// Code that works for every task type, without a task value (the schema list):
+/// [`crate::job::TaskSpec::each`] calls [`visit`](VisitType::visit) once per task type.
+pub trait VisitType {
+    /// Does the work for task type `T`.
+    fn visit<T: Task>(&mut self);
+}
+
 /// The checks every task gets: its own ([`Task::check`]), that it writes every output the
 /// job asks for, and that only a task that follows a cutting-direction curve is given one.
 pub struct Check<'a, 'e> {

@@ -139,6 +139,8 @@ struct Source {
     path: PathBuf,
     module: Vec<String>,
     code: String,
+    /// The text as written (for paths in string attributes such as `serde(default = "..")`).
+    raw: String,
 }
 
 fn sources(src: &Path) -> Vec<Source> {
@@ -161,11 +163,13 @@ fn sources(src: &Path) -> Vec<Source> {
                 if module == ["lib"] || module == ["main"] {
                     module.clear();
                 }
-                let code = code_only(&std::fs::read_to_string(&p).unwrap());
+                let raw = std::fs::read_to_string(&p).unwrap();
+                let code = code_only(&raw);
                 out.push(Source {
                     path: p,
                     module,
                     code,
+                    raw,
                 });
             }
         }
@@ -240,6 +244,21 @@ fn references(s: &Source, top_level: &BTreeSet<String>) -> Vec<(String, usize)> 
         }
         i += 1;
     }
+    // paths in string attributes: `#[serde(default = "crate::spec::keep_length")]`
+    let mut rest = s.raw.as_str();
+    let mut offset = 0;
+    while let Some(k) = rest.find("\"crate::") {
+        let at = offset + k + 1;
+        let name = ident_at(&s.raw, at + 7);
+        let target = if top_level.contains(name) {
+            name.to_string()
+        } else {
+            "<root>".to_string()
+        };
+        refs.push((target, s.raw[..at].matches('\n').count() + 1));
+        offset = at;
+        rest = &s.raw[at..];
+    }
     refs
 }
 
@@ -299,9 +318,17 @@ fn graph() -> (
         .iter()
         .filter_map(|s| s.module.first().cloned())
         .collect();
+    let implements_task = |code: &str| {
+        code.split("impl").skip(1).any(|rest| {
+            let head = rest.split('{').next().unwrap_or("");
+            let mut words = head.split_whitespace();
+            let trait_path = words.next().unwrap_or("");
+            (trait_path == "Task" || trait_path.ends_with("::Task")) && words.next() == Some("for")
+        })
+    };
     let tasks: BTreeSet<String> = files
         .iter()
-        .filter(|s| s.code.contains("impl Task for"))
+        .filter(|s| implements_task(&s.code))
         .filter_map(|s| s.module.first().cloned())
         .collect();
     let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
@@ -345,6 +372,53 @@ fn no_task_imports_another_and_report_and_load_import_none() {
 }
 
 #[test]
+fn the_job_module_names_exactly_the_tasks_and_only_it_dispatches() {
+    let (graph, tasks, _) = graph();
+    let from_job: BTreeSet<String> = graph.get("job").cloned().unwrap_or_default();
+    let expected: BTreeSet<String> = tasks
+        .iter()
+        .cloned()
+        .chain(["spec".to_string(), "task".to_string()])
+        .collect();
+    assert_eq!(
+        from_job, expected,
+        "job must import every task module and only them"
+    );
+    // `TaskSpec::visit` is the one dispatch on the task: no other module names a variant
+    for s in sources(&src_dir()) {
+        if s.module == ["job"] {
+            continue;
+        }
+        if let Some(i) = s.code.find("TaskSpec::") {
+            let rest = ident_at(&s.code, i + "TaskSpec::".len());
+            assert!(
+                rest == "each" || rest == "visit",
+                "{}: matches on TaskSpec::{rest}; dispatch through TaskSpec::visit",
+                s.path.display()
+            );
+        }
+    }
+}
+
+#[test]
+fn task_names_are_the_job_file_variants() {
+    // the variants of `TaskSpec` as the job schema has them, and the tasks' `NAME`s
+    let schema: serde_json::Value = serde_json::from_str(&hotcut::job_schema_json()).unwrap();
+    let variants: Vec<String> = schema["$defs"]["TaskSpec"]["oneOf"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v["required"][0].as_str().unwrap().to_string())
+        .collect();
+    let names: Vec<String> = hotcut::schema_files()
+        .iter()
+        .filter_map(|f| f.task.map(str::to_string))
+        .collect();
+    assert_eq!(variants, names);
+    assert!(names.len() >= 6);
+}
+
+#[test]
 fn modules_import_each_other_without_circles() {
     let (graph, _, _) = graph();
     for (from, tos) in &graph {
@@ -370,6 +444,7 @@ fn the_checker_sees_imports_and_circles() {
              fn f() { super::super::c::go(); super::local(); }\n\
              mod tests { use super::super::*; fn t() { crate::Top; } }\n",
         ),
+        raw: String::new(),
     };
     let refs = references(&s, &top);
     assert_eq!(

@@ -520,7 +520,7 @@ impl Params {
             bad(
                 "directions",
                 None,
-                "at least one cutting direction, e.g. [X]".into(),
+                "needs at least one cutting direction, e.g. [X]".into(),
             );
         }
         for (i, &[x, y]) in self.directions.iter().enumerate() {

@@ -1,6 +1,6 @@
-//! A fit described for a report: the segment's family and named parameters, its quality,
-//! inflection points and the curve sampled; one input curve with its fit or why it could
-//! not be fitted; and totals over many. The `FitCurves` task of hotcut reports these.
+//! Fits described as plain, serializable data: the segment's family and named parameters,
+//! its quality, inflection points and the curve sampled; one input curve with its fit or
+//! why it could not be fitted; and totals over many curves.
 //!
 //! Entry points: [`CurveFit::new`](crate::fit::describe::CurveFit::new),
 //! [`FitSummary::of`](crate::fit::describe::FitSummary::of).
@@ -16,7 +16,7 @@ use crate::unit::Family;
 /// Points of the fitted segment a description holds.
 pub const FITTED_SAMPLES: usize = 400;
 
-/// Totals of a `FitCurves` run.
+/// Totals over many fitted curves.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct FitSummary {
     /// Curves read.

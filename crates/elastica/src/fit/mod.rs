@@ -64,6 +64,17 @@ pub enum FitConstraint {
     EndPointsAndLength,
 }
 
+impl FitConstraint {
+    /// The constraint of a fit whose ends must stay put (neighbouring blades meet there):
+    /// `Free` becomes `EndPoints`, the others are kept.
+    pub fn with_end_points(self) -> Self {
+        match self {
+            Self::Free => Self::EndPoints,
+            other => other,
+        }
+    }
+}
+
 /// Options of [`fit_points`].
 #[derive(Clone, Debug)]
 pub struct FitParams {

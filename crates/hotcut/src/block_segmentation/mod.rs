@@ -17,8 +17,6 @@
 /// Its files: `blocks.json`, `blocks.obj`, `model.gltf`, `progress.svg`.
 mod outputs;
 
-use std::sync::atomic::{AtomicUsize, Ordering};
-
 use geom::mesh::TriMesh;
 use geom::surface::Surface;
 use schemars::JsonSchema;
@@ -185,9 +183,7 @@ impl Task for BlockSegmentation {
         };
         let total = params.max_iterations as u64 * params.restarts as u64;
         progress.start("block segmentation", total);
-        let done = AtomicUsize::new(0);
         let segmentation = blocks::segment(mesh, params, &|p: blocks::Progress| {
-            done.fetch_add(1, Ordering::Relaxed);
             progress.tick();
             progress.message(&format!(
                 "run {} · iteration {} · {} blocks · E {:.4}",

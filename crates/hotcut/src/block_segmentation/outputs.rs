@@ -48,16 +48,8 @@ pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export
     let run = done.run;
     files.add("model.gltf", |buf| {
         let materials = vec![
-            Material {
-                name: "model".into(),
-                color: [0.8, 0.8, 0.82, 1.0],
-                blend: false,
-            },
-            Material {
-                name: "block".into(),
-                color: [0.95, 0.6, 0.2, 0.25],
-                blend: true,
-            },
+            Material::new("model", [0.8, 0.8, 0.82, 1.0], false),
+            Material::new("block", [0.95, 0.6, 0.2, 0.25], true),
         ];
         let mut meshes = vec![Mesh::from_trimesh("model", &run.mesh, 0)];
         for (i, b) in run.segmentation.blocks.iter().enumerate() {

@@ -30,7 +30,6 @@ mod outputs;
 /// Its report.
 pub mod report;
 
-use elastica::fit::FitConstraint;
 use facade_seg::inflection::{inflection_points, InflectionParams};
 use facade_seg::longest::{longest_elastica, LongestParams};
 use facade_seg::rationalize::{pose_pieces, PosedPiece, RationalizeParams};
@@ -453,10 +452,7 @@ fn rationalize(
     progress: &dyn Progress,
 ) -> std::result::Result<Vec<PosedPiece>, facade_seg::SegError> {
     let rp = RationalizeParams {
-        constraint: match params.constraint {
-            FitConstraintSpec::EndPointsAndLength => FitConstraint::EndPointsAndLength,
-            _ => FitConstraint::EndPoints,
-        },
+        constraint: params.constraint.to_fit().with_end_points(),
         samples: params.samples,
         blade: params.blade,
         tolerance_max: params.constraints.tolerance_max,

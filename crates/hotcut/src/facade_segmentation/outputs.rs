@@ -3,7 +3,7 @@
 //! section parts of every piece), `sections.csv` (one row per part) and the robot files
 //! shared with `HotBlade`.
 
-use export::fmt_float;
+use export::csv::Table;
 use export::gltf::{f32s, write_gltf, Material, Mesh};
 use export::obj::ObjWriter;
 use export::svg::{bounds, SvgDoc, Viewport};
@@ -13,7 +13,7 @@ use nalgebra::Vector3;
 use super::report::SegmentationReport;
 use super::{FacadeSegmentation, SegmentationRun};
 use crate::output::robot::{self, TargetsBlock, TargetsFile};
-use crate::output::Files;
+use crate::output::{block_material, Files};
 use crate::spec::OutputSpec;
 use crate::task::Finished;
 
@@ -55,11 +55,14 @@ fn targets(done: &Done<'_>) -> TargetsFile {
             .posed
             .iter()
             .filter(|p| !p.parts.is_empty())
-            .map(|p| TargetsBlock {
-                block: p.id,
-                origin: run.segmentation.pieces[p.id - 1].block.origin,
-                rotation: p.rotation,
-                poses: p.parts.iter().map(|q| q.pose).collect(),
+            .filter_map(|p| {
+                let piece = run.segmentation.pieces.iter().find(|q| q.id == p.id)?;
+                Some(TargetsBlock {
+                    block: p.id,
+                    origin: piece.block.origin,
+                    rotation: p.rotation,
+                    poses: p.parts.iter().map(|q| q.pose).collect(),
+                })
             })
             .collect(),
     }
@@ -98,7 +101,7 @@ pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
 
 /// `sections.csv`.
 pub(super) fn csv(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    files.add("sections.csv", |buf| parts_csv(done.report, buf))
+    files.text("sections.csv", parts_csv(done.report))
 }
 
 /// Plan view in the facade frame: x along the cut, y across it (`u`); for a horizontal
@@ -248,11 +251,7 @@ fn draw_piece(
 /// Pieces as coloured triangle strips between their consecutive section parts, and their
 /// blocks as translucent boxes.
 fn model(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
-    let mut materials = vec![Material {
-        name: "block".into(),
-        color: [0.85, 0.85, 0.8, 0.15],
-        blend: true,
-    }];
+    let mut materials = vec![block_material()];
     for (k, c) in PALETTE.iter().enumerate() {
         materials.push(Material {
             name: format!("piece_{k}"),
@@ -300,11 +299,11 @@ fn parts_obj(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
 }
 
 /// One row per section part of a piece.
-fn parts_csv(report: &SegmentationReport, buf: &mut Vec<u8>) -> export::Result<()> {
-    let mut s = String::from(
-        "piece,row,band,plane,offset,s0,s1,length,inflections,max_abs_curvature,start_x,start_y,start_z,end_x,end_y,end_z,blade_fit_rms,blade_fit_max\n",
+fn parts_csv(report: &SegmentationReport) -> String {
+    let mut t = Table::new(
+        "piece,row,band,plane,offset,s0,s1,length,inflections,max_abs_curvature,start_x,start_y,start_z,end_x,end_y,end_z,blade_fit_rms,blade_fit_max",
     );
-    let f = |v: f64| fmt_float(v, 9);
+    let f = Table::num;
     for p in &report.pieces {
         for sec in &p.sections {
             let mut row = vec![
@@ -324,10 +323,8 @@ fn parts_csv(report: &SegmentationReport, buf: &mut Vec<u8>) -> export::Result<(
                 Some(b) => row.extend([f(b.rms), f(b.max)]),
                 None => row.extend([String::new(), String::new()]),
             }
-            s.push_str(&row.join(","));
-            s.push('\n');
+            t.row(&row);
         }
     }
-    buf.extend(s.into_bytes());
-    Ok(())
+    t.finish()
 }

@@ -8,8 +8,7 @@ mod outputs;
 /// Its report.
 pub mod report;
 
-use elastica::fit::FitConstraint;
-use hotblade::{Continuity, Rationalization};
+use hotblade::Rationalization;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -18,7 +17,7 @@ use crate::error::{HotcutError, JobError, Result};
 use crate::output::robot::Motion;
 use crate::progress::Progress;
 use crate::report::SurfaceInfo;
-use crate::spec::{keep_length, FitConstraintSpec, OutputKind, OutputSpec};
+use crate::spec::{keep_length, Continuity, FitConstraintSpec, OutputKind, OutputSpec};
 use crate::spec::{APPROACH_MM, BLADE_SPEED_MM_PER_S};
 use crate::task::{Output, Task};
 use report::{HotBladeReport, HotBladeSettings};
@@ -97,6 +96,8 @@ pub struct HotBladeParams {
     pub pipeline: hotblade::Params,
     /// The fit constraint as the job writes it.
     pub constraint: FitConstraintSpec,
+    /// The continuity as the job writes it.
+    pub continuity: Continuity,
     /// Cutting speed and approach distance of the robot programs.
     pub motion: Motion,
 }
@@ -111,6 +112,24 @@ pub struct HotBladeRun {
 }
 
 const PTR: &str = "/task/HotBlade";
+
+impl HotBlade {
+    /// The pipeline's parameters this task's fields set (the job's block, direction,
+    /// curve, blade, tolerances and sectioning left at their defaults).
+    fn pipeline_fields(&self) -> hotblade::Params {
+        hotblade::Params {
+            targets: self.targets_per_block as usize,
+            constraint: self.constraint.to_fit().with_end_points(),
+            continuity: self.continuity.to_hotblade(),
+            split_depth: self.split_depth,
+            samples: self.samples as usize,
+            max_plane_angle: self.max_plane_angle,
+            refine: self.refine as usize,
+            grid_points: 60,
+            ..hotblade::Params::default()
+        }
+    }
+}
 
 impl Task for HotBlade {
     const NAME: &'static str = "HotBlade";
@@ -134,12 +153,21 @@ impl Task for HotBlade {
             errors.push(job.error(&format!("{PTR}/constraint"), "HotBlade fits keep the sections' end points so that neighbouring blocks meet: use EndPoints or EndPointsAndLength"));
         }
         job.check_motion(PTR, self.speed, self.approach, errors);
-        let angle = self.max_plane_angle;
-        if !(0.0..=std::f64::consts::FRAC_PI_2).contains(&angle) {
-            errors.push(job.error(
-                &format!("{PTR}/max_plane_angle"),
-                format!("the plane angle must be in [0, π/2], got {angle}"),
-            ));
+        // the pipeline's own checks of these fields and of the cutting curve
+        let pipeline = hotblade::Params {
+            curve: job.cutting.curve.clone(),
+            ..self.pipeline_fields()
+        };
+        for p in pipeline.problems() {
+            let (pointer, message) = match p.field {
+                "curve" => ("/cutting/curve".to_string(), p.message),
+                "targets" => (
+                    format!("{PTR}/targets_per_block"),
+                    format!("targets_per_block {}", p.message),
+                ),
+                field => (format!("{PTR}/{field}"), format!("{field} {}", p.message)),
+            };
+            errors.push(job.error(&pointer, message));
         }
         for (i, o) in job.outputs.iter().enumerate() {
             if let OutputSpec::RobotTargets {
@@ -168,23 +196,14 @@ impl Task for HotBlade {
                 origin: block.origin.map(|o| [o.0, o.1, o.2]),
                 direction: job.direction,
                 curve: job.cutting.curve.clone(),
-                targets: self.targets_per_block as usize,
-                constraint: match self.constraint {
-                    FitConstraintSpec::EndPointsAndLength => FitConstraint::EndPointsAndLength,
-                    _ => FitConstraint::EndPoints,
-                },
-                continuity: self.continuity,
-                split_depth: self.split_depth,
-                samples: self.samples as usize,
-                max_plane_angle: self.max_plane_angle,
-                refine: self.refine as usize,
-                grid_points: 60,
                 blade: job.blade,
                 tolerance_rms: job.tolerance.rms,
                 tolerance_max: job.tolerance.max,
                 sectioning: job.sectioning(),
+                ..self.pipeline_fields()
             },
             constraint: self.constraint,
+            continuity: self.continuity,
             motion: Motion {
                 speed: self.speed.unwrap_or(BLADE_SPEED_MM_PER_S * per_mm),
                 approach: self.approach.unwrap_or(APPROACH_MM * per_mm),
@@ -225,7 +244,7 @@ impl Task for HotBlade {
             settings: HotBladeSettings {
                 targets_per_block: p.targets,
                 constraint: params.constraint,
-                continuity: p.continuity,
+                continuity: params.continuity,
                 split_depth: p.split_depth,
                 samples: p.samples,
                 refine: p.refine,

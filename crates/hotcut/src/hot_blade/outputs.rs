@@ -3,7 +3,7 @@
 //! job), an SVG per block of its worst section (hot-blade paper fig. 15) and a CSV of every
 //! fitted section.
 
-use export::fmt_float;
+use export::csv::Table;
 use export::gltf::{f32s, write_gltf, Material, Mesh};
 use export::obj::ObjWriter;
 use export::svg::{bounds, SvgDoc, Viewport};
@@ -12,7 +12,7 @@ use nalgebra::Vector3;
 
 use super::HotBlade;
 use crate::output::robot::{self, TargetsBlock, TargetsFile};
-use crate::output::Files;
+use crate::output::{block_material, Files};
 use crate::spec::OutputSpec;
 use crate::task::Finished;
 
@@ -84,14 +84,14 @@ pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export
 
 /// `sections.csv`: one row per fitted section.
 pub(super) fn csv(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    files.add("sections.csv", |buf| sections_csv(&done.run.cut, buf))
+    files.text("sections.csv", sections_csv(&done.run.cut))
 }
 
-fn sections_csv(run: &Rationalization, buf: &mut Vec<u8>) -> export::Result<()> {
-    let mut s = String::from(
-        "block,pose,plane,kind,design_length,fit_length,l2,rms,max,blade_max_abs_curvature,blade_inflections,plane_angle\n",
+fn sections_csv(run: &Rationalization) -> String {
+    let mut t = Table::new(
+        "block,pose,plane,kind,design_length,fit_length,l2,rms,max,blade_max_abs_curvature,blade_inflections,plane_angle",
     );
-    let f = |v: f64| fmt_float(v, 9);
+    let f = Table::num;
     for b in &run.blocks {
         for (k, sec) in b.sections.iter().enumerate() {
             let row = [
@@ -108,12 +108,10 @@ fn sections_csv(run: &Rationalization, buf: &mut Vec<u8>) -> export::Result<()> 
                 sec.blade.inflections.to_string(),
                 f(sec.plane_angle),
             ];
-            s.push_str(&row.join(","));
-            s.push('\n');
+            t.row(&row);
         }
     }
-    buf.extend(s.into_bytes());
-    Ok(())
+    t.finish()
 }
 
 /// Deviation colour: blue at 0, green at half the tolerance, red at or beyond it.
@@ -131,16 +129,8 @@ fn deviation_color(dev: f64, tolerance: f64) -> [f32; 4] {
 
 fn model(run: &Rationalization, tol: f64, buf: &mut Vec<u8>) -> export::Result<()> {
     let materials = vec![
-        Material {
-            name: "block".into(),
-            color: [0.85, 0.85, 0.8, 0.15],
-            blend: true,
-        },
-        Material {
-            name: "surface".into(),
-            color: [1.0, 1.0, 1.0, 1.0],
-            blend: false,
-        },
+        block_material(),
+        Material::new("surface", [1.0, 1.0, 1.0, 1.0], false),
     ];
     let mut meshes = Vec::new();
     let g = &run.grid;

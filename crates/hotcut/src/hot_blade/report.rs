@@ -4,12 +4,11 @@
 //! [`hotblade`] pipeline's.
 
 use hotblade::result::{BlockReport, GridInfo, HotBladeSummary, SplitInfo};
-use hotblade::Continuity;
 use schemars::JsonSchema;
 use serde::Serialize;
 
 use crate::report::SurfaceInfo;
-use crate::spec::{FitConstraintSpec, Units};
+use crate::spec::{Continuity, FitConstraintSpec, Units};
 
 /// The result of the `HotBlade` task.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]

@@ -48,36 +48,9 @@ impl ResolvedJob {
     }
 }
 
-/// Checks a cutting-direction curve and returns its unit chord.
-fn check_curve(curve: &[(f64, f64)]) -> Result<Vector3<f64>, String> {
-    if curve.len() < 2 {
-        return Err(format!("needs at least 2 points, got {}", curve.len()));
-    }
-    if let Some(i) = curve
-        .iter()
-        .position(|p| !p.0.is_finite() || !p.1.is_finite())
-    {
-        return Err(format!("point {i} is not finite"));
-    }
-    let (a, b) = (curve[0], curve[curve.len() - 1]);
-    let chord = Vector3::new(b.0 - a.0, b.1 - a.1, 0.0);
-    if !(chord.norm() > 0.0) {
-        return Err("the first and last points coincide".into());
-    }
-    let d = chord.normalize();
-    for i in 1..curve.len() {
-        let step = (curve[i].0 - curve[i - 1].0) * d.x + (curve[i].1 - curve[i - 1].1) * d.y;
-        if !(step > 0.0) {
-            return Err(format!(
-                "point {i} does not advance along the chord from the first to the last point (planes would cross)"
-            ));
-        }
-    }
-    Ok(d)
-}
-
-/// The unit cutting direction: the chord of `cutting.curve` when given, else
-/// `cutting.direction` (+x when that is zero, which is reported).
+/// The unit cutting direction: the chord of `cutting.curve` when it has one (the task
+/// that follows the curve checks it), else `cutting.direction` (+x when that is zero,
+/// which is reported).
 fn direction(path: &Path, job: &Job, errors: &mut Vec<JobError>) -> Vector3<f64> {
     let (dx, dy, dz) = job.cutting.direction;
     let direction = Vector3::new(dx, dy, dz);
@@ -91,11 +64,8 @@ fn direction(path: &Path, job: &Job, errors: &mut Vec<JobError>) -> Vector3<f64>
         ));
         Vector3::x()
     };
-    if let Some(curve) = &job.cutting.curve {
-        match check_curve(curve) {
-            Ok(chord) => unit = chord,
-            Err(m) => errors.push(JobError::semantic(path, "/cutting/curve", m)),
-        }
+    if let Some(Ok(chord)) = job.cutting.curve.as_deref().map(hotblade::curve_chord) {
+        unit = chord;
     }
     unit
 }
@@ -127,11 +97,11 @@ pub fn resolve(path: &Path, job: Job) -> Result<ResolvedJob, Vec<JobError>> {
     let fields = JobFields {
         path,
         base,
-        units: job.units,
         surface: job.surface.as_ref(),
         block: job.block.as_ref(),
         blade: job.blade.as_ref(),
         wire: job.wire.as_ref(),
+        cutting: &job.cutting,
         outputs: &job.outputs,
     };
     job.task.visit(Check {

@@ -6,38 +6,65 @@
 /// Robot targets and RAPID programs from blade poses.
 pub mod robot;
 
-/// The files of one run, rendered into memory in the order the job lists its outputs; the
-/// runner writes them into the output folder.
-#[derive(Debug, Default)]
+use std::path::{Path, PathBuf};
+
+/// The translucent grey blocks of the hot-blade tasks' `model.gltf`.
+pub fn block_material() -> export::gltf::Material {
+    export::gltf::Material::new("block", [0.85, 0.85, 0.8, 0.15], true)
+}
+
+/// The files of one run, written one by one into the run's (temporary) output folder in
+/// the order the job lists its outputs: each is rendered into memory, written, and
+/// dropped, so a run holds one file at a time.
+#[derive(Debug)]
 pub struct Files {
-    files: Vec<(String, Vec<u8>)>,
+    dir: PathBuf,
+    names: Vec<String>,
 }
 
 impl Files {
-    /// Renders file `name` with `write`. On error the file stays last in the list, so the
-    /// caller can name it.
+    /// Files written into `dir`.
+    pub fn new(dir: &Path) -> Self {
+        Self {
+            dir: dir.to_path_buf(),
+            names: Vec::new(),
+        }
+    }
+
+    /// Renders file `name` with `write` and writes it. On error the file is the last
+    /// named, so the caller can say which one failed.
     ///
     /// # Errors
-    /// `write`'s.
+    /// `write`'s, or the file system's.
     pub fn add(
         &mut self,
         name: impl Into<String>,
         write: impl FnOnce(&mut Vec<u8>) -> export::Result<()>,
     ) -> export::Result<()> {
-        self.files.push((name.into(), Vec::new()));
-        let last = self.files.len() - 1;
-        write(&mut self.files[last].1)
+        let name = name.into();
+        let path = self.dir.join(&name);
+        self.names.push(name);
+        let mut buf = Vec::new();
+        write(&mut buf)?;
+        std::fs::write(path, buf)?;
+        Ok(())
     }
 
-    /// Adds file `name` holding `text`.
-    pub fn text(&mut self, name: impl Into<String>, text: String) {
-        self.files.push((name.into(), text.into_bytes()));
-    }
-
-    /// Adds file `name` holding `value` as JSON rounded to `digits` significant digits.
+    /// Writes file `name` holding `text`.
     ///
     /// # Errors
-    /// When `value` cannot be serialised.
+    /// The file system's.
+    pub fn text(&mut self, name: impl Into<String>, text: String) -> export::Result<()> {
+        self.add(name, |buf| {
+            buf.extend(text.into_bytes());
+            Ok(())
+        })
+    }
+
+    /// Writes file `name` holding `value` as JSON rounded to `digits` significant digits.
+    ///
+    /// # Errors
+    /// When `value` cannot be serialised, or the file system's.
     pub fn json(
         &mut self,
         name: impl Into<String>,
@@ -45,17 +72,16 @@ impl Files {
         digits: usize,
     ) -> export::Result<()> {
         let text = export::json::to_json_string(value, digits)?;
-        self.text(name, text);
-        Ok(())
+        self.text(name, text)
     }
 
-    /// Name of the last file added (the one that failed, after an error).
+    /// Name of the last file (the one that failed, after an error).
     pub fn last_name(&self) -> Option<&str> {
-        self.files.last().map(|(n, _)| n.as_str())
+        self.names.last().map(String::as_str)
     }
 
-    /// The files, in order.
-    pub fn into_vec(self) -> Vec<(String, Vec<u8>)> {
-        self.files
+    /// The names written, in order.
+    pub fn into_names(self) -> Vec<String> {
+        self.names
     }
 }

@@ -3,6 +3,7 @@
 //! (MultiMove, a work object per block, targets in mm in the block's frame).
 
 use elastica::sweep::BladePose;
+use export::csv::Table;
 use export::fmt_float;
 use export::rapid::{write_module, write_pgf, RapidBlock, RapidModule, RapidTarget};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
@@ -64,7 +65,7 @@ pub fn write(
     match kind {
         OutputKind::RobotTargets => {
             files.json("targets.json", t, TARGET_DIGITS)?;
-            files.add("targets.csv", |buf| targets_csv(t, buf))
+            files.text("targets.csv", targets_csv(t))
         }
         OutputKind::Rapid => {
             for robot in 0..2 {
@@ -79,12 +80,12 @@ pub fn write(
     }
 }
 
-fn targets_csv(t: &TargetsFile, buf: &mut Vec<u8>) -> export::Result<()> {
-    let mut s = String::from(
-        "block,pose,end,x,y,z,tangent_x,tangent_y,tangent_z,q_w,q_x,q_y,q_z,normal_x,normal_y,normal_z\n",
+fn targets_csv(targets: &TargetsFile) -> String {
+    let mut t = Table::new(
+        "block,pose,end,x,y,z,tangent_x,tangent_y,tangent_z,q_w,q_x,q_y,q_z,normal_x,normal_y,normal_z",
     );
-    let f = |v: f64| fmt_float(v, 9);
-    for b in &t.blocks {
+    let f = Table::num;
+    for b in &targets.blocks {
         for (k, pose) in b.poses.iter().enumerate() {
             for (e, end) in pose.ends.iter().enumerate() {
                 let mut row = vec![
@@ -96,13 +97,11 @@ fn targets_csv(t: &TargetsFile, buf: &mut Vec<u8>) -> export::Result<()> {
                 row.extend(end.tangent.iter().map(|v| f(*v)));
                 row.extend(end.rotation.iter().map(|v| f(*v)));
                 row.extend(pose.plane_normal.iter().map(|v| f(*v)));
-                s.push_str(&row.join(","));
-                s.push('\n');
+                t.row(&row);
             }
         }
     }
-    buf.extend(s.into_bytes());
-    Ok(())
+    t.finish()
 }
 
 fn uq(q: &[f64; 4]) -> UnitQuaternion<f64> {

@@ -165,6 +165,8 @@ pub struct PreCutRun {
     pub cut: ruled::PreCut,
     /// The design surface.
     pub surface: Surface,
+    /// Per direction, the wire's path of every cut (none without a wire machine).
+    pub wires: Vec<Vec<ruled::wire::WirePath>>,
 }
 
 /// The wire machine's settings of a job, in job units (`None` without `wire`).
@@ -278,16 +280,21 @@ impl Task for PreCut {
         })
         .map_err(|e| job.fail(e.to_string()))?;
         progress.finish();
-        if let Some(w) = &params.wire {
-            // Refuse bad machine settings now rather than while writing files.
-            for (i, d) in cut.directions.iter().enumerate() {
-                ruled::wire::paths(d, i, params.block.min[2], w)
-                    .map_err(|e| job.fail(e.to_string()))?;
-            }
-        }
+        // the wire's paths now: bad machine settings fail the run, not the writing
+        let wires = match &params.wire {
+            Some(w) => cut
+                .directions
+                .iter()
+                .enumerate()
+                .map(|(i, d)| ruled::wire::paths(d, i, params.block.min[2], w))
+                .collect::<std::result::Result<Vec<_>, _>>()
+                .map_err(|e| job.fail(e.to_string()))?,
+            None => Vec::new(),
+        };
         Ok(PreCutRun {
             cut,
             surface: surface.clone(),
+            wires,
         })
     }
 

@@ -89,21 +89,9 @@ fn meshes_obj(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> expor
 
 fn model(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> export::Result<()> {
     let materials = vec![
-        Material {
-            name: "design".into(),
-            color: [0.8, 0.8, 0.82, 1.0],
-            blend: false,
-        },
-        Material {
-            name: "cut".into(),
-            color: [0.85, 0.2, 0.15, 0.45],
-            blend: true,
-        },
-        Material {
-            name: "block".into(),
-            color: [0.2, 0.4, 0.9, 0.12],
-            blend: true,
-        },
+        Material::new("design", [0.8, 0.8, 0.82, 1.0], false),
+        Material::new("cut", [0.85, 0.2, 0.15, 0.45], true),
+        Material::new("block", [0.2, 0.4, 0.9, 0.12], true),
     ];
     let mut meshes = vec![Mesh::from_trimesh("design", &design_mesh(run)?, 0)];
     for (i, d) in run.cut.directions.iter().enumerate() {
@@ -122,18 +110,15 @@ pub(super) fn wire(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export
     };
     let gcode = o.kind() == OutputKind::GCode;
     let block = done.params.block;
-    for (i, d) in done.run.cut.directions.iter().enumerate() {
-        let Ok(paths) = ruled::wire::paths(d, i, block.min[2], &w) else {
-            continue;
-        };
+    for (i, paths) in done.run.wires.iter().enumerate() {
         for path in paths {
             let ext = if gcode { "gcode" } else { "csv" };
             let text = if gcode {
-                ruled::wire::gcode(&path, &w, block.max[2], block.min[2], &done.job.name)
+                ruled::wire::gcode(path, &w, block.max[2], block.min[2], &done.job.name)
             } else {
-                ruled::wire::csv(&path)
+                ruled::wire::csv(path)
             };
-            files.text(format!("wire_d{}_c{}.{ext}", i + 1, path.leg + 1), text);
+            files.text(format!("wire_d{}_c{}.{ext}", i + 1, path.leg + 1), text)?;
         }
     }
     Ok(())
@@ -145,8 +130,7 @@ const PANELS: usize = 5;
 /// One row per direction, `PANELS` cross sections each: block outline, design curve
 /// (black), convex hull (grey, dashed look by colour), the cut polygon (red).
 fn sections_svg(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> export::Result<()> {
-    let to_err =
-        |e: ruled::PreCutError| export::ExportError::Io(std::io::Error::other(e.to_string()));
+    let to_err = |e: ruled::PreCutError| export::ExportError::Data(e.to_string());
     let height = ruled::Height::new(&run.surface).map_err(to_err)?;
     let (_, hull) = ruled::volume::hull_top(&height, block, 100).map_err(to_err)?;
     let (pw, ph, pad) = (260.0, 180.0, 16.0);
