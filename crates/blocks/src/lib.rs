@@ -148,16 +148,13 @@ impl Placement {
         )
     }
 
-    /// The block as a closed box mesh (corners of [`Cuboid::corners`], faces of
-    /// [`geom::mesh::BOX_FACES`]).
+    /// The block as a closed box mesh ([`geom::mesh::TriMesh::cuboid`] of
+    /// [`Cuboid::corners`]).
     ///
     /// # Errors
-    /// A degenerate box (a zero edge).
+    /// A box with a non-finite corner.
     pub fn mesh(&self) -> std::result::Result<geom::mesh::TriMesh, geom::GeomError> {
-        geom::mesh::TriMesh::try_new(
-            self.cuboid().corners().to_vec(),
-            geom::mesh::BOX_FACES.to_vec(),
-        )
+        geom::mesh::TriMesh::cuboid(self.cuboid().corners())
     }
 }
 

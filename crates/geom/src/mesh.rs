@@ -86,6 +86,15 @@ impl std::fmt::Display for MeshWarning {
 }
 
 impl TriMesh {
+    /// A closed box from its eight corners (bit `k` of the index: the + side of axis `k`),
+    /// with the faces of [`BOX_FACES`].
+    ///
+    /// # Errors
+    /// A non-finite corner.
+    pub fn cuboid(corners: [Vector3<f64>; 8]) -> Result<Self> {
+        Self::try_new(corners.to_vec(), BOX_FACES.to_vec())
+    }
+
     /// A mesh from vertices and triangles.
     ///
     /// # Errors

@@ -54,15 +54,15 @@ pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export
     files.add("model.gltf", |buf| model(done.run, &done.params.block, buf))
 }
 
-/// The block as a box mesh.
+/// The block as a box mesh: its centre ± half its size on each axis.
 fn block_box(b: &ruled::Block) -> export::Result<TriMesh> {
     let (lo, hi) = (Vector3::from(b.min), Vector3::from(b.max));
-    let placement = blocks::Placement {
-        center: ((lo + hi) / 2.0).into(),
-        rotation: [1.0, 0.0, 0.0, 0.0],
-        size: (hi - lo).into(),
-    };
-    Ok(placement.mesh()?)
+    let (centre, half) = ((lo + hi) / 2.0, (hi - lo) / 2.0);
+    let corners = std::array::from_fn(|i| {
+        let side = |k: usize| if i & (1 << k) == 0 { -half[k] } else { half[k] };
+        centre + Vector3::new(side(0), side(1), side(2))
+    });
+    Ok(TriMesh::cuboid(corners)?)
 }
 
 /// The design surface as a mesh (height fields and splines tessellated).
