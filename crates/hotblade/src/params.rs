@@ -27,7 +27,7 @@ pub struct BladeLimits {
     pub max_inflections: u32,
 }
 
-/// Parameters of [`rationalize`]. Lengths are in the surface's unit; the defaults are the
+/// Parameters of [`rationalize`](crate::rationalize). Lengths are in the surface's unit; the defaults are the
 /// paper's cell in millimetres.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Params {
