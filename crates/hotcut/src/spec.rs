@@ -20,6 +20,14 @@ pub enum Units {
 }
 
 impl Units {
+    /// Name as written in job files: `Millimetre` or `Metre`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Millimetre => "Millimetre",
+            Self::Metre => "Metre",
+        }
+    }
+
     /// Short symbol for messages: `mm` or `m`.
     pub fn symbol(self) -> &'static str {
         match self {

@@ -41,12 +41,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::context::{Context, JobFields};
 use crate::error::{JobError, Result};
-use crate::output::robot::Motion;
 use crate::progress::Progress;
 use crate::report::SurfaceInfo;
 use crate::spec::{keep_length, FitConstraintSpec, OutputKind, OutputSpec};
 use crate::spec::{APPROACH_MM, BLADE_SPEED_MM_PER_S};
 use crate::task::{Output, Task};
+use export::robot::Motion;
 use report::{SegmentationReport, SegmentationSettings};
 
 /// Facade segmentation for hot-blade cutting (thesis ch. 5): the sections of

@@ -12,10 +12,11 @@ use nalgebra::Vector3;
 
 use super::report::SegmentationReport;
 use super::{FacadeSegmentation, SegmentationRun};
-use crate::output::robot::{self, TargetsBlock, TargetsFile};
+use crate::output::robot;
 use crate::output::{block_material, Files};
 use crate::spec::OutputSpec;
 use crate::task::Finished;
+use export::robot::{Targets, TargetsBlock};
 
 /// Piece colours, cycled by piece id (a qualitative palette readable in print).
 const PALETTE: [[f32; 3]; 10] = [
@@ -46,26 +47,23 @@ fn hex(c: [f32; 3]) -> String {
 type Done<'a> = Finished<'a, FacadeSegmentation>;
 
 /// The robot targets: one "block" per posed piece, its poses in cutting order.
-fn targets(done: &Done<'_>) -> TargetsFile {
+fn targets(done: &Done<'_>) -> Targets {
     let run = done.run;
-    TargetsFile {
-        units: done.job.units,
-        blade_length: done.params.blade.length,
-        blocks: run
-            .posed
-            .iter()
-            .filter(|p| !p.parts.is_empty())
-            .filter_map(|p| {
-                let piece = run.segmentation.pieces.iter().find(|q| q.id == p.id)?;
-                Some(TargetsBlock {
-                    block: p.id,
-                    origin: piece.block.origin,
-                    rotation: p.rotation,
-                    poses: p.parts.iter().map(|q| q.pose).collect(),
-                })
+    let blocks = run
+        .posed
+        .iter()
+        .filter(|p| !p.parts.is_empty())
+        .filter_map(|p| {
+            let piece = run.segmentation.pieces.iter().find(|q| q.id == p.id)?;
+            Some(TargetsBlock {
+                block: p.id,
+                origin: piece.block.origin,
+                rotation: p.rotation,
+                poses: p.parts.iter().map(|q| robot::pose(&q.pose)).collect(),
             })
-            .collect(),
-    }
+        })
+        .collect();
+    robot::targets(done.job.units, done.params.blade.length, blocks)
 }
 
 /// `targets.json` and `targets.csv`, or the RAPID modules `FacadeSeg_T_ROB<n>.mod/.pgf`.

@@ -14,12 +14,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::context::{Context, JobFields};
 use crate::error::{HotcutError, JobError, Result};
-use crate::output::robot::Motion;
 use crate::progress::Progress;
 use crate::report::SurfaceInfo;
 use crate::spec::{keep_length, Continuity, FitConstraintSpec, OutputKind, OutputSpec};
 use crate::spec::{APPROACH_MM, BLADE_SPEED_MM_PER_S};
 use crate::task::{Output, Task};
+use export::robot::Motion;
 use report::{HotBladeReport, HotBladeSettings};
 
 /// Hot-blade rationalization ("Hot Blade Cuttings" §6–7, "Robotic Hot-Blade Cutting"

@@ -11,31 +11,30 @@ use hotblade::{BlockResult, Rationalization};
 use nalgebra::Vector3;
 
 use super::HotBlade;
-use crate::output::robot::{self, TargetsBlock, TargetsFile};
+use crate::output::robot;
 use crate::output::{block_material, Files};
 use crate::spec::OutputSpec;
 use crate::task::Finished;
+use export::robot::{Targets, TargetsBlock};
 
 type Done<'a> = Finished<'a, HotBlade>;
 
 /// The targets of a run: every block's poses in cutting order.
-fn targets(done: &Done<'_>) -> TargetsFile {
-    TargetsFile {
-        units: done.job.units,
-        blade_length: done.params.pipeline.blade.length,
-        blocks: done
-            .run
-            .cut
-            .blocks
-            .iter()
-            .map(|b| TargetsBlock {
-                block: b.report.block,
-                origin: b.report.origin,
-                rotation: b.rotation,
-                poses: b.sections.iter().map(|s| s.pose).collect(),
-            })
-            .collect(),
-    }
+fn targets(done: &Done<'_>) -> Targets {
+    let blocks = done
+        .run
+        .cut
+        .blocks
+        .iter()
+        .map(|b| TargetsBlock {
+            block: b.report.block,
+            origin: b.report.origin,
+            rotation: b.rotation,
+            poses: b.sections.iter().map(|s| robot::pose(&s.pose)).collect(),
+        })
+        .collect();
+    let length = done.params.pipeline.blade.length;
+    robot::targets(done.job.units, length, blocks)
 }
 
 /// `targets.json` and `targets.csv`, or the RAPID modules `HotBlade_T_ROB<n>.mod/.pgf`.
