@@ -110,6 +110,50 @@ fn longest_from(
     }
 }
 
+/// The longest part of section `j` from `cur[j]` whose far end stays within a block's width
+/// (across the facade) of the smallest start in its row of blocks (`rows`): a piece is cut
+/// from one block. Infinite when the rest of the section fits.
+fn row_cap(facade: &Facade, c: &Constraints, rows: &[usize], j: usize, cur: &[f64]) -> f64 {
+    let across_u = |j: usize, s: f64| facade.sections[j].point(s).x;
+    let umin = (0..cur.len())
+        .filter(|&i| rows[i] == rows[j])
+        .map(|i| across_u(i, cur[i]))
+        .fold(f64::INFINITY, f64::min);
+    let limit = umin + c.block[1] * (1.0 - 1e-12);
+    let sec = &facade.sections[j];
+    let (mut lo, mut hi) = (cur[j], sec.length);
+    if across_u(j, hi) <= limit {
+        return f64::INFINITY;
+    }
+    // u grows along a section that runs across the facade: bisection to 1e-9 of it
+    for _ in 0..200 {
+        if hi - lo <= 1e-9 * sec.length {
+            break;
+        }
+        let mid = 0.5 * (lo + hi);
+        if across_u(j, mid) <= limit {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo - cur[j]
+}
+
+/// Part lengths evened out: each at most `max_step` longer than its neighbours' bounds,
+/// swept forward then backward.
+fn even_out(bound: Vec<f64>, max_step: f64) -> Vec<f64> {
+    let n = bound.len();
+    let mut limit = bound;
+    for j in 1..n {
+        limit[j] = limit[j].min(limit[j - 1] + max_step);
+    }
+    for j in (0..n.saturating_sub(1)).rev() {
+        limit[j] = limit[j].min(limit[j + 1] + max_step);
+    }
+    limit
+}
+
 /// Runs the longest-elastica algorithm. `progress` is called once per section per band.
 ///
 /// # Errors
@@ -135,34 +179,6 @@ pub fn longest_elastica(
     // a part shorter than this is rounding: the section is done
     let done = |j: usize, s: f64| facade.sections[j].length - s <= 1e-9 * c.blade_length;
     let rows = rows_of(facade, c);
-    let across_u = |j: usize, s: f64| facade.sections[j].point(s).x;
-    // longest part of section j from cur[j] whose far end stays within a block's width
-    // (across the facade) of the smallest start in its row
-    let cap = |j: usize, cur: &[f64]| -> f64 {
-        let umin = (0..n)
-            .filter(|&i| rows[i] == rows[j])
-            .map(|i| across_u(i, cur[i]))
-            .fold(f64::INFINITY, f64::min);
-        let limit = umin + c.block[1] * (1.0 - 1e-12);
-        let sec = &facade.sections[j];
-        let (mut lo, mut hi) = (cur[j], sec.length);
-        if across_u(j, hi) <= limit {
-            return f64::INFINITY;
-        }
-        // u grows along a section that runs across the facade: bisection to 1e-9 of it
-        for _ in 0..200 {
-            if hi - lo <= 1e-9 * sec.length {
-                break;
-            }
-            let mid = 0.5 * (lo + hi);
-            if across_u(j, mid) <= limit {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        lo - cur[j]
-    };
     let mut cur = vec![0.0f64; n];
     let mut bands: Vec<Vec<Option<(f64, f64)>>> = Vec::new();
     let mut seams = Vec::new();
@@ -189,7 +205,7 @@ pub fn longest_elastica(
         let found: Vec<Option<(f64, bool)>> = found
             .into_iter()
             .enumerate()
-            .map(|(j, f)| f.map(|(len, ok)| (len.min(cap(j, &cur)), ok)))
+            .map(|(j, f)| f.map(|(len, ok)| (len.min(row_cap(facade, c, &rows, j, &cur)), ok)))
             .collect();
         // even the parts out: a part limited by its fit bounds its neighbours' lengths;
         // parts reaching the far edge bound nothing
@@ -199,13 +215,7 @@ pub fn longest_elastica(
                 _ => f64::INFINITY,
             })
             .collect();
-        let mut limit = bound.clone();
-        for j in 1..n {
-            limit[j] = limit[j].min(limit[j - 1] + max_step);
-        }
-        for j in (0..n.saturating_sub(1)).rev() {
-            limit[j] = limit[j].min(limit[j + 1] + max_step);
-        }
+        let limit = even_out(bound, max_step);
         unmet = (0..n)
             .filter(|&j| found[j].is_some_and(|(_, ok)| !ok))
             .map(|j| facade.sections[j].index)

@@ -455,6 +455,15 @@ fn the_checker_sees_imports_and_circles() {
             ("<root>".to_string(), 4)
         ]
     );
+    // a path in a string attribute is an import too
+    let raw = "#[serde(default = \"crate::c::f\")]\nx: u8,\n";
+    let attr = Source {
+        path: "x/a.rs".into(),
+        module: vec!["a".into()],
+        code: code_only(raw),
+        raw: raw.to_string(),
+    };
+    assert_eq!(references(&attr, &top), vec![("c".to_string(), 1)]);
     let g: BTreeMap<String, BTreeSet<String>> = [("a", "b"), ("b", "c"), ("c", "a")]
         .iter()
         .map(|(x, y)| (x.to_string(), [y.to_string()].into()))
