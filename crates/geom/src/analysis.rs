@@ -180,6 +180,80 @@ fn refine_max(curve: &dyn PlanarCurve, mut a: f64, mut b: f64, tol: f64) -> f64 
     0.5 * (a + b)
 }
 
+/// Parameters where the sampled curvature `ks` (at `ts`) changes sign, each refined by
+/// bisection to `tolerance`; exact zeros are skipped (the last non-zero sign carries).
+fn sign_changes(curve: &dyn PlanarCurve, ts: &[f64], ks: &[f64], tolerance: f64) -> Vec<f64> {
+    let mut raw = Vec::new();
+    let mut last: Option<(usize, i8)> = None;
+    for (i, &k) in ks.iter().enumerate() {
+        let s = sign(k);
+        if s == 0 {
+            continue;
+        }
+        if let Some((j, ls)) = last {
+            if ls != s {
+                raw.push(bisect_inflection(curve, ts[j], ts[i] - ts[j], tolerance));
+            }
+        }
+        last = Some((i, s));
+    }
+    raw
+}
+
+/// The false-inflection rule: the interior lobe (between `bounds`) turning least is merged
+/// with its neighbours, dropping its two inflections, while it turns less than
+/// `min_turning`. Returns the inflections dropped. End lobes have one inflection, not a
+/// pair, and are kept.
+fn merge_flat_lobes(bounds: &mut Vec<f64>, turns: &mut Vec<f64>, min_turning: f64) -> usize {
+    let mut suppressed = 0;
+    while let Some((i, &tmin)) = turns
+        .iter()
+        .enumerate()
+        .take(turns.len().saturating_sub(1))
+        .skip(1)
+        .min_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
+    {
+        if tmin.abs() >= min_turning {
+            break;
+        }
+        bounds.drain(i..=i + 1);
+        let merged = turns[i - 1] + turns[i] + turns[i + 1];
+        turns.splice(i - 1..=i + 1, [merged]);
+        suppressed += 2;
+    }
+    suppressed
+}
+
+/// The parameter of the largest |κ| in `lobe`: the best sample (`ks` at `ts`), refined by
+/// golden section within `dt` of it; the lobe's middle when no sample falls in it.
+fn lobe_maximum(
+    curve: &dyn PlanarCurve,
+    lobe: &Lobe,
+    ts: &[f64],
+    ks: &[f64],
+    dt: f64,
+    tolerance: f64,
+) -> f64 {
+    let mut best: Option<(f64, f64)> = None;
+    for (&t, &k) in ts.iter().zip(ks) {
+        if t < lobe.t0 || t > lobe.t1 {
+            continue;
+        }
+        if best.is_none_or(|(_, bk)| k.abs() > bk) {
+            best = Some((t, k.abs()));
+        }
+    }
+    match best {
+        Some((t, _)) => refine_max(
+            curve,
+            (t - dt).max(lobe.t0),
+            (t + dt).min(lobe.t1),
+            tolerance,
+        ),
+        None => 0.5 * (lobe.t0 + lobe.t1),
+    }
+}
+
 /// Analyses a planar curve: length, inflections, lobes, curvature maxima, max |κ|.
 ///
 /// # Errors
@@ -234,22 +308,7 @@ pub fn analyze_curve(
     }
     let ks: Vec<f64> = jets.iter().map(signed_curvature).collect();
 
-    // Sign changes, skipping exact zeros (carry the last non-zero sign).
-    let mut raw = Vec::new();
-    let mut last: Option<(usize, i8)> = None;
-    for (i, &k) in ks.iter().enumerate() {
-        let s = sign(k);
-        if s == 0 {
-            continue;
-        }
-        if let Some((j, ls)) = last {
-            if ls != s {
-                let t = bisect_inflection(curve, ts[j], ts[i] - ts[j], params.bisection_tolerance);
-                raw.push(t);
-            }
-        }
-        last = Some((i, s));
-    }
+    let mut raw = sign_changes(curve, &ts, &ks, params.bisection_tolerance);
 
     // Sign changes inside the end margins carry no information from the data.
     let before = raw.len();
@@ -265,23 +324,8 @@ pub fn analyze_curve(
         .windows(2)
         .map(|w| turning(curve, w[0], w[1], &ts))
         .collect();
-    let mut suppressed = in_margins;
-    // interior lobes only: an end lobe has one inflection, not a pair
-    while let Some((i, &tmin)) = turns
-        .iter()
-        .enumerate()
-        .take(turns.len().saturating_sub(1))
-        .skip(1)
-        .min_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
-    {
-        if tmin.abs() >= params.min_lobe_turning {
-            break;
-        }
-        bounds.drain(i..=i + 1);
-        let merged = turns[i - 1] + turns[i] + turns[i + 1];
-        turns.splice(i - 1..=i + 1, [merged]);
-        suppressed += 2;
-    }
+    let suppressed =
+        in_margins + merge_flat_lobes(&mut bounds, &mut turns, params.min_lobe_turning);
 
     let at = |t: f64| {
         let j = curve.jet(t);
@@ -305,28 +349,11 @@ pub fn analyze_curve(
 
     // One maximum of |κ| per lobe: best sample, then golden-section refinement.
     let dt = (b - a) / m as f64;
-    let mut maxima = Vec::with_capacity(lobes.len());
-    for lobe in &lobes {
-        let mut best: Option<(f64, f64)> = None;
-        for (&t, &k) in ts.iter().zip(&ks) {
-            if t < lobe.t0 || t > lobe.t1 {
-                continue;
-            }
-            if best.is_none_or(|(_, bk)| k.abs() > bk) {
-                best = Some((t, k.abs()));
-            }
-        }
-        let t = match best {
-            Some((t, _)) => refine_max(
-                curve,
-                (t - dt).max(lobe.t0),
-                (t + dt).min(lobe.t1),
-                params.bisection_tolerance.max(1e-12),
-            ),
-            None => 0.5 * (lobe.t0 + lobe.t1),
-        };
-        maxima.push(at(t));
-    }
+    let tolerance = params.bisection_tolerance.max(1e-12);
+    let maxima: Vec<CurvePoint> = lobes
+        .iter()
+        .map(|lobe| at(lobe_maximum(curve, lobe, &ts, &ks, dt, tolerance)))
+        .collect();
     let mut max_point = at(a);
     for (&t, &k) in ts.iter().zip(&ks) {
         if k.abs() > max_point.curvature.abs() {
