@@ -274,21 +274,18 @@ fn theta_of(seg: &Segment, fixed_length: bool) -> Option<Candidate> {
     }
 }
 
-fn fit_data(
-    data: Data,
-    placement: Placement,
+/// The starts of a fit: a line and an arc (when allowed; a length-keeping arc only when one
+/// of the data's length fits), the warm start, and the elastica guessed from the data's
+/// local geometry, which is also returned.
+fn candidates(
+    data: &Data,
     fixed_length: bool,
     params: &FitParams,
-) -> Result<FitResult, FitError> {
-    let input_length = data.length;
-    // the arc-length-matched solves of all candidates run on a subsample; only the
-    // promising candidates are then refined on all points. The guesses use all points:
-    // their local curvature estimates average the noise over more neighbours.
-    let sub = data.subsample(LM_POINTS);
-    let local = guess::local_geometry(&data);
+) -> (Vec<Candidate>, Option<(Family, [f64; 3])>) {
+    let local = guess::local_geometry(data);
     let mut candidates = Vec::new();
     if params.lines_and_arcs {
-        if !fixed_length || model::chord_ratio(&data) >= 1.0 - 1e-12 {
+        if !fixed_length || model::chord_ratio(data) >= 1.0 - 1e-12 {
             candidates.push(Candidate {
                 shape: Shape::Line,
                 theta: [0.0; 3],
@@ -297,9 +294,9 @@ fn fit_data(
         if !fixed_length {
             candidates.push(Candidate {
                 shape: Shape::Circle { fixed: false },
-                theta: [guess::mean_curvature(&data, &local), 0.0, 0.0],
+                theta: [guess::mean_curvature(data, &local), 0.0, 0.0],
             });
-        } else if let Some(kappa) = arc_curvature_for_length(&data, &local) {
+        } else if let Some(kappa) = arc_curvature_for_length(data, &local) {
             candidates.push(Candidate {
                 shape: Shape::Circle { fixed: true },
                 theta: [kappa, 0.0, 0.0],
@@ -313,7 +310,7 @@ fn fit_data(
     {
         candidates.push(c);
     }
-    let guess = guess::elastica_guess(&data, &local);
+    let guess = guess::elastica_guess(data, &local);
     if let Some((family, theta)) = guess {
         candidates.push(Candidate {
             shape: Shape::Elastica {
@@ -323,6 +320,59 @@ fn fit_data(
             theta,
         });
     }
+    (candidates, guess)
+}
+
+/// Phase 2: the candidates solved in phase 1 within reach of the best, simplest first,
+/// refined on all points; a later one must beat the best so far clearly, so a straight
+/// section stays a line and a circular one an arc. Adds the iterations spent.
+fn refine_solved(
+    solved: &[(Candidate, lm::Solved)],
+    data: &Data,
+    placement: Placement,
+    params: &FitParams,
+    floor: f64,
+    iterations: &mut usize,
+) -> Option<Fitted> {
+    let best_cost = solved
+        .iter()
+        .map(|(_, s)| s.cost)
+        .fold(f64::INFINITY, f64::min);
+    let mut best: Option<Fitted> = None;
+    let mut done: Vec<(&Shape, &lm::Solved)> = Vec::new();
+    for (c, s) in solved.iter() {
+        if s.cost > REFINE_WITHIN * best_cost + floor {
+            continue;
+        }
+        // two elastica starts that met in phase 1 need one refinement
+        if matches!(c.shape, Shape::Elastica { .. })
+            && done
+                .iter()
+                .any(|(shape, d)| same_minimum(shape, d, &c.shape, s))
+        {
+            continue;
+        }
+        done.push((&c.shape, s));
+        if let Some(f) = run(c, s.clone(), data, placement, params) {
+            *iterations += f.iterations;
+            keep_better(&mut best, f, floor);
+        }
+    }
+    best
+}
+
+fn fit_data(
+    data: Data,
+    placement: Placement,
+    fixed_length: bool,
+    params: &FitParams,
+) -> Result<FitResult, FitError> {
+    let input_length = data.length;
+    // the arc-length-matched solves of all candidates run on a subsample; only the
+    // promising candidates are then refined on all points. The guesses use all points:
+    // their local curvature estimates average the noise over more neighbours.
+    let sub = data.subsample(LM_POINTS);
+    let (candidates, guess) = candidates(&data, fixed_length, params);
 
     // phase 1: every candidate solved by arc-length matching on the subsample
     let mut iterations = 0;
@@ -386,33 +436,7 @@ fn fit_data(
         }
     }
     let floor = (1e-13 * data.length).powi(2);
-    let best_cost = solved
-        .iter()
-        .map(|(_, s)| s.cost)
-        .fold(f64::INFINITY, f64::min);
-    // phase 2: the candidates within reach of the best, simplest first; a later one must
-    // beat the best so far clearly, so a straight section stays a line and a circular one
-    // an arc
-    let mut best: Option<Fitted> = None;
-    let mut done: Vec<(&Shape, &lm::Solved)> = Vec::new();
-    for (c, s) in solved.iter() {
-        if s.cost > REFINE_WITHIN * best_cost + floor {
-            continue;
-        }
-        // two elastica starts that met in phase 1 need one refinement
-        if matches!(c.shape, Shape::Elastica { .. })
-            && done
-                .iter()
-                .any(|(shape, d)| same_minimum(shape, d, &c.shape, s))
-        {
-            continue;
-        }
-        done.push((&c.shape, s));
-        if let Some(f) = run(c, s.clone(), &data, placement, params) {
-            iterations += f.iterations;
-            keep_better(&mut best, f, floor);
-        }
-    }
+    let mut best = refine_solved(&solved, &data, placement, params, floor, &mut iterations);
     let poor = best
         .as_ref()
         .is_none_or(|b| b.cost > (POOR_FIT * data.length).powi(2));
