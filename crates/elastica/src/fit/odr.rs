@@ -49,6 +49,57 @@ fn weighted_sq(res: &[(f64, C, f64, usize)]) -> f64 {
     res.iter().map(|(d, _, w, _)| w * d * d).sum()
 }
 
+/// The Gauss–Newton normal equations `(H, g)` of the weighted normal distances `res` at the
+/// segment `ev` placed by `a`: over the shape's `dims` parameters, and with a free
+/// placement also over `a` and `b` (raw derivatives a·∂z/∂θ, then z, iz, 1, i).
+fn normal_equations(
+    res: &[(f64, C, f64, usize)],
+    ev: &ShapeEval,
+    a: C,
+    data: &Data,
+    placement: Placement,
+    dims: usize,
+) -> (M7, V7) {
+    let free = placement == Placement::Free;
+    let nparams = if free { dims + 4 } else { dims };
+    let theta_cols = if free {
+        None
+    } else {
+        Some(jacobian(ev, a, data, placement, dims))
+    };
+    let mut h = M7::zeros();
+    let mut g = V7::zeros();
+    for &(d, dir, w, i) in res {
+        let nc = dir.conj();
+        let mut row = [0.0; 7];
+        match &theta_cols {
+            Some(j) => {
+                for k in 0..dims {
+                    row[k] = (nc * j[i][k]).re;
+                }
+            }
+            None => {
+                for k in 0..dims {
+                    row[k] = (nc * a * ev.dz[i][k]).re;
+                }
+                let z = ev.z[i];
+                row[dims] = (nc * z).re;
+                row[dims + 1] = (nc * C::new(-z.im, z.re)).re;
+                row[dims + 2] = nc.re;
+                row[dims + 3] = (nc * C::new(0.0, 1.0)).re;
+            }
+        }
+        for j in 0..nparams {
+            g[j] += w * row[j] * d;
+            for k in j..nparams {
+                h[(j, k)] += w * row[j] * row[k];
+            }
+        }
+    }
+    symmetrize_and_pad(&mut h, nparams);
+    (h, g)
+}
+
 /// Refine `s` (from an arc-length-matched solve on `data`) orthogonally; updates `data.t`.
 pub(crate) fn refine(
     shape: &Shape,
@@ -89,43 +140,7 @@ pub(crate) fn refine(
             move_feet(data, &shift);
             break;
         }
-        // Jacobian of the normal distances
-        let theta_cols = if free {
-            // raw derivatives: a·∂z/∂θ, then z, iz, 1, i for a and b
-            None
-        } else {
-            Some(jacobian(&ev, s.a, data, placement, dims))
-        };
-        let mut h = M7::zeros();
-        let mut g = V7::zeros();
-        for &(d, dir, w, i) in &res {
-            let nc = dir.conj();
-            let mut row = [0.0; 7];
-            match &theta_cols {
-                Some(j) => {
-                    for k in 0..dims {
-                        row[k] = (nc * j[i][k]).re;
-                    }
-                }
-                None => {
-                    for k in 0..dims {
-                        row[k] = (nc * s.a * ev.dz[i][k]).re;
-                    }
-                    let z = ev.z[i];
-                    row[dims] = (nc * z).re;
-                    row[dims + 1] = (nc * C::new(-z.im, z.re)).re;
-                    row[dims + 2] = nc.re;
-                    row[dims + 3] = (nc * C::new(0.0, 1.0)).re;
-                }
-            }
-            for j in 0..nparams {
-                g[j] += w * row[j] * d;
-                for k in j..nparams {
-                    h[(j, k)] += w * row[j] * row[k];
-                }
-            }
-        }
-        symmetrize_and_pad(&mut h, nparams);
+        let (h, g) = normal_equations(&res, &ev, s.a, data, placement, dims);
         let done = predicted_gain(&h, &g, nparams) <= TOL * f + floor;
         // the feet move with the current segment before the step is tried
         move_feet(data, &shift);
