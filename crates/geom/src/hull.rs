@@ -59,28 +59,7 @@ pub fn convex_hull(points: &[Vector3<f64>]) -> Result<TriMesh> {
         .unwrap_or(0.0);
     let eps = 1e-10 * extent.max(f64::MIN_POSITIVE);
 
-    // initial tetrahedron from extreme points
-    let by = |f: &dyn Fn(&Vector3<f64>) -> f64| {
-        let mut best = 0;
-        for (i, p) in points.iter().enumerate() {
-            if f(p) > f(&points[best]) {
-                best = i;
-            }
-        }
-        best
-    };
-    let i0 = by(&|p| -p.x);
-    let i1 = by(&|p| (p - points[i0]).norm_squared());
-    let line = points[i1] - points[i0];
-    let i2 = by(&|p| (p - points[i0]).cross(&line).norm_squared());
-    let nrm = line.cross(&(points[i2] - points[i0]));
-    if nrm.norm() <= eps * line.norm() {
-        return Err(degenerate());
-    }
-    let i3 = by(&|p| (p - points[i0]).dot(&nrm).abs());
-    if (points[i3] - points[i0]).dot(&nrm).abs() <= eps * nrm.norm() {
-        return Err(degenerate());
-    }
+    let [i0, i1, i2, i3] = initial_tetrahedron(points, eps).ok_or_else(degenerate)?;
     let mut faces: Vec<Face> = Vec::new();
     let centroid = (points[i0] + points[i1] + points[i2] + points[i3]) / 4.0;
     for tri in [[i0, i1, i2], [i0, i1, i3], [i0, i2, i3], [i1, i2, i3]] {
@@ -120,35 +99,7 @@ pub fn convex_hull(points: &[Vector3<f64>]) -> Result<TriMesh> {
             })
             .unwrap_or(&faces[fi].outside[0]);
         let ep = points[eye];
-        // visible faces by flood fill
-        let mut visible = vec![fi];
-        let mut seen = std::collections::HashSet::from([fi]);
-        let mut k = 0;
-        while k < visible.len() {
-            let f = visible[k];
-            k += 1;
-            let v = faces[f].v;
-            for e in 0..3 {
-                if let Some(&g) = edges.get(&(v[(e + 1) % 3], v[e])) {
-                    if !seen.contains(&g) && faces[g].dist(&ep) > eps {
-                        seen.insert(g);
-                        visible.push(g);
-                    }
-                }
-            }
-        }
-        // horizon: edges of visible faces whose twin face is not visible
-        let mut horizon = Vec::new();
-        for &f in &visible {
-            let v = faces[f].v;
-            for e in 0..3 {
-                let (a, b) = (v[e], v[(e + 1) % 3]);
-                match edges.get(&(b, a)) {
-                    Some(g) if seen.contains(g) => {}
-                    _ => horizon.push((a, b)),
-                }
-            }
-        }
+        let (visible, horizon) = visible_and_horizon(&faces, &edges, fi, &ep, eps);
         let mut orphans = Vec::new();
         for &f in &visible {
             faces[f].alive = false;
@@ -180,7 +131,78 @@ pub fn convex_hull(points: &[Vector3<f64>]) -> Result<TriMesh> {
         stack.extend(first_new..faces.len());
     }
 
-    // compact
+    compact(&faces, points)
+}
+
+/// Four points spanning a tetrahedron, from the extreme points: the lowest x, the farthest
+/// from it, the farthest from their line, the farthest from their plane. `None` when the
+/// points are collinear or coplanar (within `eps`).
+fn initial_tetrahedron(points: &[Vector3<f64>], eps: f64) -> Option<[usize; 4]> {
+    let by = |f: &dyn Fn(&Vector3<f64>) -> f64| {
+        let mut best = 0;
+        for (i, p) in points.iter().enumerate() {
+            if f(p) > f(&points[best]) {
+                best = i;
+            }
+        }
+        best
+    };
+    let i0 = by(&|p| -p.x);
+    let i1 = by(&|p| (p - points[i0]).norm_squared());
+    let line = points[i1] - points[i0];
+    let i2 = by(&|p| (p - points[i0]).cross(&line).norm_squared());
+    let nrm = line.cross(&(points[i2] - points[i0]));
+    if nrm.norm() <= eps * line.norm() {
+        return None;
+    }
+    let i3 = by(&|p| (p - points[i0]).dot(&nrm).abs());
+    if (points[i3] - points[i0]).dot(&nrm).abs() <= eps * nrm.norm() {
+        return None;
+    }
+    Some([i0, i1, i2, i3])
+}
+
+/// The faces visible from `ep` (flood fill from face `fi` over shared edges) and the
+/// horizon: the edges of visible faces whose twin face is not visible.
+fn visible_and_horizon(
+    faces: &[Face],
+    edges: &HashMap<(usize, usize), usize>,
+    fi: usize,
+    ep: &Vector3<f64>,
+    eps: f64,
+) -> (Vec<usize>, Vec<(usize, usize)>) {
+    let mut visible = vec![fi];
+    let mut seen = std::collections::HashSet::from([fi]);
+    let mut k = 0;
+    while k < visible.len() {
+        let f = visible[k];
+        k += 1;
+        let v = faces[f].v;
+        for e in 0..3 {
+            if let Some(&g) = edges.get(&(v[(e + 1) % 3], v[e])) {
+                if !seen.contains(&g) && faces[g].dist(ep) > eps {
+                    seen.insert(g);
+                    visible.push(g);
+                }
+            }
+        }
+    }
+    let mut horizon = Vec::new();
+    for &f in &visible {
+        let v = faces[f].v;
+        for e in 0..3 {
+            let (a, b) = (v[e], v[(e + 1) % 3]);
+            match edges.get(&(b, a)) {
+                Some(g) if seen.contains(g) => {}
+                _ => horizon.push((a, b)),
+            }
+        }
+    }
+    (visible, horizon)
+}
+
+/// The live faces as a mesh holding only their vertices, numbered in order of first use.
+fn compact(faces: &[Face], points: &[Vector3<f64>]) -> Result<TriMesh> {
     let mut map: HashMap<usize, u32> = HashMap::new();
     let mut verts = Vec::new();
     let mut tris = Vec::new();
