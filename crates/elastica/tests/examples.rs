@@ -9,29 +9,55 @@ use std::process::{Command, Stdio};
 
 use serde_json::Value;
 
-/// The example `name`, built first (a no-op when it is current): `cargo test` builds the
-/// examples too, but `cargo test --test examples` alone would find a stale binary.
+/// The example `name`, built first (a no-op when it is current) by the cargo that runs
+/// this test, into this test's own target folder, profile and target triple: `cargo test`
+/// builds the examples too, but `cargo test --test examples` alone would find a stale
+/// binary.
 fn example(name: &str) -> PathBuf {
     let exe = std::env::current_exe().expect("test executable");
-    // target/<profile>/deps/examples-<hash> → target/<profile>/examples/<name>
-    let dir = exe
+    // <target dir>[/<triple>]/<profile>/deps/examples-<hash>
+    let profile_dir = exe
         .parent()
         .and_then(|d| d.parent())
         .expect("target profile folder")
-        .join("examples");
+        .to_path_buf();
+    let profile = profile_dir
+        .file_name()
+        .and_then(|d| d.to_str())
+        .unwrap_or("debug")
+        .to_string();
+    let above = profile_dir.parent().expect("target folder").to_path_buf();
+    // cargo marks the root of a target folder with CACHEDIR.TAG; a triple folder has none
+    let (target_dir, triple) = if above.join("CACHEDIR.TAG").is_file() {
+        (above, None)
+    } else {
+        let triple = above
+            .file_name()
+            .and_then(|d| d.to_str())
+            .map(str::to_string);
+        (above.parent().expect("target folder").to_path_buf(), triple)
+    };
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let profile = dir
-        .parent()
-        .and_then(|d| d.file_name())
-        .and_then(|d| d.to_str());
     let mut build = Command::new(cargo);
     build.args(["build", "-q", "-p", "elastica", "--example", name]);
-    if profile == Some("release") {
-        build.arg("--release");
+    build.arg("--target-dir").arg(&target_dir);
+    match profile.as_str() {
+        "debug" => {}
+        "release" => {
+            build.arg("--release");
+        }
+        other => {
+            build.args(["--profile", other]);
+        }
+    }
+    if let Some(t) = &triple {
+        build.args(["--target", t]);
     }
     let status = build.status().expect("cargo runs");
     assert!(status.success(), "building example {name} failed");
-    dir.join(format!("{name}{}", std::env::consts::EXE_SUFFIX))
+    profile_dir
+        .join("examples")
+        .join(format!("{name}{}", std::env::consts::EXE_SUFFIX))
 }
 
 /// Pipes `line` through example `name` and returns the one JSON line it answers.
@@ -66,29 +92,42 @@ fn number(v: &Value, key: &str) -> f64 {
         .unwrap_or_else(|| panic!("{key} missing in {v}"))
 }
 
-/// The answer line's keys in order, and every number written with 17 significant digits.
+/// The answer line's keys in order (checked on the parsed line), and every value but the
+/// id written as a JSON number `d.ddddddddddddddddde±x`: 17 significant digits.
 fn check_line(line: &str, keys: &[&str]) {
+    let v: Value = serde_json::from_str(line).expect("a JSON line");
+    let parsed: Vec<&String> = v.as_object().expect("an object").keys().collect();
+    assert_eq!(parsed, keys, "{line}");
     let mut rest = line;
-    let mut seen: Vec<String> = Vec::new();
+    let mut seen = 0;
     while let Some(i) = rest.find("\":") {
         let start = rest[..i].rfind('"').unwrap_or(0);
-        let key = rest[start + 1..i].to_string();
+        let key = &rest[start + 1..i];
         let value = &rest[i + 2..];
         let end = value.find([',', '}']).unwrap_or(value.len());
-        let v = &value[..end];
+        let text = &value[..end];
         if key != "id" {
-            let mantissa = v
-                .trim_start_matches('-')
-                .split(['e', 'E'])
-                .next()
-                .unwrap_or("");
-            let digits = mantissa.chars().filter(char::is_ascii_digit).count();
-            assert_eq!(digits, 17, "{key} = {v} in {line}");
+            assert!(
+                v[key].is_number(),
+                "{key} = {text} is not a number in {line}"
+            );
+            let body = text.strip_prefix('-').unwrap_or(text);
+            let (mantissa, exponent) = body.split_once('e').expect("an exponent");
+            let (lead, frac) = mantissa.split_once('.').expect("a point");
+            let digits = |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_digit());
+            assert!(
+                lead.len() == 1 && digits(lead) && frac.len() == 16 && digits(frac),
+                "{text}"
+            );
+            assert!(
+                digits(exponent.strip_prefix('-').unwrap_or(exponent)),
+                "{text}"
+            );
         }
-        seen.push(key);
+        seen += 1;
         rest = &value[end..];
     }
-    assert_eq!(seen, keys, "{line}");
+    assert_eq!(seen, keys.len(), "{line}");
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! # export — deterministic writers of hotcut
 //!
-//! Every writer takes `impl Write` and formats floats to a fixed, documented precision, so
-//! the same data always gives the same bytes.
+//! Every writer takes `impl Write` (or returns the text) and formats floats to a fixed,
+//! documented precision, so the same data always gives the same bytes.
 //!
 //! ```
 //! let mut out = Vec::new();

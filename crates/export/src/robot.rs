@@ -114,7 +114,8 @@ fn wxyz(q: &UnitQuaternion<f64>) -> [f64; 4] {
 /// `T_ROB1`; 1: its end, `T_ROB2`) for job `job`.
 ///
 /// # Errors
-/// I/O errors of `w`.
+/// [`ExportError::Data`](crate::ExportError::Data) for a robot other than 0 or 1 or a unit
+/// that is not a positive number of millimetres; I/O errors of `w`.
 pub fn rapid(
     t: &Targets,
     motion: Motion,
@@ -123,6 +124,17 @@ pub fn rapid(
     module: &str,
     w: impl Write,
 ) -> Result<()> {
+    if robot > 1 {
+        return Err(crate::ExportError::Data(format!(
+            "the cell has blade robots 0 and 1, not {robot}"
+        )));
+    }
+    if !(t.per_mm.is_finite() && t.per_mm > 0.0) {
+        return Err(crate::ExportError::Data(format!(
+            "units per millimetre must be positive, got {}",
+            t.per_mm
+        )));
+    }
     let mm = 1.0 / t.per_mm;
     let approach = motion.approach;
     let blocks: Vec<RapidBlock> = t

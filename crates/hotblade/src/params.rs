@@ -105,8 +105,8 @@ pub struct ParamProblem {
 }
 
 impl Params {
-    /// Every parameter [`rationalize`](crate::rationalize) refuses, in field order (none:
-    /// it runs).
+    /// Every rule [`rationalize`](crate::rationalize) checks that the parameters break,
+    /// one problem per rule (none: it runs).
     pub fn problems(&self) -> Vec<ParamProblem> {
         let mut out = Vec::new();
         let mut bad = |field: &'static str, message: String| {

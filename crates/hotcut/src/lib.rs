@@ -3,7 +3,8 @@
 //! The edge of the workspace: a job file (RON) is read in three layers ([`load`]), its
 //! task — one of the task modules below, each implementing [`task::Task`] — turns the
 //! resolved job into parameters for an algorithm crate, runs it, makes its report and
-//! writes its files, and [`run`] writes them atomically.
+//! writes its files, and [`run`] writes them into a folder that replaces the previous run's
+//! as a whole.
 //!
 //! ```
 //! let dir = tempfile::tempdir().unwrap();
@@ -47,7 +48,7 @@ pub mod pre_cut;
 pub mod progress;
 /// What reports share.
 pub mod report;
-/// Running a job and writing its outputs atomically.
+/// Running a job and writing its outputs as a whole.
 pub mod run;
 /// Job-file types shared by every task (units, surface, block, blade, outputs, ...).
 pub mod spec;

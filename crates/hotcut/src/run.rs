@@ -1,8 +1,9 @@
-//! The runner: runs a resolved job's task and writes its outputs atomically.
+//! The runner: runs a resolved job's task and writes its outputs as a whole.
 //!
-//! Outputs are rendered into memory, written into a temporary folder inside the output
-//! directory and renamed to `<out>/<job name>/` only when everything succeeded, so a failed
-//! run leaves no partial output folder.
+//! Outputs are rendered one file at a time and written into a temporary folder inside the
+//! output directory, which is renamed to `<out>/<job name>/` only when every file is
+//! written (an earlier run's folder is moved aside first, and put back if the rename
+//! fails), so a failed run leaves no partial output folder.
 //!
 //! Entry points: [`run_job`](crate::run::run_job) for any job,
 //! [`run_task`](crate::run::run_task) for a task of a known type with its typed results.
@@ -143,6 +144,7 @@ fn render<T: Task>(
 ) -> std::result::Result<Vec<String>, FileError> {
     let mut files = Files::new(dir);
     for o in outputs {
+        let before = files.len();
         let result = if o.kind() == OutputKind::Report {
             files.json("report.json", done.report, REPORT_DIGITS)
         } else {
@@ -155,22 +157,48 @@ fn render<T: Task>(
                 ))),
             }
         };
-        result.map_err(|e| (files.last_name().unwrap_or(o.name()).to_string(), e))?;
+        // the file that failed: the last one the writer named, else the output itself
+        let failed = |files: &Files| match files.last_name() {
+            Some(name) if files.len() > before => name.to_string(),
+            _ => o.name().to_string(),
+        };
+        result.map_err(|e| (failed(&files), e))?;
     }
     Ok(files.into_names())
 }
 
-/// Renames the finished temporary folder to `dir`, replacing an earlier run's.
+/// Renames the finished temporary folder to `dir`. An earlier run's folder is first moved
+/// aside (renamed within `out`), then the new one moved into place, then the old one
+/// deleted; if the new one cannot be moved, the old one is put back. So `dir` always holds
+/// one whole run, old or new.
 fn move_into_place(tmp: tempfile::TempDir, dir: &Path) -> Result<()> {
-    if dir.exists() {
-        std::fs::remove_dir_all(dir).map_err(io(dir))?;
-    }
     let kept = tmp.keep();
-    std::fs::rename(&kept, dir).map_err(|e| {
-        let _ = std::fs::remove_dir_all(&kept);
-        HotcutError::Io {
-            path: dir.to_path_buf(),
-            source: e,
+    let parent = dir.parent().unwrap_or(Path::new("."));
+    let name = dir.file_name().map(|n| n.to_string_lossy().into_owned());
+    let aside = dir.exists().then(|| {
+        // a fresh name beside it: the temporary folder's own name with a suffix
+        let stem = kept.file_name().map(|n| n.to_string_lossy().into_owned());
+        parent.join(format!(
+            "{}.old-{}",
+            stem.unwrap_or_default(),
+            name.unwrap_or_default()
+        ))
+    });
+    if let Some(old) = &aside {
+        if let Err(e) = std::fs::rename(dir, old) {
+            let _ = std::fs::remove_dir_all(&kept);
+            return Err(io(dir)(e));
         }
-    })
+    }
+    if let Err(e) = std::fs::rename(&kept, dir) {
+        let _ = std::fs::remove_dir_all(&kept);
+        if let Some(old) = &aside {
+            let _ = std::fs::rename(old, dir);
+        }
+        return Err(io(dir)(e));
+    }
+    if let Some(old) = aside {
+        let _ = std::fs::remove_dir_all(old);
+    }
+    Ok(())
 }

@@ -9,7 +9,8 @@
 //! A task module is a top-level module whose source implements `Task`. Imports are every
 //! `crate::<module>` path and every `super::` path that leaves its top-level module, in
 //! code (comments and string literals are skipped), inline modules (`mod tests { .. }`)
-//! taken into account.
+//! taken into account, and every `"crate::<module>…"` string of an attribute line
+//! (`#[serde(default = "crate::spec::keep_length")]`).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -245,19 +246,19 @@ fn references(s: &Source, top_level: &BTreeSet<String>) -> Vec<(String, usize)> 
         i += 1;
     }
     // paths in string attributes: `#[serde(default = "crate::spec::keep_length")]`
-    let mut rest = s.raw.as_str();
-    let mut offset = 0;
-    while let Some(k) = rest.find("\"crate::") {
-        let at = offset + k + 1;
-        let name = ident_at(&s.raw, at + 7);
-        let target = if top_level.contains(name) {
-            name.to_string()
-        } else {
-            "<root>".to_string()
-        };
-        refs.push((target, s.raw[..at].matches('\n').count() + 1));
-        offset = at;
-        rest = &s.raw[at..];
+    for (n, line) in s.raw.lines().enumerate() {
+        if !line.trim_start().starts_with("#[") {
+            continue;
+        }
+        for (k, _) in line.match_indices("\"crate::") {
+            let name = ident_at(line, k + 8);
+            let target = if top_level.contains(name) {
+                name.to_string()
+            } else {
+                "<root>".to_string()
+            };
+            refs.push((target, n + 1));
+        }
     }
     refs
 }
@@ -389,7 +390,7 @@ fn the_job_module_names_exactly_the_tasks_and_only_it_dispatches() {
         if s.module == ["job"] {
             continue;
         }
-        if let Some(i) = s.code.find("TaskSpec::") {
+        for (i, _) in s.code.match_indices("TaskSpec::") {
             let rest = ident_at(&s.code, i + "TaskSpec::".len());
             assert!(
                 rest == "each" || rest == "visit",

@@ -36,12 +36,22 @@ fn valid_job_validates_and_runs() {
     assert_eq!(entries, vec![std::ffi::OsString::from("t")]);
     // a second run gives the same bytes
     let first = std::fs::read(dir.path().join("o/t/report.json")).unwrap();
+    // a second run replaces the first as a whole: a file the first run wrote and the
+    // second does not is gone, and no folder is left beside it
+    std::fs::write(dir.path().join("o/t/stale.txt"), "from before").unwrap();
     let o = hotcut(&["run", "job.ron", "--out", "o"], dir.path());
     assert_eq!(o.status.code(), Some(0));
     assert_eq!(
         first,
         std::fs::read(dir.path().join("o/t/report.json")).unwrap()
     );
+    assert!(!dir.path().join("o/t/stale.txt").exists());
+    let entries: Vec<_> = std::fs::read_dir(dir.path().join("o"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
+    assert_eq!(entries, vec![std::ffi::OsString::from("t")]);
 }
 
 #[test]

@@ -47,28 +47,33 @@ fn hex(c: [f32; 3]) -> String {
 type Done<'a> = Finished<'a, FacadeSegmentation>;
 
 /// The robot targets: one "block" per posed piece, its poses in cutting order.
-fn targets(done: &Done<'_>) -> Targets {
+fn targets(done: &Done<'_>) -> export::Result<Targets> {
     let run = done.run;
-    let blocks = run
-        .posed
-        .iter()
-        .filter(|p| !p.parts.is_empty())
-        .filter_map(|p| {
-            let piece = run.segmentation.pieces.iter().find(|q| q.id == p.id)?;
-            Some(TargetsBlock {
-                block: p.id,
-                origin: piece.block.origin,
-                rotation: p.rotation,
-                poses: p.parts.iter().map(|q| robot::pose(&q.pose)).collect(),
-            })
-        })
-        .collect();
-    robot::targets(done.job.units, done.params.blade.length, blocks)
+    let mut blocks = Vec::new();
+    for p in run.posed.iter().filter(|p| !p.parts.is_empty()) {
+        let Some(piece) = run.segmentation.pieces.iter().find(|q| q.id == p.id) else {
+            return Err(export::ExportError::Data(format!(
+                "posed piece {} is not in the segmentation",
+                p.id
+            )));
+        };
+        blocks.push(TargetsBlock {
+            block: p.id,
+            origin: piece.block.origin,
+            rotation: p.rotation,
+            poses: p.parts.iter().map(|q| robot::pose(&q.pose)).collect(),
+        });
+    }
+    Ok(robot::targets(
+        done.job.units,
+        done.params.blade.length,
+        blocks,
+    ))
 }
 
 /// `targets.json` and `targets.csv`, or the RAPID modules `FacadeSeg_T_ROB<n>.mod/.pgf`.
 pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    let t = targets(done);
+    let t = targets(done)?;
     robot::write(
         files,
         &t,

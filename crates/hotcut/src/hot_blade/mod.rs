@@ -60,7 +60,7 @@ pub struct HotBlade {
     /// Flat-blade restriction (§4): largest angle between the cutting plane and the
     /// surface normal, radians, in [0, π/2]. Default: π/6 (30°).
     #[serde(default = "default_plane_angle")]
-    #[schemars(range(min = 0, max = 1.571))]
+    #[schemars(range(min = 0, max = std::f64::consts::FRAC_PI_2))]
     pub max_plane_angle: f64,
     /// Approach and retreat distance of the blade before and after the block, along the
     /// cut (≥ 0). Default: 50 mm.
@@ -159,13 +159,24 @@ impl Task for HotBlade {
             ..self.pipeline_fields()
         };
         for p in pipeline.problems() {
-            let (pointer, message) = match p.field {
-                "curve" => ("/cutting/curve".to_string(), p.message),
+            // the job's name of each field (block, direction, blade and tolerance are the
+            // job's own, checked when it is loaded: here they are placeholders)
+            let (pointer, field) = match p.field {
+                "curve" => ("/cutting/curve".to_string(), None),
                 "targets" => (
                     format!("{PTR}/targets_per_block"),
-                    format!("targets_per_block {}", p.message),
+                    Some("targets_per_block"),
                 ),
-                field => (format!("{PTR}/{field}"), format!("{field} {}", p.message)),
+                "block" | "origin" => ("/block".to_string(), Some(p.field)),
+                "direction" => ("/cutting/direction".to_string(), Some(p.field)),
+                "blade" => ("/blade".to_string(), Some(p.field)),
+                "tolerance" => ("/tolerance".to_string(), Some(p.field)),
+                "grid_points" => (PTR.to_string(), Some(p.field)),
+                field => (format!("{PTR}/{field}"), Some(field)),
+            };
+            let message = match field {
+                Some(f) => format!("{f} {}", p.message),
+                None => p.message,
             };
             errors.push(job.error(&pointer, message));
         }

@@ -54,8 +54,14 @@ impl ResolvedJob {
 fn direction(path: &Path, job: &Job, errors: &mut Vec<JobError>) -> Vector3<f64> {
     let (dx, dy, dz) = job.cutting.direction;
     let direction = Vector3::new(dx, dy, dz);
-    let mut unit = if direction.norm() > 0.0 {
+    // a vector whose norm overflows or underflows, e.g. (1e200, 0, 0), is scaled by its
+    // largest component first
+    let largest = dx.abs().max(dy.abs()).max(dz.abs());
+    let norm = direction.norm();
+    let mut unit = if norm > 0.0 && norm.is_finite() {
         direction.normalize()
+    } else if largest > 0.0 && largest.is_finite() {
+        (direction / largest).normalize()
     } else {
         errors.push(JobError::semantic(
             path,

@@ -71,8 +71,20 @@ impl Files {
         value: &impl serde::Serialize,
         digits: usize,
     ) -> export::Result<()> {
-        let text = export::json::to_json_string(value, digits)?;
-        self.text(name, text)
+        self.add(name, |buf| {
+            buf.extend(export::json::to_json_string(value, digits)?.into_bytes());
+            Ok(())
+        })
+    }
+
+    /// How many files were named so far.
+    pub fn len(&self) -> usize {
+        self.names.len()
+    }
+
+    /// Whether no file was named yet.
+    pub fn is_empty(&self) -> bool {
+        self.names.is_empty()
     }
 
     /// Name of the last file (the one that failed, after an error).

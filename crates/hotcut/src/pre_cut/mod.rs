@@ -66,7 +66,7 @@ pub struct PreCut {
     pub samples: u32,
     /// Most assignment rounds of the optimizer. Default: 40.
     #[serde(default = "default_cut_rounds")]
-    #[schemars(range(min = 1))]
+    #[schemars(range(min = 1, max = 10000))]
     pub max_rounds: u32,
 }
 
