@@ -15,6 +15,17 @@ const VALID: &str = r#"Job(
 )
 "#;
 
+/// The names in folder `dir`, sorted.
+fn entries(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
 #[test]
 fn valid_job_validates_and_runs() {
     let dir = tempfile::tempdir().unwrap();
@@ -28,12 +39,7 @@ fn valid_job_validates_and_runs() {
     assert!(dir.path().join("o/t/report.json").is_file());
     assert!(dir.path().join("o/t/sections.svg").is_file());
     // nothing else is left in the output folder (no temporary folders)
-    let entries: Vec<_> = std::fs::read_dir(dir.path().join("o"))
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name())
-        .collect();
-    assert_eq!(entries, vec![std::ffi::OsString::from("t")]);
+    assert_eq!(entries(&dir.path().join("o")), ["t"]);
     // a second run gives the same bytes
     let first = std::fs::read(dir.path().join("o/t/report.json")).unwrap();
     // a second run replaces the first as a whole: a file the first run wrote and the
@@ -46,12 +52,7 @@ fn valid_job_validates_and_runs() {
         std::fs::read(dir.path().join("o/t/report.json")).unwrap()
     );
     assert!(!dir.path().join("o/t/stale.txt").exists());
-    let entries: Vec<_> = std::fs::read_dir(dir.path().join("o"))
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name())
-        .collect();
-    assert_eq!(entries, vec![std::ffi::OsString::from("t")]);
+    assert_eq!(entries(&dir.path().join("o")), ["t"]);
 }
 
 #[test]
