@@ -112,11 +112,20 @@ fn longest_from(
 
 /// The longest part of section `j` from `cur[j]` whose far end stays within a block's width
 /// (across the facade) of the smallest start in its row of blocks (`rows`): a piece is cut
-/// from one block. Infinite when the rest of the section fits.
-fn row_cap(facade: &Facade, c: &Constraints, rows: &[usize], j: usize, cur: &[f64]) -> f64 {
+/// from one block. Infinite when the rest of the section fits. Sections already done
+/// (`active` false) do not count: on an oblique cut a row's first sections can end long
+/// before its others start.
+fn row_cap(
+    facade: &Facade,
+    c: &Constraints,
+    rows: &[usize],
+    j: usize,
+    cur: &[f64],
+    active: &[bool],
+) -> f64 {
     let across_u = |j: usize, s: f64| facade.sections[j].point(s).x;
     let umin = (0..cur.len())
-        .filter(|&i| rows[i] == rows[j])
+        .filter(|&i| rows[i] == rows[j] && active[i])
         .map(|i| across_u(i, cur[i]))
         .fold(f64::INFINITY, f64::min);
     let limit = umin + c.block[1] * (1.0 - 1e-12);
@@ -202,10 +211,13 @@ pub fn longest_elastica(
             .collect();
         // a piece is cut from one block: within a row of blocks, no part may end farther
         // across the facade than a block's width from the row's first start
+        let active: Vec<bool> = found.iter().map(Option::is_some).collect();
         let found: Vec<Option<(f64, bool)>> = found
             .into_iter()
             .enumerate()
-            .map(|(j, f)| f.map(|(len, ok)| (len.min(row_cap(facade, c, &rows, j, &cur)), ok)))
+            .map(|(j, f)| {
+                f.map(|(len, ok)| (len.min(row_cap(facade, c, &rows, j, &cur, &active)), ok))
+            })
             .collect();
         // even the parts out: a part limited by its fit bounds its neighbours' lengths;
         // parts reaching the far edge bound nothing

@@ -147,7 +147,7 @@ pub fn trace(
     curves.push(edges[0].clone());
     curves.extend(full);
     curves.push(edges[1].clone());
-    add_middle_traces(facade, c, &across, &mut curves);
+    add_middle_traces(facade, c, &across, &mut curves)?;
     // bands between consecutive curves
     let bands: Vec<Vec<Option<(f64, f64)>>> = curves
         .windows(2)
@@ -290,50 +290,106 @@ fn absorb(
     }
 }
 
+/// Most curves [`add_middle_traces`] may make: enough to halve every band of every row down
+/// to half a block across, split every section between its inflections and cut it into
+/// blade-length parts, with room to spare. Derived from the facade and the constraints,
+/// so a run that needs more is reported, not looped on.
+fn curve_cap(facade: &Facade, c: &Constraints, across: &[Across], rows: usize) -> usize {
+    let span = across
+        .iter()
+        .map(|a| a.u_range().1 - a.u_range().0)
+        .fold(0.0, f64::max);
+    let per_row = (2.0 * span / c.block[1]).ceil().min(1e6) as usize + 1;
+    let inflections = across
+        .iter()
+        .map(|a| a.inflections.len())
+        .max()
+        .unwrap_or(0);
+    let blade = facade
+        .sections
+        .iter()
+        .map(|s| (2.0 * s.length / c.blade_length).ceil().min(1e6) as usize)
+        .max()
+        .unwrap_or(0);
+    4 * (rows.max(1) * per_row + inflections + blade) + 16
+}
+
 /// Bands between consecutive `curves` that are too wide for the block (within a row of
 /// blocks, or on one section), too long for the blade or hold too many inflections get a
-/// curve down their middle, until none does (or a band is too thin to halve).
+/// new curve, until none does (or a band is too thin to halve):
+/// - a band too wide, too long or too full on some section: a curve down its middle;
+/// - a band that fits on every section but not within a row of blocks (its sections shift
+///   across the facade along the cut, as on a facade cut obliquely): in each such row, a
+///   curve at the middle of the row's span across the facade, clamped into the band on each
+///   section, so each half spans at most half the row's span.
+///
+/// # Errors
+/// [`SegError::TooManyPieces`] when more curves than [`curve_cap`] would be needed.
 fn add_middle_traces(
     facade: &Facade,
     c: &Constraints,
     across: &[Across],
     curves: &mut Vec<Vec<f64>>,
-) {
+) -> Result<(), SegError> {
     let n = across.len();
     let k = c.max_inflections as usize;
     let rows = rows_of(facade, c);
+    let n_rows = rows.iter().copied().max().map_or(0, |r| r + 1);
+    let cap = curve_cap(facade, c, across, n_rows);
+    let thin = 1e-9 * c.block[1];
     // a piece is cut from one block: its band, within a row of blocks, must fit the block's
-    // width across the facade
-    let row_wide = |lo: &[f64], hi: &[f64]| {
-        let mut span: Vec<(f64, f64)> = Vec::new();
-        for j in 0..n {
-            let r = rows[j];
-            if span.len() <= r {
-                span.resize(r + 1, (f64::INFINITY, f64::NEG_INFINITY));
-            }
-            span[r] = (span[r].0.min(lo[j]), span[r].1.max(hi[j]));
+    // width across the facade; spans only over the sections the band crosses
+    let row_spans = |lo: &[f64], hi: &[f64]| {
+        let mut span = vec![(f64::INFINITY, f64::NEG_INFINITY); n_rows];
+        for j in (0..n).filter(|&j| hi[j] - lo[j] > thin) {
+            let r = &mut span[rows[j]];
+            *r = (r.0.min(lo[j]), r.1.max(hi[j]));
         }
-        span.iter().any(|(a, b)| b - a > c.block[1])
+        span
     };
     let mut i = 0;
     while i + 1 < curves.len() {
-        let too_much = row_wide(&curves[i], &curves[i + 1])
-            || (0..n).any(|j| {
-                let (lo, hi) = (curves[i][j], curves[i + 1][j]);
-                let sec = &across[j];
-                let prep = &facade.sections[j];
-                hi - lo > c.block[1]
-                    || sec.s_at(prep, hi) - sec.s_at(prep, lo) > c.blade_length
-                    || sec.count(lo, hi) > k
-            });
-        let wide_enough = (0..n).any(|j| curves[i + 1][j] - curves[i][j] > 1e-6 * c.block[1]);
-        if too_much && wide_enough && curves.len() < 10_000 {
-            let mid: Vec<f64> = (0..n)
-                .map(|j| 0.5 * (curves[i][j] + curves[i + 1][j]))
-                .collect();
-            curves.insert(i + 1, mid);
+        let (lo, hi) = (&curves[i], &curves[i + 1]);
+        let section_problem = (0..n).any(|j| {
+            let sec = &across[j];
+            let prep = &facade.sections[j];
+            hi[j] - lo[j] > c.block[1]
+                || sec.s_at(prep, hi[j]) - sec.s_at(prep, lo[j]) > c.blade_length
+                || sec.count(lo[j], hi[j]) > k
+        });
+        let wide_enough = (0..n).any(|j| hi[j] - lo[j] > 1e-6 * c.block[1]);
+        let spans = row_spans(lo, hi);
+        let wide_rows = spans.iter().any(|(a, b)| b - a > c.block[1]);
+        let new = if section_problem && wide_enough {
+            Some((0..n).map(|j| 0.5 * (lo[j] + hi[j])).collect::<Vec<f64>>())
+        } else if wide_rows {
+            Some(
+                (0..n)
+                    .map(|j| {
+                        let (a, b) = spans[rows[j]];
+                        if b - a > c.block[1] {
+                            (0.5 * (a + b)).clamp(lo[j], hi[j])
+                        } else {
+                            lo[j]
+                        }
+                    })
+                    .collect(),
+            )
         } else {
-            i += 1;
+            None
+        };
+        match new {
+            Some(mid) => {
+                if curves.len() >= cap {
+                    return Err(SegError::TooManyPieces {
+                        cap,
+                        why: "the trace algorithm could not make its bands fit the block and the blade (a design curvature above the blade's, or inflections closer together than the block allows?)".into(),
+                    });
+                }
+                curves.insert(i + 1, mid);
+            }
+            None => i += 1,
         }
     }
+    Ok(())
 }
