@@ -15,6 +15,12 @@ pub(crate) struct Across {
     pub k: Vec<f64>,
     pub signed: Vec<f64>,
     pub inflections: Vec<f64>,
+    /// Interior samples that are local maxima of |curvature| (`k[i]` ≥ both neighbours),
+    /// increasing.
+    peaks: Vec<usize>,
+    /// `argmax[l][i]`: the first sample of largest |curvature| in `i..i + 2^l` (a sparse
+    /// table, so the largest on any range is found in constant time).
+    argmax: Vec<Vec<u32>>,
 }
 
 const ACROSS_SAMPLES: usize = 2048;
@@ -35,15 +41,34 @@ impl Across {
             .iter()
             .map(|&v| signed_curvature(&sec.curve.jet(sec.t_at(v))))
             .collect();
-        let k = signed.iter().map(|v| v.abs()).collect();
-        let inflections = sec.inflections.iter().map(|&v| sec.point(v).x).collect();
+        let k: Vec<f64> = signed.iter().map(|v| v.abs()).collect();
+        let mut inflections: Vec<f64> = sec.inflections.iter().map(|&v| sec.point(v).x).collect();
+        inflections.sort_by(f64::total_cmp);
+        let peaks = (1..k.len().saturating_sub(1))
+            .filter(|&i| k[i] >= k[i - 1] && k[i] >= k[i + 1])
+            .collect();
+        let argmax = sparse_argmax(&k);
         Ok(Self {
             u,
             s,
             k,
             signed,
             inflections,
+            peaks,
+            argmax,
         })
+    }
+
+    /// The first sample of largest |curvature| in `a..b` (`a < b`).
+    fn largest(&self, a: usize, b: usize) -> usize {
+        let level = (usize::BITS - 1 - (b - a).leading_zeros()) as usize;
+        let x = self.argmax[level][a] as usize;
+        let y = self.argmax[level][b - (1 << level)] as usize;
+        if self.k[y] > self.k[x] {
+            y
+        } else {
+            x
+        }
     }
 
     /// Arc length at `u` (clamped to the section): bisection on `u(s)` inside the bracketing
@@ -79,11 +104,10 @@ impl Across {
     pub fn seam(&self, lo: f64, hi: f64, start: f64, k: usize, prev: Option<f64>) -> f64 {
         let lo = lo.max(start);
         // the (k+1)-th inflection after `start` bounds the part
+        let first = self.inflections.partition_point(|&u| u <= start);
         let limit = self
             .inflections
-            .iter()
-            .filter(|&&u| u > start)
-            .nth(k)
+            .get(first + k)
             .copied()
             .unwrap_or(f64::INFINITY);
         let hi = hi.min(limit);
@@ -95,30 +119,41 @@ impl Across {
         if a >= b {
             return lo;
         }
-        let largest = (a..b).fold(a, |best, i| if self.k[i] > self.k[best] { i } else { best });
+        let largest = self.largest(a, b);
         let Some(prev) = prev else {
             return self.u[largest];
         };
-        // local maxima of |κ| inside the range (ends count when the range cuts a slope)
-        let peak = |i: usize| {
-            (i == a || self.k[i] >= self.k[i - 1]) && (i + 1 == b || self.k[i] >= self.k[i + 1])
-        };
-        (a..b)
-            .filter(|&i| peak(i))
+        // local maxima of |κ| inside the range (ends count when the range cuts a slope):
+        // the interior peaks nearest to `prev` on either side, and the two ends
+        let end_a = a + 1 == b || self.k[a] >= self.k[a + 1];
+        let end_b = b - 1 == a || self.k[b - 1] >= self.k[b - 2];
+        let inner_lo = self.peaks.partition_point(|&i| i <= a);
+        let inner_hi = self.peaks.partition_point(|&i| i < b - 1);
+        let inner = &self.peaks[inner_lo..inner_hi.max(inner_lo)];
+        let at = inner.partition_point(|&i| self.u[i] < prev);
+        let candidates = [
+            end_a.then_some(a),
+            at.checked_sub(1).map(|m| inner[m]),
+            inner.get(at).copied(),
+            end_b.then_some(b - 1),
+        ];
+        candidates
+            .into_iter()
+            .flatten()
             .min_by(|&i, &j| {
                 (self.u[i] - prev)
                     .abs()
                     .total_cmp(&(self.u[j] - prev).abs())
                     .then(self.k[j].total_cmp(&self.k[i]))
+                    .then(i.cmp(&j))
             })
             .map_or(self.u[largest], |i| self.u[i])
     }
 
     pub fn count(&self, lo: f64, hi: f64) -> usize {
-        self.inflections
-            .iter()
-            .filter(|&&u| u > lo && u < hi)
-            .count()
+        let a = self.inflections.partition_point(|&u| u <= lo);
+        let b = self.inflections.partition_point(|&u| u < hi);
+        b.saturating_sub(a)
     }
 
     /// The sample of largest |curvature| strictly between `lo` and `hi`: its `u` and signed
@@ -148,5 +183,51 @@ impl Across {
                 a
             })
             .collect()
+    }
+}
+
+/// Sparse table of range argmax over `k`: level `l` holds, for each start `i`, the first
+/// index of the largest value in `i..i + 2^l`.
+fn sparse_argmax(k: &[f64]) -> Vec<Vec<u32>> {
+    let n = k.len();
+    let mut table: Vec<Vec<u32>> = vec![(0..n as u32).collect()];
+    let mut width = 1;
+    while 2 * width <= n {
+        let prev = &table[table.len() - 1];
+        let next = (0..=n - 2 * width)
+            .map(|i| {
+                let (x, y) = (prev[i], prev[i + width]);
+                if k[y as usize] > k[x as usize] {
+                    y
+                } else {
+                    x
+                }
+            })
+            .collect();
+        table.push(next);
+        width *= 2;
+    }
+    table
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sparse table agrees with a plain scan (first index of the largest) on every range.
+    #[test]
+    fn range_argmax_matches_a_scan() {
+        let k: Vec<f64> = (0..37).map(|i| ((i * 7919) % 13) as f64).collect();
+        let table = sparse_argmax(&k);
+        for a in 0..k.len() {
+            for b in a + 1..=k.len() {
+                let level = (usize::BITS - 1 - (b - a).leading_zeros()) as usize;
+                let x = table[level][a] as usize;
+                let y = table[level][b - (1 << level)] as usize;
+                let got = if k[y] > k[x] { y } else { x };
+                let want = (a..b).fold(a, |best, i| if k[i] > k[best] { i } else { best });
+                assert_eq!(got, want, "range {a}..{b}");
+            }
+        }
     }
 }

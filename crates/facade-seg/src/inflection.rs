@@ -55,17 +55,26 @@ impl Row<'_> {
     /// Per section, the seams bounding each block: `seams[j][i]..seams[j][i + 1]` is block
     /// i's part.
     fn seams(&self, a: &[f64]) -> Vec<Vec<f64>> {
+        self.seams_upto(a, a.len())
+    }
+
+    /// [`Row::seams`] of the first `upto` blocks only (a seam depends only on the blocks
+    /// before it, so a move's checks on the blocks up to it need no more).
+    fn seams_upto(&self, a: &[f64], upto: usize) -> Vec<Vec<f64>> {
+        let upto = upto.min(a.len());
         let mut out: Vec<Vec<f64>> = Vec::with_capacity(self.secs.len());
         for sec in &self.secs {
             let prev = out.last();
-            let mut v = Vec::with_capacity(a.len() + 1);
+            let mut v = Vec::with_capacity(upto + 1);
             v.push(self.range.0.min(sec.u[0]));
-            for i in 0..a.len().saturating_sub(1) {
+            for i in 0..upto.min(a.len().saturating_sub(1)) {
                 let start = v[i];
-                let near = prev.map(|p| p[i + 1]);
+                let near = prev.and_then(|p| p.get(i + 1).copied());
                 v.push(sec.seam(a[i + 1], a[i] + self.width, start, self.k, near));
             }
-            v.push(self.range.1.max(sec.u[sec.u.len() - 1]));
+            if upto == a.len() {
+                v.push(self.range.1.max(sec.u[sec.u.len() - 1]));
+            }
             out.push(v);
         }
         out
@@ -81,9 +90,10 @@ impl Row<'_> {
             .unwrap_or(0)
     }
 
-    fn first_violation(&self, a: &[f64], k: usize) -> Option<usize> {
-        let seams = self.seams(a);
-        (0..a.len()).find(|&i| self.load(&seams, i) > k)
+    /// The first block (of those `seams` bound) holding more than `k` inflections.
+    fn first_violation(&self, seams: &[Vec<f64>], k: usize) -> Option<usize> {
+        let blocks = seams.first().map_or(0, |s| s.len().saturating_sub(1));
+        (0..blocks).find(|&i| self.load(seams, i) > k)
     }
 
     fn covered(&self, a: &[f64]) -> bool {
@@ -105,12 +115,16 @@ fn arrange(
     let cols = (((row.range.1 - row.range.0) / w).ceil() as usize).max(1);
     let mut a: Vec<f64> = (0..cols).map(|i| row.range.0 + i as f64 * w).collect();
     let steps = p.positions.max(4);
-    while let Some(b) = row.first_violation(&a, k) {
+    while let Some(b) = row.first_violation(&row.seams(&a), k) {
         *moves += 1;
         if *moves > p.max_moves {
             return Err(SegError::TooManyPieces {
                 cap: p.max_moves,
-                why: "the inflection-points algorithm did not settle (inflections closer together than the block allows?)".into(),
+                why: format!(
+                    "the inflection-points algorithm did not settle: a section holds {} inflections, more than {} blocks across can part at {k} each (a noisy mesh section? raise tolerance.smoothing, blade.max_inflections or block.size)",
+                    row.secs.iter().map(|s| s.inflections.len()).max().unwrap_or(0),
+                    a.len()
+                ),
             });
         }
         // (b) translate b, away from the neighbour that takes over: farthest shift first
@@ -122,7 +136,8 @@ fn arrange(
                 if !row.covered(&t) {
                     continue;
                 }
-                let seams = row.seams(&t);
+                // b, the blocks before it and its neighbours: the seams up to b + 1
+                let seams = row.seams_upto(&t, b + 2);
                 let nb = if dir > 0.0 {
                     b.checked_sub(1)
                 } else {
@@ -132,7 +147,7 @@ fn arrange(
                 // within the limit afterwards: each move advances the first overloaded
                 // block, so the loop ends
                 let ok_nb = nb.is_none_or(|n| n >= t.len() || row.load(&seams, n) <= k);
-                if ok_nb && row.first_violation(&t, k).is_none_or(|v| v > b) {
+                if ok_nb && row.first_violation(&seams, k).is_none_or(|v| v > b) {
                     a = t;
                     moved = true;
                     break 'shift;
@@ -150,7 +165,7 @@ fn arrange(
             if !row.covered(&t) {
                 continue;
             }
-            let seams = row.seams(&t);
+            let seams = row.seams_upto(&t, b + 1);
             if row.load(&seams, b) <= k {
                 best = Some(t);
                 break;
@@ -171,7 +186,10 @@ fn arrange(
                 a.len() > 1 && seams.iter().all(|s| s[i + 1] <= s[i]) && {
                     let mut t = a.clone();
                     t.remove(i);
-                    row.covered(&t) && row.first_violation(&t, k).is_none_or(|v| v > b)
+                    row.covered(&t)
+                        && row
+                            .first_violation(&row.seams_upto(&t, b + 1), k)
+                            .is_none_or(|v| v > b)
                 }
             });
             match empty {

@@ -383,7 +383,7 @@ fn add_middle_traces(
                 if curves.len() >= cap {
                     return Err(SegError::TooManyPieces {
                         cap,
-                        why: "the trace algorithm could not make its bands fit the block and the blade (a design curvature above the blade's, or inflections closer together than the block allows?)".into(),
+                        why: "the trace algorithm could not make its bands fit the block and the blade (inflections closer together than the block allows, e.g. a noisy mesh section? raise tolerance.smoothing, blade.max_inflections or block.size)".into(),
                     });
                 }
                 curves.insert(i + 1, mid);
