@@ -385,6 +385,18 @@ pub fn restart_seed(seed: u64, k: usize) -> u64 {
     z ^ (z >> 31)
 }
 
+/// About how many samples [`segment`] takes on `mesh` with `params` (its sample cap,
+/// `params.max_samples`, is checked against this before anything is sampled).
+pub fn estimated_samples(mesh: &TriMesh, params: &Params) -> f64 {
+    let spacing = params.sample_spacing
+        * params
+            .block_size
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+    samples::estimate(mesh, spacing, params.coverage)
+}
+
 /// Segments a closed mesh into blocks.
 ///
 /// # Errors

@@ -65,11 +65,24 @@ pub struct SampleCounts {
     pub interior: usize,
 }
 
+/// About how many samples [`sample`] takes at spacing `g`: surface samples at `g/2` (two
+/// per cell of area) and, for `Solid`, one per `g³` of volume.
+pub fn estimate(mesh: &TriMesh, g: f64, coverage: Coverage) -> f64 {
+    let s = g / 2.0;
+    2.0 * mesh.area() / (s * s)
+        + if coverage == Coverage::Solid {
+            mesh.volume().abs() / (g * g * g)
+        } else {
+            0.0
+        }
+}
+
 /// Samples a closed mesh. `frame` is the model's bounding box (interior grid axes),
 /// `spacing` the interior grid spacing `g`; `cap` bounds the sample count.
 ///
 /// # Errors
-/// [`BlockError::TooManySamples`] past the cap, [`BlockError::Model`] for a mesh whose
+/// [`BlockError::TooManySamples`] past the cap (checked first against [`estimate`]),
+/// [`BlockError::Model`] for a mesh whose
 /// interior grid finds no sample inside (not closed, or thinner than the spacing
 /// everywhere).
 pub fn sample(
@@ -82,12 +95,7 @@ pub fn sample(
 ) -> Result<Samples> {
     let g = spacing;
     let s = g / 2.0;
-    let estimate = 2.0 * mesh.area() / (s * s)
-        + if coverage == Coverage::Solid {
-            mesh.volume().abs() / (g * g * g)
-        } else {
-            0.0
-        };
+    let estimate = estimate(mesh, g, coverage);
     if estimate > cap as f64 {
         return Err(BlockError::TooManySamples {
             samples: estimate as usize,

@@ -115,6 +115,9 @@ fn arrange(
     let cols = (((row.range.1 - row.range.0) / w).ceil() as usize).max(1);
     let mut a: Vec<f64> = (0..cols).map(|i| row.range.0 + i as f64 * w).collect();
     let steps = p.positions.max(4);
+    // a shift step: a share of the block's width, or of the facade's when the block is
+    // wider (so copies and shifts land on the facade)
+    let unit = w.min(row.range.1 - row.range.0).max(w * 1e-12) / steps as f64;
     while let Some(b) = row.first_violation(&row.seams(&a), k) {
         *moves += 1;
         if *moves > p.max_moves {
@@ -132,7 +135,7 @@ fn arrange(
         'shift: for dir in [1.0, -1.0] {
             for i in (1..=steps).rev() {
                 let mut t = a.clone();
-                t[b] += dir * w * i as f64 / steps as f64;
+                t[b] += dir * unit * i as f64;
                 if !row.covered(&t) {
                     continue;
                 }
@@ -161,7 +164,7 @@ fn arrange(
         let mut best: Option<Vec<f64>> = None;
         for i in (1..=steps).rev() {
             let mut t = a.clone();
-            t.insert(b + 1, a[b] + w * i as f64 / steps as f64);
+            t.insert(b + 1, a[b] + unit * i as f64);
             if !row.covered(&t) {
                 continue;
             }
@@ -175,7 +178,7 @@ fn arrange(
             Some(t) => t,
             None => {
                 let mut t = a.clone();
-                t.insert(b + 1, a[b] + w / steps as f64);
+                t.insert(b + 1, a[b] + unit);
                 t
             }
         };

@@ -76,14 +76,25 @@ fn arr(v: &nalgebra::Vector3<f64>) -> [f64; 3] {
 }
 
 /// Row of blocks (along the cut) of each section: slabs of `block[0]` from half a spacing
-/// before the first plane.
+/// before the first plane, numbered from 0 over the slabs that hold a section (so a block
+/// far shorter than the spacing gives one row per section, not an index out of range).
 pub fn rows_of(facade: &Facade, c: &Constraints) -> Vec<usize> {
     let first = facade.sections[0].offset - 0.5 * facade.spacing();
-    facade
+    let slab: Vec<f64> = facade
         .sections
         .iter()
-        .map(|s| (((s.offset - first) / c.block[0]).floor().max(0.0)) as usize)
-        .collect()
+        .map(|s| ((s.offset - first) / c.block[0]).floor().max(0.0))
+        .collect();
+    // sections come in plane order, so their slabs do not decrease
+    let mut rows = Vec::with_capacity(slab.len());
+    let mut row = 0;
+    for (j, v) in slab.iter().enumerate() {
+        if j > 0 && *v != slab[j - 1] {
+            row += 1;
+        }
+        rows.push(row);
+    }
+    rows
 }
 
 /// Pieces from bands: `bands[b][j]` is band b's arc-length range on section j (`None` where

@@ -64,7 +64,7 @@ pub use error::HotBladeError;
 pub use fit::{make_blade, sweep_fits, SweepError};
 pub use grid::Clipped;
 pub use params::{curve_chord, BladeLimits, Continuity, ParamProblem, Params};
-pub use pipeline::rationalize;
+pub use pipeline::{rationalize, run_size, RunSize, MAX_BLOCKS, MAX_PLANES};
 pub use result::{BlockResult, FittedSection, Rationalization};
 
 /// Share of the largest-distance tolerance by which a parameter-interpolated curve of the

@@ -76,6 +76,16 @@ pub fn rationalize(
             message: p.message,
         });
     }
+    let size = run_size(surface, params)?;
+    if !(size.rows * size.cols <= MAX_BLOCKS && size.planes <= MAX_PLANES) {
+        return Err(HotBladeError::Invalid {
+            field: "block",
+            message: format!(
+                "is far smaller than the surface: {:.3e} × {:.3e} blocks on {:.3e} planes (at most {MAX_BLOCKS:.0e} blocks and {MAX_PLANES:.0e} planes)",
+                size.rows, size.cols, size.planes
+            ),
+        });
+    }
     let layout = layout(surface, params)?;
     let sections = section(surface, &layout.planes, params, progress)?;
     let normals = SurfaceNormals::new(surface, 200).map_err(geom_err("surface normals"))?;
@@ -96,6 +106,59 @@ pub fn rationalize(
         blocks,
         splits,
         summary,
+    })
+}
+
+/// How big a run on `surface` is, counted before anything is allocated (every count in
+/// `f64`, so an absurd block size gives a huge number, not an overflow).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct RunSize {
+    /// Blocks along the cut.
+    pub rows: f64,
+    /// Blocks across the cut.
+    pub cols: f64,
+    /// Planes the surface is sectioned on (targets and deviation planes).
+    pub planes: f64,
+    /// Section fits at most (every column halved `split_depth` times).
+    pub fits: f64,
+}
+
+/// Most blocks, and most planes, a run may lay out: beyond these a grid is a mistake (a
+/// block far smaller than the surface), whatever the machine.
+pub const MAX_BLOCKS: f64 = 1e6;
+/// See [`MAX_BLOCKS`].
+pub const MAX_PLANES: f64 = 1e7;
+
+/// The [`RunSize`] of a run of `params` on `surface`.
+///
+/// # Errors
+/// [`HotBladeError::Geom`] for a cutting direction that spans no frame.
+pub fn run_size(surface: &Surface, params: &Params) -> Result<RunSize, HotBladeError> {
+    let frame =
+        PlaneFrame::from_direction(params.direction).map_err(geom_err("the cutting direction"))?;
+    let span = |d: &Vector3<f64>, origin: Option<f64>| {
+        let (lo, hi) = surface.extent_along(d);
+        hi - origin.unwrap_or(lo)
+    };
+    let origin = params.origin.map(Vector3::from);
+    let count = |d: &Vector3<f64>, size: f64| {
+        let n = (span(d, origin.map(|o| d.dot(&o))) / size).ceil();
+        if n.is_nan() {
+            f64::INFINITY
+        } else {
+            n.max(1.0)
+        }
+    };
+    let rows = count(&frame.normal, params.block[0]);
+    let cols = count(&frame.u, params.block[1]);
+    let t = params.targets as f64;
+    let planes = rows * (t + (t - 1.0) * params.refine as f64);
+    let fits = rows * cols * t * f64::from(1u32 << params.split_depth.min(16));
+    Ok(RunSize {
+        rows,
+        cols,
+        planes,
+        fits,
     })
 }
 

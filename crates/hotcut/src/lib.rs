@@ -38,6 +38,8 @@ pub mod fit_curves;
 pub mod hot_blade;
 /// The job file: the [`job::Job`] struct and [`job::TaskSpec`], the list of every task.
 pub mod job;
+/// Work and memory estimates of a run, and the limits they are checked against.
+pub mod limits;
 /// Reading, validating and resolving job files.
 pub mod load;
 /// Writers shared by the tasks: the rendered files and the robot files.

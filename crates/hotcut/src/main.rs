@@ -1,12 +1,16 @@
 //! The `hotcut` command-line tool. Exit codes: 0 success, 1 invalid input or failed run,
 //! 2 usage error.
+//!
+//! Printing never stops a run: a closed or full stdout or stderr (`hotcut run … | head`)
+//! loses the messages, not the outputs.
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
-use hotcut::load::{load_job, ResolvedJob};
+use clap::{Args, Parser, Subcommand};
+use hotcut::limits::{Limits, DEFAULT_MEMORY_GB, DEFAULT_WORK};
+use hotcut::load::{load_job_with, ResolvedJob};
 use hotcut::Progress;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -29,12 +33,17 @@ enum Command {
         /// Output directory.
         #[arg(long, default_value = "out")]
         out: PathBuf,
+        #[command(flatten)]
+        limits: LimitArgs,
     },
-    /// Check job files (syntax, schema, semantics) without running them.
+    /// Check job files (syntax, schema, semantics, and the work and memory a run would
+    /// take) without running them.
     Validate {
         /// Job files (RON).
         #[arg(required = true)]
         jobs: Vec<PathBuf>,
+        #[command(flatten)]
+        limits: LimitArgs,
     },
     /// Print the JSON Schema of job files or of a task's report.json, or write every schema
     /// to a folder.
@@ -51,6 +60,52 @@ enum Command {
         #[arg(long, value_name = "DIR", conflicts_with_all = ["report", "fit_report"])]
         write: Option<PathBuf>,
     },
+}
+
+/// The limits a job's estimated run is checked against at validation.
+#[derive(Args)]
+struct LimitArgs {
+    /// Most memory a run may need, GB: a job whose estimate is larger is refused at
+    /// validation.
+    #[arg(long, value_name = "GB", default_value_t = DEFAULT_MEMORY_GB, value_parser = positive)]
+    max_memory: f64,
+    /// Most work a run may take, in steps (about 10⁸ per second): a job whose estimate is
+    /// larger is refused at validation.
+    #[arg(long, value_name = "STEPS", default_value_t = DEFAULT_WORK, value_parser = positive)]
+    max_work: f64,
+}
+
+impl LimitArgs {
+    fn limits(&self) -> Limits {
+        Limits {
+            memory_gb: self.max_memory,
+            work: self.max_work,
+        }
+    }
+}
+
+/// A positive finite number.
+fn positive(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("expected a positive number, got {s}")),
+    }
+}
+
+/// Prints a line to stdout; a closed or full stdout is not an error (the run goes on).
+macro_rules! say {
+    ($($t:tt)*) => {{
+        use std::io::Write;
+        let _ = writeln!(std::io::stdout(), $($t)*);
+    }};
+}
+
+/// Prints a line to stderr, ignoring a closed stderr.
+macro_rules! warn {
+    ($($t:tt)*) => {{
+        use std::io::Write;
+        let _ = writeln!(std::io::stderr(), $($t)*);
+    }};
 }
 
 /// indicatif bars, hidden when stdout is not a terminal.
@@ -92,16 +147,28 @@ impl Progress for Bars {
     }
 }
 
-fn load_all(jobs: &[PathBuf]) -> Result<Vec<ResolvedJob>, ()> {
-    let mut ok = Vec::new();
+fn load_all(jobs: &[PathBuf], limits: &Limits) -> Result<Vec<ResolvedJob>, ()> {
+    let mut ok: Vec<ResolvedJob> = Vec::new();
     let mut failed = false;
     for j in jobs {
-        match load_job(j) {
-            Ok(r) => ok.push(r),
+        match load_job_with(j, limits) {
+            Ok(r) => {
+                // one output folder per name: two jobs of one name would overwrite each other
+                if let Some(first) = ok.iter().find(|o| o.context.name == r.context.name) {
+                    failed = true;
+                    warn!(
+                        "error: {}: /name: job name {:?} is also the name of {}; names must differ within one call (they name the output folders)",
+                        j.display(),
+                        r.context.name,
+                        first.path().display()
+                    );
+                }
+                ok.push(r);
+            }
             Err(errors) => {
                 failed = true;
                 for e in errors {
-                    eprintln!("error: {e}");
+                    warn!("error: {e}");
                 }
             }
         }
@@ -116,9 +183,9 @@ fn load_all(jobs: &[PathBuf]) -> Result<Vec<ResolvedJob>, ()> {
 /// Lists written files, folding long runs of per-block files.
 fn print_files(dir: &std::path::Path, files: &[String]) {
     if files.len() <= 12 {
-        println!("  wrote {}: {}", dir.display(), files.join(", "));
+        say!("  wrote {}: {}", dir.display(), files.join(", "));
     } else {
-        println!(
+        say!(
             "  wrote {}: {} files ({}, …, {})",
             dir.display(),
             files.len(),
@@ -135,10 +202,10 @@ fn schema(report: Option<String>, fit_report: bool, write: Option<PathBuf>) -> E
         for f in files {
             let p = dir.join(f.file);
             if let Err(e) = std::fs::create_dir_all(&dir).and_then(|_| std::fs::write(&p, f.text)) {
-                eprintln!("error: {}: {e}", p.display());
+                warn!("error: {}: {e}", p.display());
                 return ExitCode::from(1);
             }
-            println!("wrote {}", p.display());
+            say!("wrote {}", p.display());
         }
         return ExitCode::SUCCESS;
     }
@@ -149,14 +216,20 @@ fn schema(report: Option<String>, fit_report: bool, write: Option<PathBuf>) -> E
     };
     let Some(f) = files.iter().find(|f| f.task == task.as_deref()) else {
         let names: Vec<&str> = files.iter().filter_map(|f| f.task).collect();
-        eprintln!(
+        warn!(
             "error: no task {} (tasks: {})",
             task.unwrap_or_default(),
             names.join(", ")
         );
         return ExitCode::from(2);
     };
-    print!("{}", f.text);
+    {
+        use std::io::Write;
+        if let Err(e) = write!(std::io::stdout(), "{}", f.text) {
+            warn!("error: writing the schema: {e}");
+            return ExitCode::from(1);
+        }
+    }
     ExitCode::SUCCESS
 }
 
@@ -175,21 +248,21 @@ fn main() -> ExitCode {
             fit_report,
             write,
         } => schema(report, fit_report, write),
-        Command::Validate { jobs } => match load_all(&jobs) {
+        Command::Validate { jobs, limits } => match load_all(&jobs, &limits.limits()) {
             Ok(list) => {
                 for j in list {
-                    println!("{}: ok", j.path().display());
+                    say!("{}: ok", j.path().display());
                     for w in &j.context.warnings {
-                        println!("  warning: {w}");
+                        say!("  warning: {w}");
                     }
                 }
                 ExitCode::SUCCESS
             }
             Err(()) => ExitCode::from(1),
         },
-        Command::Run { jobs, out } => {
-            let Ok(list) = load_all(&jobs) else {
-                eprintln!("nothing was run: fix the errors above");
+        Command::Run { jobs, out, limits } => {
+            let Ok(list) = load_all(&jobs, &limits.limits()) else {
+                warn!("nothing was run: fix the errors above");
                 return ExitCode::from(1);
             };
             let bars = Bars::new();
@@ -197,11 +270,11 @@ fn main() -> ExitCode {
             for j in &list {
                 match hotcut::run::run_job(j, &out, &bars) {
                     Ok(o) => {
-                        println!("{}", o.summary);
+                        say!("{}", o.summary);
                         print_files(&o.dir, &o.files);
                     }
                     Err(e) => {
-                        eprintln!("error: {e}");
+                        warn!("error: {e}");
                         code = ExitCode::from(1);
                     }
                 }

@@ -103,6 +103,9 @@ pub fn run_task<T: Task>(
 ) -> Result<TaskOutcome<T>> {
     let params = task.params(job)?;
     let run = T::run(&params, job, progress)?;
+    if let Some(why) = T::nothing_to_cut(&run) {
+        return Err(job.fail(format!("nothing to cut, no file written: {why}")));
+    }
     let report = T::report(&params, &run, job);
     let done = Finished::<T> {
         job,

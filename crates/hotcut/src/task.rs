@@ -10,6 +10,7 @@ use serde::Serialize;
 
 use crate::context::{Context, JobFields};
 use crate::error::{JobError, Result};
+use crate::limits::{Estimate, Limits};
 use crate::output::Files;
 use crate::progress::Progress;
 use crate::spec::{OutputKind, OutputSpec};
@@ -43,11 +44,24 @@ pub trait Task: Sized + 'static {
     /// What validation would have reported, should the job lack something.
     fn params(&self, job: &Context) -> Result<Self::Params>;
 
+    /// How much work and memory a run with `params` will take, and the checks that need
+    /// the resolved job (the surface loaded); made at validation, before any geometry
+    /// work, and checked against [`crate::limits::Limits`].
+    fn estimate(params: &Self::Params, job: &Context) -> Estimate;
+
     /// Runs the task.
     ///
     /// # Errors
     /// Failures of the geometry or of the algorithm on valid input.
     fn run(params: &Self::Params, job: &Context, progress: &dyn Progress) -> Result<Self::Run>;
+
+    /// Why a run produced nothing to cut (no block, piece, pose or cut), or `None` when
+    /// it did. A run with nothing to cut fails and writes no file. Default: `None` (tasks
+    /// that write no machine file).
+    fn nothing_to_cut(run: &Self::Run) -> Option<String> {
+        let _ = run;
+        None
+    }
 
     /// The report of a run.
     fn report(params: &Self::Params, run: &Self::Run, job: &Context) -> Self::Report;
@@ -162,5 +176,34 @@ impl Visit for Name {
 
     fn visit<T: Task>(self, _: &T) -> &'static str {
         T::NAME
+    }
+}
+
+/// The checks of a resolved job: its parameters built, and the task's [`Task::estimate`]
+/// checked against the limits. Every problem, with its JSON pointer.
+pub struct Resolved<'a> {
+    /// The resolved job.
+    pub job: &'a Context,
+    /// The limits.
+    pub limits: &'a Limits,
+}
+
+impl Visit for Resolved<'_> {
+    type Output = Vec<JobError>;
+
+    fn visit<T: Task>(self, task: &T) -> Vec<JobError> {
+        let job = self.job;
+        let params = match task.params(job) {
+            Ok(p) => p,
+            Err(e) => return vec![JobError::semantic(&job.path, "", e.to_string())],
+        };
+        let e = T::estimate(&params, job);
+        let mut out: Vec<JobError> = e
+            .checks
+            .iter()
+            .map(|(pointer, message)| JobError::semantic(&job.path, pointer, message.clone()))
+            .collect();
+        out.extend(e.problems(&job.path, T::NAME, self.limits));
+        out
     }
 }

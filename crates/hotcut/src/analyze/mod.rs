@@ -34,6 +34,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::context::{Context, JobFields};
 use crate::error::{JobError, Result};
+use crate::limits::{section_cost, Estimate};
 use crate::progress::Progress;
 use crate::report::SurfaceInfo;
 use crate::spec::OutputKind;
@@ -114,6 +115,18 @@ impl Task for Analyze {
                 }),
             },
         })
+    }
+
+    fn estimate(p: &AnalyzeParams, job: &Context) -> Estimate {
+        let (cost, points) = section_cost(job.surface.as_ref());
+        let n = p.sections.count as f64;
+        let s = p.survey.curve.samples as f64;
+        Estimate::new(
+            n * (64.0 * s + 200.0 * points) + 1e7,
+            n * (cost + 100.0 * s + 1e3 * points),
+            "/task/Analyze/samples",
+            "lower the task's samples or cutting.sections",
+        )
     }
 
     fn run(params: &AnalyzeParams, job: &Context, progress: &dyn Progress) -> Result<Analysis> {

@@ -24,6 +24,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::context::{Context, JobFields};
 use crate::error::{JobError, Result};
+use crate::limits::Estimate;
 use crate::progress::Progress;
 use crate::spec::{OutputKind, SurfaceSpec, Units};
 use crate::task::{Output, Task};
@@ -177,6 +178,29 @@ impl Task for BlockSegmentation {
         Ok(self.optimizer([b.size.0, b.size.1, b.size.2], job.seed))
     }
 
+    fn estimate(p: &blocks::Params, job: &Context) -> Estimate {
+        let samples = match &job.surface {
+            Some(Surface::Mesh(mesh)) => blocks::estimated_samples(mesh, p),
+            _ => 0.0,
+        };
+        let mut e = Estimate::new(
+            samples * 96.0 + 1e7,
+            samples * 2e3 * p.restarts as f64,
+            "/block/size",
+            "enlarge block.size or the task's sample_spacing, or lower its restarts",
+        );
+        if !(samples <= p.max_samples as f64) {
+            e.checks.push((
+                format!("{PTR}/sample_spacing"),
+                format!(
+                    "about {samples:.3e} samples would be needed, more than the cap of {}: use a larger block or a coarser sample_spacing",
+                    p.max_samples
+                ),
+            ));
+        }
+        e
+    }
+
     fn run(params: &blocks::Params, job: &Context, progress: &dyn Progress) -> Result<BlockSegRun> {
         let Some(Surface::Mesh(mesh)) = &job.surface else {
             return Err(job.fail("task BlockSegmentation needs a closed mesh surface"));
@@ -199,6 +223,13 @@ impl Task for BlockSegmentation {
             segmentation,
             mesh: mesh.clone(),
         })
+    }
+
+    fn nothing_to_cut(run: &BlockSegRun) -> Option<String> {
+        run.segmentation
+            .blocks
+            .is_empty()
+            .then(|| "the segmentation placed no block".to_string())
     }
 
     fn report(params: &blocks::Params, run: &BlockSegRun, job: &Context) -> BlockSegReport {

@@ -41,6 +41,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::context::{Context, JobFields};
 use crate::error::{JobError, Result};
+use crate::limits::{blocks_spanned, section_cost, Estimate};
 use crate::progress::Progress;
 use crate::report::SurfaceInfo;
 use crate::spec::{keep_length, FitConstraintSpec, OutputKind, OutputSpec};
@@ -254,6 +255,22 @@ impl Task for FacadeSegmentation {
         })
     }
 
+    fn estimate(p: &SegmentationParams, job: &Context) -> Estimate {
+        let (cost, points) = section_cost(job.surface.as_ref());
+        let n = p.sectioning.count as f64;
+        let (rows, cols) = blocks_spanned(job);
+        let samples = p.samples as f64;
+        // pieces: a few per block the facade spans; each holds its row's sections
+        let pieces = 4.0 * rows * cols;
+        let parts = 4.0 * cols * n;
+        Estimate::new(
+            n * (2048.0 * 40.0 + 200.0 * points) + pieces * 2e3 + parts * samples * 48.0 + 1e7,
+            n * (cost + 1e3 * points + 2048.0 * 30.0) + parts * samples * 400.0,
+            "/block/size",
+            "enlarge block.size, or lower cutting.sections or the task's samples",
+        )
+    }
+
     fn run(
         params: &SegmentationParams,
         job: &Context,
@@ -279,6 +296,19 @@ impl Task for FacadeSegmentation {
             segmentation,
             posed,
             surface: SurfaceInfo::of(job, surface),
+        })
+    }
+
+    fn nothing_to_cut(run: &SegmentationRun) -> Option<String> {
+        if run.segmentation.pieces.is_empty() {
+            return Some("the segmentation made no piece".into());
+        }
+        let poses: usize = run.posed.iter().map(|p| p.parts.len()).sum();
+        (!run.posed.is_empty() && poses == 0).then(|| {
+            format!(
+                "none of the {} pieces could be posed for the blade (fits over tolerance, or parts the blade cannot reach)",
+                run.segmentation.pieces.len()
+            )
         })
     }
 

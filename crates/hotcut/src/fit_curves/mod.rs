@@ -20,6 +20,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::context::{Context, JobFields};
 use crate::error::{JobError, Result};
+use crate::limits::{section_cost, Estimate};
 use crate::progress::Progress;
 use crate::report::surface_kind;
 use crate::spec::{FitConstraintSpec, OutputKind};
@@ -111,6 +112,18 @@ impl Task for FitCurves {
             constraint: self.constraint,
             samples: self.samples as usize,
         })
+    }
+
+    fn estimate(p: &FitCurvesParams, job: &Context) -> Estimate {
+        let (cost, points) = section_cost(job.surface.as_ref());
+        let n = f64::from(job.cutting.sections);
+        let s = p.samples as f64;
+        Estimate::new(
+            n * (64.0 * s + 200.0 * points) + 1e7,
+            n * (cost + 1e3 * points + 2e3 * s),
+            "/task/FitCurves/samples",
+            "lower the task's samples or cutting.sections",
+        )
     }
 
     fn run(params: &FitCurvesParams, job: &Context, progress: &dyn Progress) -> Result<FitRun> {

@@ -14,6 +14,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::context::{Context, JobFields};
 use crate::error::{HotcutError, JobError, Result};
+use crate::limits::{section_cost, Estimate};
 use crate::progress::Progress;
 use crate::report::SurfaceInfo;
 use crate::spec::{keep_length, Continuity, FitConstraintSpec, OutputKind, OutputSpec};
@@ -222,6 +223,28 @@ impl Task for HotBlade {
         })
     }
 
+    fn estimate(p: &HotBladeParams, job: &Context) -> Estimate {
+        let (cost, points) = section_cost(job.surface.as_ref());
+        let pipeline = &p.pipeline;
+        let (blocks, planes, fits) = match job
+            .surface
+            .as_ref()
+            .map(|s| hotblade::run_size(s, pipeline))
+        {
+            Some(Ok(n)) => (n.rows * n.cols, n.planes, n.fits),
+            _ => (1.0, 1.0, 1.0),
+        };
+        let samples = pipeline.samples as f64;
+        let grid = (pipeline.grid_points * pipeline.grid_points) as f64;
+        let per_block = (pipeline.targets * (pipeline.refine + 1)) as f64;
+        Estimate::new(
+            planes * points * 200.0 + fits * samples * 64.0 + blocks * (grid + per_block) * 512.0 + 1e7,
+            planes * (cost + 1e3 * points) + fits * samples * 400.0 + blocks * grid * 100.0,
+            "/block/size",
+            "enlarge block.size, or lower the task's targets_per_block, samples, refine or split_depth",
+        )
+    }
+
     fn run(params: &HotBladeParams, job: &Context, progress: &dyn Progress) -> Result<HotBladeRun> {
         let surface = job.surface(Self::NAME)?;
         let report = |p: hotblade::Progress<'_>| match p {
@@ -241,6 +264,18 @@ impl Task for HotBlade {
         Ok(HotBladeRun {
             cut,
             surface: SurfaceInfo::of(job, surface),
+        })
+    }
+
+    fn nothing_to_cut(run: &HotBladeRun) -> Option<String> {
+        let sections: usize = run.cut.blocks.iter().map(|b| b.sections.len()).sum();
+        (sections == 0).then(|| {
+            format!(
+                "no block of the {} × {} grid holds a fitted section ({} column halvings): the fits miss the tolerance, or the blade cannot reach them; loosen tolerance, or check blade.length against the block",
+                run.cut.grid.rows,
+                run.cut.grid.cols,
+                run.cut.splits.len()
+            )
         })
     }
 

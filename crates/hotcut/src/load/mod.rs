@@ -17,8 +17,9 @@ use nalgebra::Vector3;
 use crate::context::{blade_of, Context, JobFields};
 use crate::error::JobError;
 use crate::job::{Job, TaskSpec};
+use crate::limits::Limits;
 use crate::spec::OutputSpec;
-use crate::task::Check;
+use crate::task::{Check, Resolved};
 
 /// Layer 1: RON syntax and structure.
 mod parse;
@@ -81,6 +82,14 @@ fn direction(path: &Path, job: &Job, errors: &mut Vec<JobError>) -> Vector3<f64>
 /// # Errors
 /// Every semantic problem found, each with its JSON pointer.
 pub fn resolve(path: &Path, job: Job) -> Result<ResolvedJob, Vec<JobError>> {
+    resolve_with(path, job, &Limits::default())
+}
+
+/// [`resolve`], with the run's estimated work and memory checked against `limits`.
+///
+/// # Errors
+/// As [`resolve`]; a run that would take more than `limits` (naming the field to change).
+pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJob, Vec<JobError>> {
     let mut errors = Vec::new();
     let mut warnings = Vec::new();
     let base = path.parent().unwrap_or(Path::new("."));
@@ -132,6 +141,13 @@ pub fn resolve(path: &Path, job: Job) -> Result<ResolvedJob, Vec<JobError>> {
         tolerance: job.tolerance,
         seed: job.seed,
     };
+    let errors = job.task.visit(Resolved {
+        job: &context,
+        limits,
+    });
+    if !errors.is_empty() {
+        return Err(errors);
+    }
     Ok(ResolvedJob {
         context,
         task: job.task,
@@ -153,6 +169,14 @@ pub fn resolve(path: &Path, job: Job) -> Result<ResolvedJob, Vec<JobError>> {
 /// assert_eq!(job.context.cutting.sections, 26);
 /// ```
 pub fn load_job(path: &Path) -> Result<ResolvedJob, Vec<JobError>> {
+    load_job_with(path, &Limits::default())
+}
+
+/// [`load_job`], with the run's estimated work and memory checked against `limits`.
+///
+/// # Errors
+/// As [`load_job`].
+pub fn load_job_with(path: &Path, limits: &Limits) -> Result<ResolvedJob, Vec<JobError>> {
     let text = std::fs::read_to_string(path).map_err(|e| {
         vec![JobError::Read {
             path: path.to_path_buf(),
@@ -161,5 +185,5 @@ pub fn load_job(path: &Path) -> Result<ResolvedJob, Vec<JobError>> {
     })?;
     let job = parse_job(path, &text).map_err(|e| vec![e])?;
     validate_schema(path, &job)?;
-    resolve(path, job)
+    resolve_with(path, job, limits)
 }

@@ -24,6 +24,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::context::{Context, JobFields};
 use crate::error::{JobError, Result};
+use crate::limits::Estimate;
 use crate::progress::Progress;
 use crate::spec::{OutputKind, OutputSpec, Units};
 use crate::task::{Output, Task};
@@ -265,6 +266,22 @@ impl Task for PreCut {
         Ok(PreCutParams { cut, block, wire })
     }
 
+    fn estimate(p: &PreCutParams, _job: &Context) -> Estimate {
+        let c = &p.cut;
+        let dirs = c.directions.len() as f64;
+        // the constraint points of one direction's program, each touching `degree + 1`
+        // controls of every leg
+        let points = (c.sections * c.samples * c.check_density.max(1)) as f64;
+        let nnz = points * (c.legs * (c.degree + 1)) as f64;
+        let vars = (c.legs * c.controls * 3) as f64;
+        Estimate::new(
+            nnz * 48.0 + vars * vars * 16.0 + (c.volume_grid * c.volume_grid) as f64 * 16.0 + 1e7,
+            dirs * c.max_rounds as f64 * (nnz * 20.0 + vars * vars * 50.0),
+            "/task/PreCut/samples",
+            "lower the task's sections, samples, legs, controls or max_rounds",
+        )
+    }
+
     fn run(params: &PreCutParams, job: &Context, progress: &dyn Progress) -> Result<PreCutRun> {
         let surface = job.surface(Self::NAME)?;
         let p = &params.cut;
@@ -296,6 +313,11 @@ impl Task for PreCut {
             surface: surface.clone(),
             wires,
         })
+    }
+
+    fn nothing_to_cut(run: &PreCutRun) -> Option<String> {
+        let legs: usize = run.cut.directions.iter().map(|d| d.legs.len()).sum();
+        (legs == 0).then(|| "no cut in any direction".to_string())
     }
 
     fn report(params: &PreCutParams, run: &PreCutRun, job: &Context) -> PreCutReport {
