@@ -11,6 +11,11 @@
 //! atom  = number | "x" | "y" | "pi" | "e" | func "(" expr ")" | "(" expr ")"
 //! func  = sin | cos | tan | exp | ln | sqrt | abs
 //! ```
+//! Limits: at most [`MAX_LENGTH`] bytes of source and [`MAX_DEPTH`] levels of nesting
+//! (parentheses, function calls, signs and powers), so parsing never exhausts the stack.
+//! The parser writes a postfix program (no tree), so evaluating and dropping an expression
+//! is a loop, and every analysis is linear in its length.
+//!
 //! Written here rather than taken from a crate because sectioning needs exact curvature of
 //! the section curve, i.e. second derivatives of `f` along the section, which the
 //! permissively licensed expression crates do not provide.
@@ -19,21 +24,33 @@
 
 use crate::error::{GeomError, Result};
 
+/// Most bytes of source an expression may have.
+pub const MAX_LENGTH: usize = 10_000;
+/// Most levels of nesting (parentheses, function calls, signs, powers) an expression may
+/// have.
+pub const MAX_DEPTH: usize = 200;
+
 /// A parsed expression in the variables `x` and `y`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Expr {
-    node: Node,
+    /// The program in postfix order.
+    program: Vec<Instr>,
+    /// Largest stack the program needs.
+    stack: usize,
     source: String,
 }
 
-#[derive(Debug, Clone, PartialEq)]
-enum Node {
+/// One step of the postfix program: push a value, or combine the top of the stack.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Instr {
     Num(f64),
     X,
     Y,
-    Neg(Box<Node>),
-    Bin(Op, Box<Node>, Box<Node>),
-    Func(Func, Box<Node>),
+    Neg,
+    Bin(Op),
+    /// `a^b` with a constant exponent `b` (no `x` or `y` in it).
+    PowConst,
+    Func(Func),
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -134,7 +151,14 @@ impl Jet {
 struct Parser<'a> {
     src: &'a [u8],
     pos: usize,
+    /// The program so far.
+    out: Vec<Instr>,
+    /// Current nesting depth.
+    depth: usize,
 }
+
+/// Whether a parsed part is free of `x` and `y`.
+type Constant = bool;
 
 impl Parser<'_> {
     fn err<T>(&self, message: impl Into<String>) -> Result<T> {
@@ -160,55 +184,79 @@ impl Parser<'_> {
             false
         }
     }
-    fn expr(&mut self) -> Result<Node> {
-        let mut left = self.term()?;
+    /// Enters one level of nesting.
+    fn enter(&mut self) -> Result<()> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return self.err(format!("nested deeper than {MAX_DEPTH} levels"));
+        }
+        Ok(())
+    }
+    fn expr(&mut self) -> Result<Constant> {
+        let mut constant = self.term()?;
         loop {
             let op = match self.peek() {
                 Some(b'+') => Op::Add,
                 Some(b'-') => Op::Sub,
-                _ => return Ok(left),
+                _ => return Ok(constant),
             };
             self.pos += 1;
-            let right = self.term()?;
-            left = Node::Bin(op, Box::new(left), Box::new(right));
+            constant &= self.term()?;
+            self.out.push(Instr::Bin(op));
         }
     }
-    fn term(&mut self) -> Result<Node> {
-        let mut left = self.unary()?;
+    fn term(&mut self) -> Result<Constant> {
+        let mut constant = self.unary()?;
         loop {
             let op = match self.peek() {
                 Some(b'*') => Op::Mul,
                 Some(b'/') => Op::Div,
-                _ => return Ok(left),
+                _ => return Ok(constant),
             };
             self.pos += 1;
-            let right = self.unary()?;
-            left = Node::Bin(op, Box::new(left), Box::new(right));
+            constant &= self.unary()?;
+            self.out.push(Instr::Bin(op));
         }
     }
-    fn unary(&mut self) -> Result<Node> {
-        if self.eat(b'-') {
-            return Ok(Node::Neg(Box::new(self.unary()?)));
+    fn unary(&mut self) -> Result<Constant> {
+        self.enter()?;
+        // a run of signs, counted (not nested): `--x` is `-(-x)`
+        let mut negations = 0usize;
+        loop {
+            if self.eat(b'-') {
+                negations += 1;
+            } else if !self.eat(b'+') {
+                break;
+            }
         }
-        if self.eat(b'+') {
-            return self.unary();
+        let constant = self.power()?;
+        for _ in 0..negations {
+            self.out.push(Instr::Neg);
         }
-        self.power()
+        self.depth -= 1;
+        Ok(constant)
     }
-    fn power(&mut self) -> Result<Node> {
+    fn power(&mut self) -> Result<Constant> {
         let base = self.atom()?;
         if self.eat(b'^') {
-            let exp = self.unary()?;
-            return Ok(Node::Bin(Op::Pow, Box::new(base), Box::new(exp)));
+            let exponent = self.unary()?;
+            self.out.push(if exponent {
+                Instr::PowConst
+            } else {
+                Instr::Bin(Op::Pow)
+            });
+            return Ok(base && exponent);
         }
         Ok(base)
     }
-    fn atom(&mut self) -> Result<Node> {
+    fn atom(&mut self) -> Result<Constant> {
         match self.peek() {
             None => self.err("unexpected end of expression"),
             Some(b'(') => {
                 self.pos += 1;
+                self.enter()?;
                 let e = self.expr()?;
+                self.depth -= 1;
                 if !self.eat(b')') {
                     return self.err("expected ')'");
                 }
@@ -223,11 +271,15 @@ impl Parser<'_> {
                     self.pos += 1;
                 }
                 let name = std::str::from_utf8(&self.src[start..self.pos]).unwrap_or_default();
+                let leaf = |p: &mut Self, i: Instr, constant: bool| {
+                    p.out.push(i);
+                    Ok(constant)
+                };
                 let func = match name {
-                    "x" => return Ok(Node::X),
-                    "y" => return Ok(Node::Y),
-                    "pi" => return Ok(Node::Num(std::f64::consts::PI)),
-                    "e" => return Ok(Node::Num(std::f64::consts::E)),
+                    "x" => return leaf(self, Instr::X, false),
+                    "y" => return leaf(self, Instr::Y, false),
+                    "pi" => return leaf(self, Instr::Num(std::f64::consts::PI), true),
+                    "e" => return leaf(self, Instr::Num(std::f64::consts::E), true),
                     "sin" => Func::Sin,
                     "cos" => Func::Cos,
                     "tan" => Func::Tan,
@@ -245,16 +297,19 @@ impl Parser<'_> {
                 if !self.eat(b'(') {
                     return self.err(format!("expected '(' after {name}"));
                 }
-                let arg = self.expr()?;
+                self.enter()?;
+                let constant = self.expr()?;
+                self.depth -= 1;
                 if !self.eat(b')') {
                     return self.err("expected ')'");
                 }
-                Ok(Node::Func(func, Box::new(arg)))
+                self.out.push(Instr::Func(func));
+                Ok(constant)
             }
             Some(c) => self.err(format!("unexpected character '{}'", c as char)),
         }
     }
-    fn number(&mut self) -> Result<Node> {
+    fn number(&mut self) -> Result<Constant> {
         let start = self.pos;
         let s = self.src;
         let digits = |p: &mut usize| {
@@ -281,7 +336,10 @@ impl Parser<'_> {
         }
         let text = std::str::from_utf8(&s[start..self.pos]).unwrap_or_default();
         match text.parse::<f64>() {
-            Ok(v) => Ok(Node::Num(v)),
+            Ok(v) => {
+                self.out.push(Instr::Num(v));
+                Ok(true)
+            }
             Err(_) => {
                 self.pos = start;
                 self.err(format!("malformed number '{text}'"))
@@ -302,16 +360,37 @@ impl Expr {
     /// assert!((f.eval(150.0 * std::f64::consts::PI, 0.0) - 120.0).abs() < 1e-12);
     /// ```
     pub fn parse(source: &str) -> Result<Self> {
+        if source.len() > MAX_LENGTH {
+            return Err(GeomError::Expression {
+                column: MAX_LENGTH + 1,
+                message: format!("longer than {MAX_LENGTH} bytes ({} bytes)", source.len()),
+            });
+        }
         let mut p = Parser {
             src: source.as_bytes(),
             pos: 0,
+            out: Vec::new(),
+            depth: 0,
         };
-        let node = p.expr()?;
+        p.expr()?;
         if p.peek().is_some() {
             return p.err("unexpected text after the expression");
         }
+        let program = p.out;
+        // the stack's height after each step
+        let mut height = 0usize;
+        let mut stack = 0usize;
+        for i in &program {
+            match i {
+                Instr::Num(_) | Instr::X | Instr::Y => height += 1,
+                Instr::Bin(_) | Instr::PowConst => height -= 1,
+                Instr::Neg | Instr::Func(_) => {}
+            }
+            stack = stack.max(height);
+        }
         Ok(Self {
-            node,
+            program,
+            stack,
             source: source.to_string(),
         })
     }
@@ -323,7 +402,7 @@ impl Expr {
 
     /// `f(x, y)`.
     pub fn eval(&self, x: f64, y: f64) -> f64 {
-        eval_node(&self.node, Jet::constant(x), Jet::constant(y)).v
+        self.run(Jet::constant(x), Jet::constant(y)).v
     }
 
     /// `f` along the line `(x0 + t·ux, y0 + t·uy)` at `t`: value, `df/dt`, `d²f/dt²`.
@@ -338,78 +417,102 @@ impl Expr {
             d1: uy,
             d2: 0.0,
         };
-        eval_node(&self.node, x, y)
+        self.run(x, y)
+    }
+
+    /// Runs the program with `x` and `y`.
+    fn run(&self, x: Jet, y: Jet) -> Jet {
+        // small programs (nearly all) run on a stack array, larger ones on the heap
+        const SMALL: usize = 32;
+        if self.stack <= SMALL {
+            let mut buf = [Jet::constant(0.0); SMALL];
+            execute(&self.program, x, y, &mut buf)
+        } else {
+            let mut buf = vec![Jet::constant(0.0); self.stack];
+            execute(&self.program, x, y, &mut buf)
+        }
     }
 }
 
-fn is_constant(n: &Node) -> bool {
-    match n {
-        Node::Num(_) => true,
-        Node::X | Node::Y => false,
-        Node::Neg(a) | Node::Func(_, a) => is_constant(a),
-        Node::Bin(_, a, b) => is_constant(a) && is_constant(b),
+/// Runs `program` on the stack `buf` (at least as deep as the program needs).
+fn execute(program: &[Instr], x: Jet, y: Jet, buf: &mut [Jet]) -> Jet {
+    let mut top = 0usize;
+    for i in program {
+        match *i {
+            Instr::Num(v) => {
+                buf[top] = Jet::constant(v);
+                top += 1;
+            }
+            Instr::X => {
+                buf[top] = x;
+                top += 1;
+            }
+            Instr::Y => {
+                buf[top] = y;
+                top += 1;
+            }
+            Instr::Neg => {
+                let a = buf[top - 1];
+                buf[top - 1] = Jet {
+                    v: -a.v,
+                    d1: -a.d1,
+                    d2: -a.d2,
+                };
+            }
+            Instr::Bin(op) => {
+                let (ja, jb) = (buf[top - 2], buf[top - 1]);
+                top -= 1;
+                buf[top - 1] = binary(op, ja, jb);
+            }
+            Instr::PowConst => {
+                let (ja, jb) = (buf[top - 2], buf[top - 1]);
+                top -= 1;
+                buf[top - 1] = ja.powc(jb.v);
+            }
+            Instr::Func(f) => buf[top - 1] = func(f, buf[top - 1]),
+        }
+    }
+    buf[0]
+}
+
+fn binary(op: Op, ja: Jet, jb: Jet) -> Jet {
+    match op {
+        Op::Add => ja.add(jb),
+        Op::Sub => ja.sub(jb),
+        Op::Mul => ja.mul(jb),
+        Op::Div => ja.mul(jb.recip()),
+        Op::Pow => {
+            // a^b = exp(b ln a)
+            let ln = ja.chain(ja.v.ln(), 1.0 / ja.v, -1.0 / (ja.v * ja.v));
+            let e = jb.mul(ln);
+            let ev = e.v.exp();
+            e.chain(ev, ev, ev)
+        }
     }
 }
 
-fn eval_node(n: &Node, x: Jet, y: Jet) -> Jet {
-    match n {
-        Node::Num(v) => Jet::constant(*v),
-        Node::X => x,
-        Node::Y => y,
-        Node::Neg(a) => {
-            let a = eval_node(a, x, y);
-            Jet {
-                v: -a.v,
-                d1: -a.d1,
-                d2: -a.d2,
-            }
+fn func(f: Func, a: Jet) -> Jet {
+    let v = a.v;
+    match f {
+        Func::Sin => a.chain(v.sin(), v.cos(), -v.sin()),
+        Func::Cos => a.chain(v.cos(), -v.sin(), -v.cos()),
+        Func::Tan => {
+            let t = v.tan();
+            let s = 1.0 + t * t;
+            a.chain(t, s, 2.0 * t * s)
         }
-        Node::Bin(op, a, b) => {
-            let ja = eval_node(a, x, y);
-            let jb = eval_node(b, x, y);
-            match op {
-                Op::Add => ja.add(jb),
-                Op::Sub => ja.sub(jb),
-                Op::Mul => ja.mul(jb),
-                Op::Div => ja.mul(jb.recip()),
-                Op::Pow => {
-                    if is_constant(b) {
-                        ja.powc(jb.v)
-                    } else {
-                        // a^b = exp(b ln a)
-                        let ln = ja.chain(ja.v.ln(), 1.0 / ja.v, -1.0 / (ja.v * ja.v));
-                        let e = jb.mul(ln);
-                        let ev = e.v.exp();
-                        e.chain(ev, ev, ev)
-                    }
-                }
-            }
+        Func::Exp => {
+            let e = v.exp();
+            a.chain(e, e, e)
         }
-        Node::Func(f, a) => {
-            let a = eval_node(a, x, y);
-            let v = a.v;
-            match f {
-                Func::Sin => a.chain(v.sin(), v.cos(), -v.sin()),
-                Func::Cos => a.chain(v.cos(), -v.sin(), -v.cos()),
-                Func::Tan => {
-                    let t = v.tan();
-                    let s = 1.0 + t * t;
-                    a.chain(t, s, 2.0 * t * s)
-                }
-                Func::Exp => {
-                    let e = v.exp();
-                    a.chain(e, e, e)
-                }
-                Func::Ln => a.chain(v.ln(), 1.0 / v, -1.0 / (v * v)),
-                Func::Sqrt => {
-                    let r = v.sqrt();
-                    a.chain(r, 0.5 / r, -0.25 / (r * v))
-                }
-                Func::Abs => {
-                    let s = if v < 0.0 { -1.0 } else { 1.0 };
-                    a.chain(v.abs(), s, 0.0)
-                }
-            }
+        Func::Ln => a.chain(v.ln(), 1.0 / v, -1.0 / (v * v)),
+        Func::Sqrt => {
+            let r = v.sqrt();
+            a.chain(r, 0.5 / r, -0.25 / (r * v))
+        }
+        Func::Abs => {
+            let s = if v < 0.0 { -1.0 } else { 1.0 };
+            a.chain(v.abs(), s, 0.0)
         }
     }
 }
@@ -453,6 +556,37 @@ mod tests {
                 other => panic!("{s}: {other:?}"),
             }
         }
+    }
+
+    /// Deep nesting, long runs of signs and very long sums end in an error or a value, in
+    /// linear time, without exhausting the stack (the hostile inputs of issue 18).
+    #[test]
+    fn hostile_expressions_end_quickly() {
+        let deep = format!("{}x{}", "(".repeat(12_000), ")".repeat(12_000));
+        assert!(Expr::parse(&deep).is_err());
+        let signs = format!("{}x", "-".repeat(30_000));
+        assert!(Expr::parse(&signs).is_err(), "longer than the limit");
+        let signs = format!("{}x", "-".repeat(9_000));
+        assert_eq!(Expr::parse(&signs).unwrap().eval(2.0, 0.0), 2.0);
+        let sum = vec!["x"; 4_000].join("+");
+        assert_eq!(Expr::parse(&sum).unwrap().eval(1.0, 0.0), 4000.0);
+        let long = vec!["x"; 50_000].join("+");
+        assert!(Expr::parse(&long).is_err());
+        // constant exponents found in linear time: 1^1^…^1*x
+        let pow = format!("{}*x", vec!["1"; 3_000].join("^"));
+        let f = Expr::parse(&pow);
+        assert!(
+            f.is_err(),
+            "3000 right-nested powers exceed the depth limit"
+        );
+        let pow = format!("{}*x", vec!["1"; 150].join("^"));
+        assert_eq!(Expr::parse(&pow).unwrap().eval(3.0, 0.0), 3.0);
+        let nested = format!(
+            "{}x{}",
+            "sin(".repeat(MAX_DEPTH / 2 - 1),
+            ")".repeat(MAX_DEPTH / 2 - 1)
+        );
+        assert!(Expr::parse(&nested).is_ok());
     }
 
     #[test]
