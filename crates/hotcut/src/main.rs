@@ -261,6 +261,12 @@ fn main() -> ExitCode {
             Err(()) => ExitCode::from(1),
         },
         Command::Run { jobs, out, limits } => {
+            // Ctrl-C or a TERM signal: this run's temporary folders go, the outputs in
+            // place stay whole
+            let _ = ctrlc::set_handler(|| {
+                hotcut::run::remove_temporaries();
+                std::process::exit(130);
+            });
             let Ok(list) = load_all(&jobs, &limits.limits()) else {
                 warn!("nothing was run: fix the errors above");
                 return ExitCode::from(1);

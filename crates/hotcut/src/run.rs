@@ -1,14 +1,22 @@
 //! The runner: runs a resolved job's task and writes its outputs as a whole.
 //!
 //! Outputs are rendered one file at a time and written into a temporary folder inside the
-//! output directory, which is renamed to `<out>/<job name>/` only when every file is
-//! written (an earlier run's folder is moved aside first, and put back if the rename
-//! fails), so a failed run leaves no partial output folder.
+//! output directory (`.<name>.tmp-<pid>-…`), which takes the place of `<out>/<job name>/`
+//! only when every file is written: renamed there when there is no earlier output, else
+//! swapped with the earlier output in one atomic step (Linux `renameat2` with
+//! `RENAME_EXCHANGE`; elsewhere the earlier folder is moved aside first), and the earlier
+//! output is then deleted. So a kill at any instant leaves `<out>/<name>` holding one whole
+//! run, old or new, and two runs of one job into one folder both end with a whole folder.
+//! A failed run leaves no partial folder; temporary folders of runs that were killed
+//! (their process is gone) are deleted by the next run of the job, and
+//! [`remove_temporaries`](crate::run::remove_temporaries) deletes this process's own on
+//! SIGINT/SIGTERM (the CLI installs it).
 //!
 //! Entry points: [`run_job`](crate::run::run_job) for any job,
 //! [`run_task`](crate::run::run_task) for a task of a known type with its typed results.
 
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use export::json::REPORT_DIGITS;
 
@@ -115,16 +123,30 @@ pub fn run_task<T: Task>(
     };
     let dir = out.join(&job.name);
     std::fs::create_dir_all(out).map_err(io(out))?;
+    remove_stale(out, &job.name);
+    let prefix = format!(".{}.tmp-{}-", job.name, std::process::id());
     let tmp = tempfile::Builder::new()
-        .prefix(&format!(".{}.tmp-", job.name))
+        .prefix(&prefix)
         .tempdir_in(out)
         .map_err(io(out))?;
-    let files =
-        render(&done, outputs, tmp.path()).map_err(|(file, source)| HotcutError::Export {
+    let kept = tmp.keep();
+    in_progress().push(kept.clone());
+    let rendered = render(&done, outputs, &kept);
+    let placed = match rendered {
+        Ok(files) => place(&kept, &dir).map(|()| files),
+        Err((file, source)) => Err(HotcutError::Export {
             path: dir.join(file),
             source,
-        })?;
-    move_into_place(tmp, &dir)?;
+        }),
+    };
+    {
+        // whatever is left at the temporary path (a failed run's files, or the earlier
+        // output swapped out) goes
+        let mut list = in_progress();
+        let _ = std::fs::remove_dir_all(&kept);
+        list.retain(|p| p != &kept);
+    }
+    let files = placed?;
     Ok(TaskOutcome {
         dir,
         files,
@@ -170,38 +192,115 @@ fn render<T: Task>(
     Ok(files.into_names())
 }
 
-/// Renames the finished temporary folder to `dir`. An earlier run's folder is first moved
-/// aside (renamed within `out`), then the new one moved into place, then the old one
-/// deleted; if the new one cannot be moved, the old one is put back. So `dir` always holds
-/// one whole run, old or new.
-fn move_into_place(tmp: tempfile::TempDir, dir: &Path) -> Result<()> {
-    let kept = tmp.keep();
-    let parent = dir.parent().unwrap_or(Path::new("."));
-    let name = dir.file_name().map(|n| n.to_string_lossy().into_owned());
-    let aside = dir.exists().then(|| {
-        // a fresh name beside it: the temporary folder's own name with a suffix
-        let stem = kept.file_name().map(|n| n.to_string_lossy().into_owned());
-        parent.join(format!(
-            "{}.old-{}",
-            stem.unwrap_or_default(),
-            name.unwrap_or_default()
-        ))
-    });
-    if let Some(old) = &aside {
-        if let Err(e) = std::fs::rename(dir, old) {
-            let _ = std::fs::remove_dir_all(&kept);
-            return Err(io(dir)(e));
+/// Temporary folders of this process's runs in progress.
+static IN_PROGRESS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// The list of temporary folders in progress (a panic elsewhere does not poison it).
+fn in_progress() -> MutexGuard<'static, Vec<PathBuf>> {
+    IN_PROGRESS.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// Deletes the temporary folders of this process's runs in progress, and keeps any other
+/// from starting to take its place: call it on SIGINT or SIGTERM, then exit. An output
+/// being swapped into place finishes first (the swap holds the same lock), so
+/// `<out>/<name>` keeps one whole run.
+pub fn remove_temporaries() {
+    let mut list = in_progress();
+    for p in list.drain(..) {
+        let _ = std::fs::remove_dir_all(p);
+    }
+    // the lock is held until the process exits
+    std::mem::forget(list);
+}
+
+/// Deletes `<out>/.<name>.tmp-<pid>-…` folders of runs whose process is gone (killed
+/// before they could clean up), and those of the older naming without a process id.
+fn remove_stale(out: &Path, name: &str) {
+    let prefix = format!(".{name}.tmp-");
+    let Ok(entries) = std::fs::read_dir(out) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let file = e.file_name().to_string_lossy().into_owned();
+        let Some(rest) = file.strip_prefix(&prefix) else {
+            continue;
+        };
+        let pid = rest.split('-').next().and_then(|p| p.parse::<u32>().ok());
+        let gone = match pid {
+            Some(pid) => pid != std::process::id() && !process_alive(pid),
+            None => true,
+        };
+        if gone {
+            let _ = std::fs::remove_dir_all(e.path());
         }
     }
-    if let Err(e) = std::fs::rename(&kept, dir) {
-        let _ = std::fs::remove_dir_all(&kept);
-        if let Some(old) = &aside {
-            let _ = std::fs::rename(old, dir);
+}
+
+/// Whether process `pid` is running (on Linux: `/proc/<pid>` exists; elsewhere assumed,
+/// so nothing is deleted that might be in use).
+fn process_alive(pid: u32) -> bool {
+    if cfg!(target_os = "linux") {
+        Path::new(&format!("/proc/{pid}")).exists()
+    } else {
+        true
+    }
+}
+
+/// Puts the finished folder `tmp` at `dir`: renamed there when `dir` does not exist,
+/// else swapped with it atomically (after which `tmp` holds the earlier output, for the
+/// caller to delete). Holds the in-progress lock, so a signal handler waits for it.
+fn place(tmp: &Path, dir: &Path) -> Result<()> {
+    let _guard = in_progress();
+    // a concurrent run may create or remove `dir` between the attempts: a few rounds
+    let mut last = None;
+    for _ in 0..4 {
+        match std::fs::rename(tmp, dir) {
+            Ok(()) => return Ok(()),
+            Err(e) if !dir.exists() => {
+                last = Some(e);
+                continue;
+            }
+            Err(_) => {}
         }
-        return Err(io(dir)(e));
+        match exchange(tmp, dir) {
+            Ok(()) => return Ok(()),
+            Err(e) => last = Some(e),
+        }
     }
-    if let Some(old) = aside {
-        let _ = std::fs::remove_dir_all(old);
+    Err(io(dir)(last.unwrap_or_else(|| {
+        std::io::Error::other("the output folder kept changing under a concurrent run")
+    })))
+}
+
+/// Swaps the folders at `a` and `b` in one step.
+#[cfg(target_os = "linux")]
+fn exchange(a: &Path, b: &Path) -> std::io::Result<()> {
+    use rustix::fs::{renameat_with, RenameFlags, CWD};
+    match renameat_with(CWD, a, CWD, b, RenameFlags::EXCHANGE) {
+        Ok(()) => Ok(()),
+        // a file system without the exchange: the two-step fallback
+        Err(rustix::io::Errno::INVAL) | Err(rustix::io::Errno::NOSYS) => exchange_in_two(a, b),
+        Err(e) => Err(e.into()),
     }
-    Ok(())
+}
+
+/// Swaps the folders at `a` and `b`.
+#[cfg(not(target_os = "linux"))]
+fn exchange(a: &Path, b: &Path) -> std::io::Result<()> {
+    exchange_in_two(a, b)
+}
+
+/// Swaps `a` and `b` in two renames through a third name beside them: `b` is moved aside,
+/// `a` moved to `b`, the old `b` moved to `a` (and put back if the second step fails).
+/// A kill between the steps leaves the old output complete beside `b`.
+fn exchange_in_two(a: &Path, b: &Path) -> std::io::Result<()> {
+    let mut aside = a.as_os_str().to_owned();
+    aside.push(".old");
+    let aside = PathBuf::from(aside);
+    std::fs::rename(b, &aside)?;
+    if let Err(e) = std::fs::rename(a, b) {
+        let _ = std::fs::rename(&aside, b);
+        return Err(e);
+    }
+    std::fs::rename(&aside, a)
 }
