@@ -130,7 +130,8 @@ impl TriMesh {
         Ok(Self { vertices, faces })
     }
 
-    /// Loads the triangles of every object in an OBJ file (polygons are fan-triangulated).
+    /// Loads the triangles of every object in an OBJ file (polygons are fan-triangulated),
+    /// coordinates read in `f64`.
     ///
     /// # Errors
     /// [`GeomError::MeshRead`] when the file is missing or malformed, and the errors of
@@ -152,9 +153,21 @@ impl TriMesh {
             let base = vertices.len() as u32;
             let mesh = m.mesh;
             for p in mesh.positions.chunks_exact(3) {
-                vertices.push(Vector3::new(p[0] as f64, p[1] as f64, p[2] as f64));
+                vertices.push(Vector3::new(p[0], p[1], p[2]));
             }
             for f in mesh.indices.chunks_exact(3) {
+                if f[0] == f[1] || f[1] == f[2] || f[0] == f[2] {
+                    return Err(GeomError::MeshRead {
+                        path: path.to_path_buf(),
+                        message: format!(
+                            "face {} names one vertex twice ({} {} {}, 1-based): not a triangle",
+                            faces.len() + 1,
+                            base + f[0] + 1,
+                            base + f[1] + 1,
+                            base + f[2] + 1
+                        ),
+                    });
+                }
                 faces.push([base + f[0], base + f[1], base + f[2]]);
             }
         }

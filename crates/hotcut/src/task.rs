@@ -152,6 +152,12 @@ impl Visit for Check<'_, '_> {
         task.check(&job, errors);
         let kinds = output_kinds::<T>();
         for (i, o) in job.outputs.iter().enumerate() {
+            if job.outputs[..i].iter().any(|p| p.kind() == o.kind()) {
+                errors.push(job.error(
+                    &format!("/outputs/{i}"),
+                    format!("output {} is listed twice", o.name()),
+                ));
+            }
             if !kinds.contains(&o.kind()) {
                 let names: Vec<&str> = kinds.iter().map(|k| k.name()).collect();
                 errors.push(job.error(

@@ -59,7 +59,13 @@ impl CutFrame {
     /// # Errors
     /// [`PreCutError::InvalidParameter`] for a direction with no horizontal part.
     pub fn new(direction: [f64; 2], block: &Block) -> Result<Self> {
-        let d = Vector2::from(direction);
+        // a vector whose norm overflows, like (1e308, 1e308), is scaled by its largest
+        // component first
+        let mut d = Vector2::from(direction);
+        let scale = d.amax();
+        if !d.norm().is_finite() && scale.is_finite() && scale > 0.0 {
+            d /= scale;
+        }
         let n = d.norm();
         if !(n.is_finite() && n > 1e-12) {
             return Err(PreCutError::InvalidParameter {

@@ -70,14 +70,27 @@ pub struct WirePath {
     pub towers: (f64, f64),
 }
 
-/// The wire paths of every leg of one direction.
+/// Fastest wire speed a program may ask for, mm/min (hot-wire foam cutters run at tens to
+/// a few thousand mm/min; 1 m/s is far beyond any).
+pub const MAX_SPEED_MM_PER_MIN: f64 = 60_000.0;
+/// Slowest wire speed, mm/min (slower, the wire melts a channel, not a cut).
+pub const MIN_SPEED_MM_PER_MIN: f64 = 1.0;
+/// Longest lead, clearance or tower distance, mm (beyond any cutter's travel).
+pub const MAX_TRAVEL_MM: f64 = 20_000.0;
+
+/// Checks the wire settings for a block `width` wide across the cut (job units): the
+/// towers clear the block, the kerf is under a tenth of the width, and speed, lead,
+/// clearance and tower distance are finite and within the bounds above (converted by
+/// `mm_per_unit`). [`paths`] makes the same checks; validation calls this first.
 ///
 /// # Errors
-/// [`PreCutError::InvalidParameter`] when the towers do not clear the block or a
-/// setting is out of range.
-pub fn paths(d: &DirectionCut, index: usize, floor: f64, p: &WireParams) -> Result<Vec<WirePath>> {
-    let width = d.w.1 - d.w.0;
+/// [`PreCutError::InvalidParameter`] naming the first setting out of range.
+pub fn check(width: f64, p: &WireParams) -> Result<()> {
     let bad = |name, reason: String| Err(PreCutError::InvalidParameter { name, reason });
+    let mm = |v: f64| v * p.mm_per_unit;
+    if !(p.mm_per_unit.is_finite() && p.mm_per_unit > 0.0) {
+        return bad("mm_per_unit", format!("{} must be positive", p.mm_per_unit));
+    }
     if !(p.tower_distance.is_finite() && p.tower_distance > width) {
         return bad(
             "tower_distance",
@@ -87,15 +100,60 @@ pub fn paths(d: &DirectionCut, index: usize, floor: f64, p: &WireParams) -> Resu
             ),
         );
     }
+    if !(mm(p.tower_distance) <= MAX_TRAVEL_MM) {
+        return bad(
+            "tower_distance",
+            format!(
+                "{} is beyond any cutter ({MAX_TRAVEL_MM} mm at most)",
+                p.tower_distance
+            ),
+        );
+    }
     if !(p.kerf.is_finite() && p.kerf >= 0.0 && p.kerf < width / 10.0) {
-        return bad("kerf", format!("{} must be in [0, width/10)", p.kerf));
+        return bad(
+            "kerf",
+            format!(
+                "{} must be in [0, width/10) for a block {width} wide across the cut",
+                p.kerf
+            ),
+        );
     }
-    if !(p.speed.is_finite() && p.speed > 0.0) {
-        return bad("speed", format!("{} must be positive", p.speed));
+    if !(mm(p.speed) >= MIN_SPEED_MM_PER_MIN && mm(p.speed) <= MAX_SPEED_MM_PER_MIN) {
+        return bad(
+            "speed",
+            format!(
+                "{} must be within {MIN_SPEED_MM_PER_MIN}–{MAX_SPEED_MM_PER_MIN} mm/min",
+                p.speed
+            ),
+        );
     }
-    if !(p.lead.is_finite() && p.lead >= 0.0 && p.clearance.is_finite() && p.clearance > 0.0) {
-        return bad("lead", "lead ≥ 0 and clearance > 0 needed".into());
+    if !(p.lead.is_finite() && p.lead >= 0.0 && mm(p.lead) <= MAX_TRAVEL_MM) {
+        return bad(
+            "lead",
+            format!("{} must be within 0–{MAX_TRAVEL_MM} mm", p.lead),
+        );
     }
+    if !(p.clearance.is_finite() && p.clearance > 0.0 && mm(p.clearance) <= MAX_TRAVEL_MM) {
+        return bad(
+            "clearance",
+            format!(
+                "{} must be positive and at most {MAX_TRAVEL_MM} mm",
+                p.clearance
+            ),
+        );
+    }
+    Ok(())
+}
+
+/// The wire paths of every leg of one direction.
+///
+/// # Errors
+/// [`PreCutError::InvalidParameter`] when the towers do not clear the block or a
+/// setting is out of range.
+pub fn paths(d: &DirectionCut, index: usize, floor: f64, p: &WireParams) -> Result<Vec<WirePath>> {
+    let width = d.w.1 - d.w.0;
+    let bad = |name, reason: String| Err(PreCutError::InvalidParameter { name, reason });
+    check(width, p)?;
     if p.steps < 2 {
         return bad("steps", format!("{} must be at least 2", p.steps));
     }

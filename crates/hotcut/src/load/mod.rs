@@ -155,6 +155,26 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
     })
 }
 
+/// Most bytes a job file may have (a job is a page of text; this stops `/dev/zero`).
+pub const MAX_JOB_BYTES: u64 = 1 << 20;
+
+/// The text of a job file, at most [`MAX_JOB_BYTES`] long.
+fn read_job_text(path: &Path) -> std::result::Result<String, String> {
+    use std::io::Read;
+    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    let mut bytes = Vec::new();
+    file.take(MAX_JOB_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| e.to_string())?;
+    if bytes.len() as u64 > MAX_JOB_BYTES {
+        return Err(format!(
+            "longer than {} MiB: not a job file",
+            MAX_JOB_BYTES >> 20
+        ));
+    }
+    String::from_utf8(bytes).map_err(|e| format!("not UTF-8 text: {e}"))
+}
+
 /// Reads, validates (all three layers) and resolves one job file.
 ///
 /// # Errors
@@ -177,10 +197,10 @@ pub fn load_job(path: &Path) -> Result<ResolvedJob, Vec<JobError>> {
 /// # Errors
 /// As [`load_job`].
 pub fn load_job_with(path: &Path, limits: &Limits) -> Result<ResolvedJob, Vec<JobError>> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let text = read_job_text(path).map_err(|message| {
         vec![JobError::Read {
             path: path.to_path_buf(),
-            message: e.to_string(),
+            message,
         }]
     })?;
     let job = parse_job(path, &text).map_err(|e| vec![e])?;

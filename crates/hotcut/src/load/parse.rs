@@ -45,6 +45,8 @@ pub fn parse_job(path: &Path, text: &str) -> Result<Job, JobError> {
         ron::extensions::Extensions::IMPLICIT_SOME
             | ron::extensions::Extensions::UNWRAP_VARIANT_NEWTYPES,
     );
+    // a byte-order mark (editors on Windows write one) is not part of the job
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut de = ron::de::Deserializer::from_str_with_options(text, &options).map_err(syntax)?;
     let mut track = serde_path_to_error::Track::new();
     let result = Job::deserialize(serde_path_to_error::Deserializer::new(&mut de, &mut track));

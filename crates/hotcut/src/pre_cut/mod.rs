@@ -267,6 +267,22 @@ impl Task for PreCut {
     }
 
     fn estimate(p: &PreCutParams, _job: &Context) -> Estimate {
+        let mut checks = Vec::new();
+        // the wire's checks against the block, per direction, as the run makes them
+        for (i, d) in p.cut.directions.iter().enumerate() {
+            match ruled::CutFrame::new(*d, &p.block) {
+                Err(e) => checks.push((format!("{PTR}/directions/{i}"), e.to_string())),
+                Ok(frame) => {
+                    let width = frame.w.1 - frame.w.0;
+                    if let Some(Err(ruled::PreCutError::InvalidParameter { name, reason })) =
+                        p.wire.as_ref().map(|w| ruled::wire::check(width, w))
+                    {
+                        checks.push((format!("/wire/{name}"), format!("{name} {reason}")));
+                    }
+                }
+            }
+        }
+        checks.dedup();
         let c = &p.cut;
         let dirs = c.directions.len() as f64;
         // the constraint points of one direction's program, each touching `degree + 1`
@@ -274,12 +290,18 @@ impl Task for PreCut {
         let points = (c.sections * c.samples * c.check_density.max(1)) as f64;
         let nnz = points * (c.legs * (c.degree + 1)) as f64;
         let vars = (c.legs * c.controls * 3) as f64;
-        Estimate::new(
-            nnz * 48.0 + vars * vars * 16.0 + (c.volume_grid * c.volume_grid) as f64 * 16.0 + 1e7,
-            dirs * c.max_rounds as f64 * (nnz * 20.0 + vars * vars * 50.0),
-            "/task/PreCut/samples",
-            "lower the task's sections, samples, legs, controls or max_rounds",
-        )
+        Estimate {
+            checks,
+            ..Estimate::new(
+                nnz * 48.0
+                    + vars * vars * 16.0
+                    + (c.volume_grid * c.volume_grid) as f64 * 16.0
+                    + 1e7,
+                dirs * c.max_rounds as f64 * (nnz * 20.0 + vars * vars * 50.0),
+                "/task/PreCut/samples",
+                "lower the task's sections, samples, legs, controls or max_rounds",
+            )
+        }
     }
 
     fn run(params: &PreCutParams, job: &Context, progress: &dyn Progress) -> Result<PreCutRun> {
