@@ -19,10 +19,11 @@ use hotcut::load::{load_job, parse_job, resolve, ResolvedJob};
 use hotcut::task::Task;
 use nalgebra::{Vector2, Vector3};
 
-const JOBS: [&str; 4] = [
+const JOBS: [&str; 5] = [
     "hot-blade-facade",
     "hot-blade-corner",
     "hot-blade-saddle",
+    "hot-blade-oblique",
     "hot-blade-curve",
 ];
 
@@ -149,11 +150,15 @@ fn same_length_and_end_points_are_kept() {
 /// asserts that consecutive rows cut their shared face with the same blade.
 fn shared_ends(run: &HotBladeRun) -> (f64, f64, usize) {
     let (mut gap, mut angle, mut pairs) = (0.0f64, 0.0f64, 0);
+    // a block's place across the cut, in the grid's frame (the cut may be oblique)
+    let across =
+        |b: &hotblade::BlockResult| run.cut.grid.frame.u.dot(&Vector3::from(b.report.origin));
+    let scale = 1e-9 * run.cut.grid.size[1];
     for a in &run.cut.blocks {
         for b in &run.cut.blocks {
             // side by side across the cut: a's far face is b's near face
             let touching = a.report.row == b.report.row
-                && (a.report.origin[1] + a.report.size[1] - b.report.origin[1]).abs() < 1e-9;
+                && (across(a) + a.report.size[1] - across(b)).abs() < scale;
             if !touching {
                 continue;
             }
@@ -178,7 +183,7 @@ fn shared_ends(run: &HotBladeRun) -> (f64, f64, usize) {
         }
         // along the cut: consecutive rows cut the shared face with the same blade
         for b in &run.cut.blocks {
-            if b.report.row == a.report.row + 1 && b.report.origin[1] == a.report.origin[1] {
+            if b.report.row == a.report.row + 1 && (across(b) - across(a)).abs() < scale {
                 let (la, fb) = (a.sections.last().unwrap(), b.sections.first().unwrap());
                 assert_eq!(la.plane, fb.plane);
                 assert_eq!(la.pose, fb.pose);

@@ -340,6 +340,39 @@ fn every_algorithm_passes_the_checker_on_oblique_cuts() {
     }
 }
 
+/// The job `jobs/seg-mesh-tilted.ron`: the mesh facade cut by planes tilted out of the
+/// vertical (direction (1, 0, 0.3)), Trace: its pieces pass the checker.
+#[test]
+fn trace_passes_the_checker_on_the_tilted_mesh_facade() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs/models/facade.obj");
+    let mesh = geom::mesh::TriMesh::load_obj(&path).unwrap();
+    let (frame, sections) = Surface::Mesh(mesh)
+        .sections(
+            &SectionParams {
+                direction: Vector3::new(1.0, 0.0, 0.3),
+                count: 12,
+                smoothing: geom::fit::SmoothingParams {
+                    tolerance: 0.05,
+                    ..geom::fit::SmoothingParams::default()
+                },
+                ..SectionParams::default()
+            },
+            &|| {},
+        )
+        .unwrap();
+    let facade = Facade::new(frame, &sections).unwrap();
+    let c = Constraints {
+        block: [600.0, 500.0, 400.0],
+        blade_length: 700.0,
+        max_inflections: 1,
+        ..constraints()
+    };
+    let seg = trace(&facade, &c, &TraceParams::default(), &|| {}).unwrap();
+    assert!(seg.pieces.len() > 1);
+    check(&facade, &c, &seg, false);
+}
+
 #[test]
 fn longest_elastica_pieces_meet_every_constraint() {
     let facade = wavy(60.0, 150.0, 12);
