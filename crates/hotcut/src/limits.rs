@@ -116,41 +116,53 @@ fn round3(v: f64) -> String {
     }
 }
 
-/// Steps to section the surface on one plane, and points a section holds (roughly).
+/// Steps to section the surface on one plane, and points a section holds (roughly). A
+/// height field's steps grow with its expression (an evaluation runs it once; ~20 bytes
+/// of source are a step).
 pub fn section_cost(surface: Option<&Surface>) -> (f64, f64) {
     match surface {
         Some(Surface::Mesh(m)) => {
             let faces = m.faces().len() as f64;
             (faces + 1e3, 4.0 * faces.sqrt() + 16.0)
         }
-        Some(Surface::HeightField(_)) => (2e4, 512.0),
+        Some(Surface::HeightField(h)) => {
+            let steps = 1.0 + h.expr().source().len() as f64 / 20.0;
+            (2e4 * steps, 512.0 * steps.sqrt())
+        }
         Some(Surface::Spline(_)) => (2e4, 512.0),
         None => (0.0, 0.0),
     }
 }
 
+/// Pieces of length `size` the surface spans along `d`, in `f64` (an absurd size gives a
+/// huge count, not an overflow); 1 without a surface.
+pub fn spanned(job: &Context, d: &Vector3<f64>, size: f64) -> f64 {
+    let Some(surface) = &job.surface else {
+        return 1.0;
+    };
+    let (lo, hi) = surface.extent_along(d);
+    let n = ((hi - lo) / size).ceil();
+    if n.is_nan() {
+        f64::INFINITY
+    } else {
+        n.max(1.0)
+    }
+}
+
 /// Blocks of the job's block size the surface spans along `d` and across it (`u` of the
-/// section frame), in `f64` (an absurd block gives a huge count, not an overflow); `(1, 1)`
+/// section frame), and blade lengths it spans across (`f64`, see [`spanned`]); `(1, 1, 1)`
 /// without a surface or a block.
-pub fn blocks_spanned(job: &Context) -> (f64, f64) {
-    let (Some(surface), Some(block)) = (&job.surface, &job.block) else {
-        return (1.0, 1.0);
+pub fn blocks_spanned(job: &Context) -> (f64, f64, f64) {
+    let Some(block) = &job.block else {
+        return (1.0, 1.0, 1.0);
     };
     let Ok(frame) = geom::slice::PlaneFrame::from_direction(job.direction) else {
-        return (1.0, 1.0);
-    };
-    let count = |d: &Vector3<f64>, size: f64| {
-        let (lo, hi) = surface.extent_along(d);
-        let n = ((hi - lo) / size).ceil();
-        if n.is_nan() {
-            f64::INFINITY
-        } else {
-            n.max(1.0)
-        }
+        return (1.0, 1.0, 1.0);
     };
     (
-        count(&frame.normal, block.size.0),
-        count(&frame.u, block.size.1),
+        spanned(job, &frame.normal, block.size.0),
+        spanned(job, &frame.u, block.size.1),
+        spanned(job, &frame.u, job.blade.length),
     )
 }
 

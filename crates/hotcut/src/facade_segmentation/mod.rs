@@ -258,16 +258,22 @@ impl Task for FacadeSegmentation {
     fn estimate(p: &SegmentationParams, job: &Context) -> Estimate {
         let (cost, points) = section_cost(job.surface.as_ref());
         let n = p.sectioning.count as f64;
-        let (rows, cols) = blocks_spanned(job);
+        let (rows, cols, blades) = blocks_spanned(job);
         let samples = p.samples as f64;
-        // pieces: a few per block the facade spans; each holds its row's sections
-        let pieces = 4.0 * rows * cols;
-        let parts = 4.0 * cols * n;
+        // pieces: a few per block (or blade length) the facade spans; each holds its row's
+        // sections
+        let across = cols.max(blades);
+        let pieces = 4.0 * rows * across;
+        let parts = 4.0 * across * n;
         Estimate::new(
             n * (2048.0 * 40.0 + 200.0 * points) + pieces * 2e3 + parts * samples * 48.0 + 1e7,
             n * (cost + 1e3 * points + 2048.0 * 30.0) + parts * samples * 400.0,
-            "/block/size",
-            "enlarge block.size, or lower cutting.sections or the task's samples",
+            if blades > cols {
+                "/blade/length"
+            } else {
+                "/block/size"
+            },
+            "enlarge block.size or blade.length, or lower cutting.sections or the task's samples",
         )
     }
 
