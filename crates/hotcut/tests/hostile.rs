@@ -46,8 +46,11 @@ const HEIGHT: &str =
     r#"surface: HeightField(z: "50*sin(y/100) + 10*cos(x/80)", x: (0, 300), y: (0, 900)),"#;
 const COMMON: &str = r#"block: Block(size: (300, 450, 300)), blade: Blade(length: 700, max_curvature: 0.011, max_inflections: 2), cutting: Cutting(direction: (1, 0, 0), sections: 4), tolerance: Tolerance(rms: 0.5, max: 2.0),"#;
 
-/// Small valid jobs of every task: (label, job text, extra files).
-fn bases() -> Vec<(&'static str, String, Vec<(String, Vec<u8>)>)> {
+/// A base job: label, job text, extra files.
+type Base = (&'static str, String, Vec<(String, Vec<u8>)>);
+
+/// Small valid jobs of every task.
+fn bases() -> Vec<Base> {
     let job = |task: &str, outputs: &str| {
         format!(r#"Job(name: "h", {HEIGHT} {COMMON} task: {task}, outputs: [{outputs}], seed: 3)"#)
     };
@@ -90,9 +93,7 @@ fn bases() -> Vec<(&'static str, String, Vec<(String, Vec<u8>)>)> {
         ),
         (
             "precut",
-            format!(
-                r#"Job(name: "h", surface: HeightField(z: "100 + 80*exp(-((x/200)^2 + (y/200)^2))", x: (-300, 300), y: (-300, 300)), block: Block(size: (600, 600, 300), origin: (-300, -300, 0)), wire: Wire(tower_distance: 900, kerf: 1.5, speed: 300, lead: 20, clearance: 50), task: PreCut(legs: 2, directions: [X], sections: 8, samples: 8, controls: 5), outputs: [Report, GCode, Csv])"#
-            ),
+            r#"Job(name: "h", surface: HeightField(z: "100 + 80*exp(-((x/200)^2 + (y/200)^2))", x: (-300, 300), y: (-300, 300)), block: Block(size: (600, 600, 300), origin: (-300, -300, 0)), wire: Wire(tower_distance: 900, kerf: 1.5, speed: 300, lead: 20, clearance: 50), task: PreCut(legs: 2, directions: [X], sections: 8, samples: 8, controls: 5), outputs: [Report, GCode, Csv])"#.to_string(),
             vec![],
         ),
         (
@@ -346,6 +347,9 @@ fn cases() -> Vec<Case> {
     out
 }
 
+/// Machine files (G-code, RAPID, wire CSV) checked.
+static MACHINE_FILES: AtomicUsize = AtomicUsize::new(0);
+
 /// What a run did.
 struct Outcome {
     code: Option<i32>,
@@ -423,15 +427,26 @@ fn judge(dir: &Path, o: &Outcome) -> Option<String> {
             }
             for e in std::fs::read_dir(&folder).ok()?.flatten() {
                 let name = e.file_name().to_string_lossy().into_owned();
-                if !(name.ends_with(".ngc") || name.ends_with(".mod") || name.ends_with(".nc")) {
+                if ![".gcode", ".ngc", ".nc", ".mod", ".csv"]
+                    .iter()
+                    .any(|x| name.ends_with(x))
+                {
                     continue;
                 }
+                MACHINE_FILES.fetch_add(1, Ordering::Relaxed);
                 let text = std::fs::read_to_string(e.path()).unwrap_or_default();
                 if text.trim().is_empty() {
                     return Some(format!("{name} is empty"));
                 }
+                // `inf`, `NaN`, or a G-code word of one (`Xinf`, `F-inf`)
                 let lower = text.to_ascii_lowercase();
-                if lower.contains("nan") || lower.contains("inf") && !lower.contains("info") {
+                let non_finite = lower.split(|c: char| !c.is_ascii_alphanumeric()).any(|t| {
+                    let t = t
+                        .strip_prefix(|c: char| c.is_ascii_alphabetic() && t.len() == 4)
+                        .unwrap_or(t);
+                    t == "inf" || t == "nan" || t == "infinity"
+                });
+                if non_finite {
                     return Some(format!("{name} holds a non-finite number"));
                 }
             }
@@ -488,6 +503,9 @@ fn hostile_jobs_keep_the_contract() {
         failures.len(),
         failures.join("\n")
     );
-    // every base job runs as written
+    // every base job runs as written, and machine files were read
     assert!(ok >= bases().len());
+    let machine = MACHINE_FILES.load(Ordering::Relaxed);
+    println!("{machine} machine files read back");
+    assert!(machine > 100, "{machine} machine files");
 }
