@@ -286,11 +286,18 @@ pub fn gcode(path: &WirePath, p: &WireParams, top: f64, floor: f64, name: &str) 
         num(first.b[1])
     );
     let _ = writeln!(g, "G93");
-    for w in path.steps.windows(2) {
-        let (s, t) = (&w[0], &w[1]);
+    let mut at = first;
+    for t in &path.steps[1..] {
+        let s = at;
         let da = (t.a[0] - s.a[0]).hypot(t.a[1] - s.a[1]);
         let db = (t.b[0] - s.b[0]).hypot(t.b[1] - s.b[1]);
-        let minutes = (da.max(db) / (p.speed * mm)).max(1e-9);
+        // a move shorter than the program's resolution is no move (its inverse-time feed
+        // would be absurd)
+        if da.max(db) < 1e-4 {
+            continue;
+        }
+        at = t;
+        let minutes = da.max(db) / (p.speed * mm);
         let _ = writeln!(
             g,
             "G1 X{} Y{} U{} V{} F{}",
@@ -315,6 +322,74 @@ pub fn gcode(path: &WirePath, p: &WireParams, top: f64, floor: f64, name: &str) 
     g
 }
 
+/// Largest coordinate a program may hold, mm.
+const MAX_COORDINATE_MM: f64 = 1e6;
+
+/// Reads back a program [`gcode`] wrote and checks what it would make the machine do:
+/// every number finite, every coordinate within ±10⁶ mm, and every cutting move's speed
+/// (inverse-time feed × the longer tower's travel) within
+/// [`MIN_SPEED_MM_PER_MIN`]–[`MAX_SPEED_MM_PER_MIN`].
+///
+/// # Errors
+/// [`PreCutError::InvalidParameter`] naming the first offending line.
+pub fn check_gcode(text: &str) -> Result<()> {
+    let bad = |line: usize, reason: String| {
+        Err(PreCutError::InvalidParameter {
+            name: "G-code",
+            reason: format!("line {}: {reason}", line + 1),
+        })
+    };
+    let mut pos = [0.0f64; 4];
+    let mut inverse_time = false;
+    for (i, line) in text.lines().enumerate() {
+        let code = line.split(';').next().unwrap_or("").trim();
+        let mut next = pos;
+        let mut feed = None;
+        let mut cut = false;
+        for word in code.split_whitespace() {
+            let (letter, value) = word.split_at(1);
+            let Ok(v) = value.parse::<f64>() else {
+                return bad(i, format!("unreadable word {word}"));
+            };
+            if !(v.is_finite() && v.abs() <= MAX_COORDINATE_MM) {
+                return bad(
+                    i,
+                    format!("{word} is not a finite number within ±{MAX_COORDINATE_MM} mm"),
+                );
+            }
+            match letter {
+                "G" if v == 93.0 => inverse_time = true,
+                "G" if v == 94.0 => inverse_time = false,
+                "G" if v == 1.0 => cut = true,
+                "X" => next[0] = v,
+                "Y" => next[1] = v,
+                "U" => next[2] = v,
+                "V" => next[3] = v,
+                "F" => feed = Some(v),
+                _ => {}
+            }
+        }
+        if cut && inverse_time {
+            let travel = (next[0] - pos[0])
+                .hypot(next[1] - pos[1])
+                .max((next[2] - pos[2]).hypot(next[3] - pos[3]));
+            let Some(f) = feed else {
+                return bad(i, "a cutting move without a feed".into());
+            };
+            let speed = travel * f;
+            let slack = 1.0 + 1e-3;
+            if !(speed >= MIN_SPEED_MM_PER_MIN / slack && speed <= MAX_SPEED_MM_PER_MIN * slack) {
+                return bad(
+                    i,
+                    format!("the wire would move at {speed:.4} mm/min, outside {MIN_SPEED_MM_PER_MIN}–{MAX_SPEED_MM_PER_MIN}"),
+                );
+            }
+        }
+        pos = next;
+    }
+    Ok(())
+}
+
 /// The CSV of one cut: one row per step.
 pub fn csv(path: &WirePath) -> String {
     let mut c = String::from("step,u,X,Y,U,V,side0_x,side0_y,side0_z,side1_x,side1_y,side1_z\n");
@@ -336,4 +411,105 @@ pub fn csv(path: &WirePath) -> String {
         );
     }
     c
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn params() -> WireParams {
+        WireParams {
+            tower_distance: 900.0,
+            kerf: 1.5,
+            speed: 300.0,
+            lead: 20.0,
+            clearance: 50.0,
+            steps: 4,
+            mm_per_unit: 1.0,
+        }
+    }
+
+    #[test]
+    fn settings_are_bounded_in_millimetres() {
+        assert!(check(600.0, &params()).is_ok());
+        for (field, p) in [
+            (
+                "tower_distance",
+                WireParams {
+                    tower_distance: 500.0,
+                    ..params()
+                },
+            ),
+            (
+                "tower_distance",
+                WireParams {
+                    tower_distance: 1e308,
+                    ..params()
+                },
+            ),
+            (
+                "kerf",
+                WireParams {
+                    kerf: 61.0,
+                    ..params()
+                },
+            ),
+            (
+                "speed",
+                WireParams {
+                    speed: 1e308,
+                    ..params()
+                },
+            ),
+            (
+                "speed",
+                WireParams {
+                    speed: 5e-324,
+                    ..params()
+                },
+            ),
+            (
+                "lead",
+                WireParams {
+                    lead: 1e308,
+                    ..params()
+                },
+            ),
+            (
+                "clearance",
+                WireParams {
+                    clearance: f64::INFINITY,
+                    ..params()
+                },
+            ),
+        ] {
+            match check(600.0, &p) {
+                Err(PreCutError::InvalidParameter { name, .. }) => assert_eq!(name, field),
+                other => panic!("{field}: {other:?}"),
+            }
+        }
+        // the same settings in metres: 0.3 m/min is 300 mm/min
+        let m = WireParams {
+            tower_distance: 0.9,
+            kerf: 0.0015,
+            speed: 0.3,
+            lead: 0.02,
+            clearance: 0.05,
+            mm_per_unit: 1000.0,
+            ..params()
+        };
+        assert!(check(0.6, &m).is_ok());
+    }
+
+    #[test]
+    fn programs_are_read_back() {
+        let ok = "G21 G90 G94\nG0 X0 Y50 U0 V50\nG0 X0 Y10 U0 V10\nG93\nG1 X100 Y10 U100 V10 F3\nG94\nM2\n";
+        assert!(check_gcode(ok).is_ok());
+        // 100 mm at F3 (1/3 min) is 300 mm/min; at F1000, 100 m/min
+        assert!(check_gcode(&ok.replace("F3", "F1000")).is_err());
+        assert!(check_gcode(&ok.replace("F3", "F0.0000")).is_err());
+        assert!(check_gcode(&ok.replace("X100", "Xinf")).is_err());
+        assert!(check_gcode(&ok.replace("X100", "XNaN")).is_err());
+        assert!(check_gcode(&ok.replace(" F3", "")).is_err());
+    }
 }

@@ -114,7 +114,11 @@ pub(super) fn wire(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export
         for path in paths {
             let ext = if gcode { "gcode" } else { "csv" };
             let text = if gcode {
-                ruled::wire::gcode(path, &w, block.max[2], block.min[2], &done.job.name)
+                let g = ruled::wire::gcode(path, &w, block.max[2], block.min[2], &done.job.name);
+                // read back: what the machine would do stays within bounds
+                ruled::wire::check_gcode(&g)
+                    .map_err(|e| export::ExportError::Data(e.to_string()))?;
+                g
             } else {
                 ruled::wire::csv(path)
             };
