@@ -249,6 +249,33 @@ pub fn fit_smoothing<const D: usize>(
     params: Option<&[f64]>,
     opts: &SmoothingParams,
 ) -> Result<SplineFit<D>> {
+    // fitted about the first point, so a model far from the origin (coordinates near 10⁶)
+    // loses no digits in the normal equations; the control points are moved back after
+    let centre = points
+        .first()
+        .copied()
+        .filter(|c| c.iter().all(|v| v.is_finite()))
+        .unwrap_or_else(SVector::zeros);
+    let local: Vec<SVector<f64, D>> = points.iter().map(|p| p - centre).collect();
+    let fit = fit_smoothing_at_origin(&local, params, opts)?;
+    let control: Vec<SVector<f64, D>> = fit
+        .curve
+        .control_points()
+        .iter()
+        .map(|c| c + centre)
+        .collect();
+    Ok(SplineFit {
+        curve: BSplineCurve::try_new(fit.curve.degree(), fit.curve.knots().to_vec(), control)?,
+        ..fit
+    })
+}
+
+/// [`fit_smoothing`] of points near the origin.
+fn fit_smoothing_at_origin<const D: usize>(
+    points: &[SVector<f64, D>],
+    params: Option<&[f64]>,
+    opts: &SmoothingParams,
+) -> Result<SplineFit<D>> {
     if !(opts.tolerance >= 0.0) || !opts.tolerance.is_finite() {
         return Err(GeomError::InvalidFit(format!(
             "tolerance must be a finite number ≥ 0, got {}",
