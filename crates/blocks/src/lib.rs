@@ -334,14 +334,14 @@ impl Params {
             bad(
                 "p",
                 None,
-                format!("must be a finite number ≥ 1, got {}", self.p),
+                format!("must be a finite number ≥ 1, got {:?}", self.p),
             );
         }
         if !(self.epsilon > 0.0) || !self.epsilon.is_finite() {
             bad(
                 "epsilon",
                 None,
-                format!("must be positive and finite, got {}", self.epsilon),
+                format!("must be positive and finite, got {:?}", self.epsilon),
             );
         }
         if !(1..=256).contains(&self.restarts) {
@@ -368,7 +368,7 @@ impl Params {
                 "sample_spacing",
                 None,
                 format!(
-                    "must be in (0, 0.25] of the shortest block edge, got {}",
+                    "must be in (0, 0.25] of the shortest block edge, got {:?}",
                     self.sample_spacing
                 ),
             );

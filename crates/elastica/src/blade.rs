@@ -99,13 +99,13 @@ pub enum BladeError {
 pub fn extend_to_blade(section: &Segment, params: &BladeParams) -> Result<Blade, BladeError> {
     if !(params.length > 0.0) || !params.length.is_finite() {
         return Err(BladeError::Invalid(format!(
-            "length must be a positive number, got {}",
+            "length must be a positive number, got {:?}",
             params.length
         )));
     }
     if !(0.0..=1.0).contains(&params.lead_in_share) {
         return Err(BladeError::Invalid(format!(
-            "lead_in_share must be in [0, 1], got {}",
+            "lead_in_share must be in [0, 1], got {:?}",
             params.lead_in_share
         )));
     }

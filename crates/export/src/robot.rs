@@ -131,7 +131,7 @@ pub fn rapid(
     }
     if !(t.per_mm.is_finite() && t.per_mm > 0.0) {
         return Err(crate::ExportError::Data(format!(
-            "units per millimetre must be positive, got {}",
+            "units per millimetre must be positive, got {:?}",
             t.per_mm
         )));
     }

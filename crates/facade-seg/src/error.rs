@@ -23,7 +23,7 @@ pub enum SegError {
     },
     /// The algorithm would need more pieces than its cap (constraints that segmentation
     /// cannot meet, e.g. a design curvature above the blade's).
-    #[error("more than {cap} bands needed: {why}")]
+    #[error("more than {cap} bands or moves needed: {why}")]
     TooManyPieces {
         /// The cap.
         cap: usize,

@@ -124,9 +124,9 @@ fn arrange(
             return Err(SegError::TooManyPieces {
                 cap: p.max_moves,
                 why: format!(
-                    "the inflection-points algorithm did not settle: a section holds {} inflections, more than {} blocks across can part at {k} each (a noisy mesh section? raise tolerance.smoothing, blade.max_inflections or block.size)",
-                    row.secs.iter().map(|s| s.inflections.len()).max().unwrap_or(0),
-                    a.len()
+                    "the inflection-points algorithm did not settle: {} blocks in a row, and a section with {} inflections (at most {k} per block) still overloads one (a noisy mesh section? raise tolerance.smoothing, blade.max_inflections or block.size)",
+                    a.len(),
+                    row.secs.iter().map(|s| s.inflections.len()).max().unwrap_or(0)
                 ),
             });
         }

@@ -178,7 +178,7 @@ pub fn longest_elastica(
     if !(p.precision.is_finite() && p.precision > 0.0) {
         return Err(SegError::Invalid {
             what: "precision".into(),
-            message: format!("must be a positive number, got {}", p.precision),
+            message: format!("must be a positive number, got {:?}", p.precision),
         });
     }
     let n = facade.sections.len();
@@ -197,7 +197,7 @@ pub fn longest_elastica(
             return Err(SegError::TooManyPieces {
                 cap: p.max_bands,
                 why: format!(
-                    "no acceptable part on section(s) {unmet:?} (e.g. a design curvature above the blade's)"
+                    "no acceptable part on section(s) {unmet:?} (e.g. a design curvature above the blade's): loosen tolerance, or raise blade.max_curvature, blade.max_inflections or block.size"
                 ),
             });
         }

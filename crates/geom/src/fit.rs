@@ -278,7 +278,7 @@ fn fit_smoothing_at_origin<const D: usize>(
 ) -> Result<SplineFit<D>> {
     if !(opts.tolerance >= 0.0) || !opts.tolerance.is_finite() {
         return Err(GeomError::InvalidFit(format!(
-            "tolerance must be a finite number ≥ 0, got {}",
+            "tolerance must be a finite number ≥ 0, got {:?}",
             opts.tolerance
         )));
     }

@@ -159,7 +159,7 @@ impl Params {
             bad(
                 "blade",
                 format!(
-                    "length and max_curvature must be positive, got {} and {}",
+                    "length and max_curvature must be positive, got {:?} and {:?}",
                     b.length, b.max_curvature
                 ),
             );
@@ -168,7 +168,7 @@ impl Params {
             bad(
                 "tolerance",
                 format!(
-                    "rms and max must be positive, got {} and {}",
+                    "rms and max must be positive, got {:?} and {:?}",
                     self.tolerance_rms, self.tolerance_max
                 ),
             );

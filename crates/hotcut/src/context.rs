@@ -215,7 +215,7 @@ impl JobFields<'_> {
             if !(v > 0.0) || !v.is_finite() {
                 errors.push(self.error(
                     &format!("{ptr}/speed"),
-                    format!("the cutting speed must be a positive number, got {v}"),
+                    format!("the cutting speed must be a positive number, got {v:?}"),
                 ));
             }
         }
@@ -223,7 +223,7 @@ impl JobFields<'_> {
             if !(v >= 0.0) || !v.is_finite() {
                 errors.push(self.error(
                     &format!("{ptr}/approach"),
-                    format!("the approach distance must be ≥ 0, got {v}"),
+                    format!("the approach distance must be ≥ 0, got {v:?}"),
                 ));
             }
         }

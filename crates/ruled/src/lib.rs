@@ -513,7 +513,7 @@ impl Params {
             bad(
                 "margin",
                 None,
-                format!("must be in (0, 0.01), got {}", self.margin),
+                format!("must be in (0, 0.01), got {:?}", self.margin),
             );
         }
         if self.directions.is_empty() {

@@ -402,7 +402,7 @@ impl SegAlgorithmSpec {
                 errors.push(job.error(
                     &format!("{PTR}/algorithm/{}/{field}", self.name()),
                     format!(
-                        "{field} must be a {} number, got {v}",
+                        "{field} must be a {} number, got {v:?}",
                         if zero_ok { "non-negative" } else { "positive" }
                     ),
                 ));

@@ -100,7 +100,7 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
                 errors.push(JobError::semantic(
                     path,
                     &format!("/block/size/{i}"),
-                    format!("block edge lengths must be > 0, got {v}"),
+                    format!("block edge lengths must be > 0, got {v:?}"),
                 ));
             }
         }

@@ -41,6 +41,17 @@ fn load_spline(file: &Path) -> Result<BSplineSurface, String> {
             file.display()
         ));
     }
+    // degrees the grid supports, said rather than clamped (a spline of degree ≥ its point
+    // count is a mistake in the file)
+    for (name, degree, n) in [("degree_u", f.degree_u, nu), ("degree_v", f.degree_v, nv)] {
+        if !(1..n).contains(&degree) || degree > 7 {
+            return Err(format!(
+                "{}: {name} must be 1–{} for {n} rows of points (and at most 7), got {degree}",
+                file.display(),
+                (n - 1).clamp(1, 7)
+            ));
+        }
+    }
     let control: Vec<Vector3<f64>> = f
         .points
         .iter()
