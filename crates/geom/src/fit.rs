@@ -249,6 +249,27 @@ pub fn fit_smoothing<const D: usize>(
     params: Option<&[f64]>,
     opts: &SmoothingParams,
 ) -> Result<SplineFit<D>> {
+    fit_smoothing_allowing(points, params, opts, None)
+}
+
+/// [`fit_smoothing`] where point `i` may also deviate by `known[i]` (how far it is known
+/// to lie from the true curve, e.g. a mesh facet's distance from the surface it
+/// approximates); the allowance at each point is the largest of the tolerance, the
+/// chordal sagitta (with `opts.chordal`) and `known[i]`.
+///
+/// # Errors
+/// As [`fit_smoothing`]; `known` of another length than `points`.
+pub fn fit_smoothing_allowing<const D: usize>(
+    points: &[SVector<f64, D>],
+    params: Option<&[f64]>,
+    opts: &SmoothingParams,
+    known: Option<&[f64]>,
+) -> Result<SplineFit<D>> {
+    if known.is_some_and(|k| k.len() != points.len()) {
+        return Err(GeomError::InvalidFit(
+            "one known deviation per point needed".into(),
+        ));
+    }
     // fitted about the first point, so a model far from the origin (coordinates near 10⁶)
     // loses no digits in the normal equations; the control points are moved back after
     let centre = points
@@ -257,7 +278,7 @@ pub fn fit_smoothing<const D: usize>(
         .filter(|c| c.iter().all(|v| v.is_finite()))
         .unwrap_or_else(SVector::zeros);
     let local: Vec<SVector<f64, D>> = points.iter().map(|p| p - centre).collect();
-    let fit = fit_smoothing_at_origin(&local, params, opts)?;
+    let fit = fit_smoothing_at_origin(&local, params, opts, known)?;
     let control: Vec<SVector<f64, D>> = fit
         .curve
         .control_points()
@@ -275,6 +296,7 @@ fn fit_smoothing_at_origin<const D: usize>(
     points: &[SVector<f64, D>],
     params: Option<&[f64]>,
     opts: &SmoothingParams,
+    known: Option<&[f64]>,
 ) -> Result<SplineFit<D>> {
     if !(opts.tolerance >= 0.0) || !opts.tolerance.is_finite() {
         return Err(GeomError::InvalidFit(format!(
@@ -310,6 +332,14 @@ fn fit_smoothing_at_origin<const D: usize>(
             .collect()
     } else {
         vec![opts.tolerance; m]
+    };
+    let allow: Vec<f64> = match known {
+        Some(k) => allow
+            .iter()
+            .zip(k)
+            .map(|(a, k)| if k.is_finite() { a.max(*k) } else { *a })
+            .collect(),
+        None => allow,
     };
 
     // Scale λ so that it is dimensionless: data term ~ m, penalty term ~ n.

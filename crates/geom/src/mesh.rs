@@ -197,6 +197,27 @@ impl TriMesh {
         ]
     }
 
+    /// Unit normal at every vertex: the area-weighted mean of its faces' normals (zero for
+    /// a vertex of no face or of degenerate faces only).
+    pub fn vertex_normals(&self) -> Vec<Vector3<f64>> {
+        let mut n = vec![Vector3::zeros(); self.vertices.len()];
+        for f in 0..self.faces.len() {
+            let [a, b, c] = self.triangle(f);
+            // the cross product's length is twice the area: area weighting for free
+            let w = (b - a).cross(&(c - a));
+            for &v in &self.faces[f] {
+                n[v as usize] += w;
+            }
+        }
+        for v in &mut n {
+            let len = v.norm();
+            if len > 0.0 && len.is_finite() {
+                *v /= len;
+            }
+        }
+        n
+    }
+
     /// Bounding box of the vertices.
     pub fn aabb(&self) -> Aabb {
         Aabb::from_points(&self.vertices).unwrap_or(Aabb {

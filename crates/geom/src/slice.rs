@@ -85,6 +85,29 @@ pub struct Chain {
 }
 
 impl Chain {
+    /// How far each crossing may lie from the smooth surface the mesh approximates: on an
+    /// edge of length `L` whose vertex normals differ by the angle `θ`, the surface bends
+    /// by about `θ/L`, so the edge (a chord) is off it by `s(1−s)·L·θ/2` at the crossing's
+    /// share `s` — the facet error a smoothing fit should not follow (`normals`: one unit
+    /// normal per vertex, [`TriMesh::vertex_normals`]).
+    pub fn facet_deviation(&self, mesh: &TriMesh, normals: &[Vector3<f64>]) -> Vec<f64> {
+        let v = mesh.vertices();
+        self.crossings
+            .iter()
+            .map(|c| {
+                let (a, b) = (c.a as usize, c.b as usize);
+                let length = (v[b] - v[a]).norm();
+                let cos = normals[a].dot(&normals[b]).clamp(-1.0, 1.0);
+                let d = c.s * (1.0 - c.s) * length * cos.acos() / 2.0;
+                if d.is_finite() {
+                    d
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    }
+
     /// World positions of the crossings.
     pub fn points(&self, mesh: &TriMesh) -> Vec<Vector3<f64>> {
         let v = mesh.vertices();

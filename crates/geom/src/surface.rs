@@ -15,7 +15,7 @@ use rayon::prelude::*;
 
 use crate::bbox::Aabb;
 use crate::error::{GeomError, Result};
-use crate::fit::{fit_smoothing, SmoothingParams};
+use crate::fit::{fit_smoothing_allowing, SmoothingParams};
 use crate::heightfield::{GraphCurve, HeightField};
 use crate::mesh::TriMesh;
 use crate::planar::{Jet2, PlanarCurve, SplineCurve2};
@@ -177,6 +177,10 @@ impl Surface {
             Self::Spline(s) => Some(spline_grid_mesh(s, params.spline_grid.max(8))?),
             _ => None,
         };
+        let normals = match self {
+            Self::Mesh(m) => m.vertex_normals(),
+            _ => Vec::new(),
+        };
         let per_plane: Vec<Result<Vec<Section>>> = planes
             .par_iter()
             .enumerate()
@@ -198,7 +202,14 @@ impl Surface {
                         .collect()),
                     Self::Mesh(m) => {
                         let chains = slice_mesh(m, &frame.normal, offset);
-                        let polys = chains.iter().map(|c| (c.points(m), c.closed)).collect();
+                        let polys = chains
+                            .iter()
+                            .map(|c| Polyline {
+                                points: c.points(m),
+                                deviation: Some(c.facet_deviation(m, &normals)),
+                                closed: c.closed,
+                            })
+                            .collect();
                         let chordal = SmoothingParams {
                             chordal: true,
                             ..params.smoothing.clone()
@@ -212,7 +223,11 @@ impl Surface {
                         let chains = slice_mesh(mesh, &frame.normal, offset);
                         let polys = chains
                             .iter()
-                            .map(|c| (refine_on_spline(s, uv, c, &frame.normal, offset), c.closed))
+                            .map(|c| Polyline {
+                                points: refine_on_spline(s, uv, c, &frame.normal, offset),
+                                deviation: None,
+                                closed: c.closed,
+                            })
                             .collect();
                         fit_pieces(&frame, index, offset, polys, &params.smoothing)
                     }
@@ -229,67 +244,107 @@ impl Surface {
     }
 }
 
+/// One piece of a plane's section as sliced: its points, how far each may lie from the
+/// true surface (mesh facets), and whether it closes.
+struct Polyline {
+    points: Vec<Vector3<f64>>,
+    deviation: Option<Vec<f64>>,
+    closed: bool,
+}
+
+/// A cleaned piece in plane coordinates.
+struct Piece {
+    points: Vec<Vector2<f64>>,
+    deviation: Option<Vec<f64>>,
+    closed: bool,
+}
+
 /// Orders, cleans and fits the polyline pieces of one plane.
 fn fit_pieces(
     frame: &PlaneFrame,
     index: usize,
     offset: f64,
-    polys: Vec<(Vec<Vector3<f64>>, bool)>,
+    polys: Vec<Polyline>,
     smoothing: &SmoothingParams,
 ) -> Result<Vec<Section>> {
-    let mut pieces: Vec<(Vec<Vector2<f64>>, bool)> = Vec::new();
-    for (pts, closed) in polys {
-        let mut q: Vec<Vector2<f64>> = Vec::with_capacity(pts.len() + 1);
-        for p in &pts {
+    let mut pieces: Vec<Piece> = Vec::new();
+    for poly in polys {
+        let mut q: Vec<Vector2<f64>> = Vec::with_capacity(poly.points.len() + 1);
+        let mut dev: Vec<f64> = Vec::with_capacity(poly.points.len() + 1);
+        for (k, p) in poly.points.iter().enumerate() {
             let x = frame.to_plane(p);
-            if q.last()
-                .is_none_or(|l| (l - x).norm() > 1e-9 * (1.0 + x.norm()))
-            {
-                q.push(x);
+            let d = poly.deviation.as_ref().map_or(0.0, |d| d[k]);
+            match q.last() {
+                Some(l) if (l - x).norm() <= 1e-9 * (1.0 + x.norm()) => {
+                    // one point: the larger allowance
+                    if let Some(last) = dev.last_mut() {
+                        *last = last.max(d);
+                    }
+                }
+                _ => {
+                    q.push(x);
+                    dev.push(d);
+                }
             }
         }
-        if closed {
+        if poly.closed {
             // start at the point of smallest u, and close the loop explicitly
             if let Some(k) = (0..q.len()).min_by(|&a, &b| q[a].x.total_cmp(&q[b].x).then(a.cmp(&b)))
             {
                 q.rotate_left(k);
+                dev.rotate_left(k);
             }
-            if let Some(&f) = q.first() {
+            if let (Some(&f), Some(&d)) = (q.first(), dev.first()) {
                 q.push(f);
+                dev.push(d);
             }
         } else if q.len() >= 2 && q[q.len() - 1].x < q[0].x {
             q.reverse();
+            dev.reverse();
         }
         if q.len() >= 2 {
-            pieces.push((q, closed));
+            pieces.push(Piece {
+                points: q,
+                deviation: poly.deviation.is_some().then_some(dev),
+                closed: poly.closed,
+            });
         }
     }
     pieces.sort_by(|a, b| {
-        let ma = a.0.iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
-        let mb = b.0.iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
+        let ma = a.points.iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
+        let mb = b.points.iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
         ma.total_cmp(&mb)
     });
     pieces
         .into_iter()
         .enumerate()
-        .map(|(piece, (points, closed))| {
-            let fit = fit_smoothing(&points, None, smoothing)?;
-            let n = points.len();
-            let end_margins = (
-                (points[1] - points[0]).norm(),
-                (points[n - 1] - points[n - 2]).norm(),
-            );
-            Ok(Section {
-                end_margins,
-                index,
+        .map(
+            |(
                 piece,
-                offset,
-                closed,
-                curve: SectionCurve::Spline(SplineCurve2::new(fit.curve)),
-                points,
-                fit_rms: fit.rms,
-            })
-        })
+                Piece {
+                    points,
+                    deviation,
+                    closed,
+                },
+            )| {
+                let fit = fit_smoothing_allowing(&points, None, smoothing, deviation.as_deref())?;
+                let n = points.len();
+                let end_margins = (
+                    (points[1] - points[0]).norm(),
+                    (points[n - 1] - points[n - 2]).norm(),
+                );
+                Ok(Section {
+                    end_margins,
+                    index,
+                    piece,
+                    offset,
+                    closed,
+                    curve: SectionCurve::Spline(SplineCurve2::new(fit.curve)),
+                    points,
+                    fit_rms: fit.rms,
+                })
+            },
+        )
         .collect()
 }
 
