@@ -205,14 +205,26 @@ fn bad_block_segmentation_jobs_are_rejected_with_a_pointer() {
     );
 }
 
-/// A block far too small for the model: a clear error, no output folder.
+/// A block far too small for the model: a clear error at validation (the sample cap and
+/// the memory estimate, each naming its field), no output folder.
 #[test]
 fn too_small_blocks_fail_cleanly() {
     let dir = tempfile::tempdir().unwrap();
     let text = job(SMALL, "").replace("(0.8, 0.8, 0.8)", "(0.002, 0.002, 0.002)");
     write(dir.path(), "job.ron", &text);
-    let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("samples needed"), "{}", stderr(&o));
-    assert!(!dir.path().join("out/t").exists());
+    for cmd in ["validate", "run"] {
+        let o = hotcut(&[cmd, "job.ron"], dir.path());
+        assert_eq!(o.status.code(), Some(1));
+        let e = stderr(&o);
+        assert!(
+            e.contains("/task/BlockSegmentation/sample_spacing")
+                && e.contains("samples would be needed"),
+            "{e}"
+        );
+        assert!(
+            e.contains("/block/size") && e.contains("--max-memory"),
+            "{e}"
+        );
+        assert!(!dir.path().join("out/t").exists());
+    }
 }
