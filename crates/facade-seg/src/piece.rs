@@ -79,12 +79,7 @@ fn arr(v: &nalgebra::Vector3<f64>) -> [f64; 3] {
 /// before the first plane, numbered from 0 over the slabs that hold a section (so a block
 /// far shorter than the spacing gives one row per section, not an index out of range).
 pub fn rows_of(facade: &Facade, c: &Constraints) -> Vec<usize> {
-    let first = facade.sections[0].offset - 0.5 * facade.spacing();
-    let slab: Vec<f64> = facade
-        .sections
-        .iter()
-        .map(|s| ((s.offset - first) / c.block[0]).floor().max(0.0))
-        .collect();
+    let slab = slabs(facade, c);
     // sections come in plane order, so their slabs do not decrease
     let mut rows = Vec::with_capacity(slab.len());
     let mut row = 0;
@@ -95,6 +90,17 @@ pub fn rows_of(facade: &Facade, c: &Constraints) -> Vec<usize> {
         rows.push(row);
     }
     rows
+}
+
+/// The slab of `block[0]` (counted from half a spacing before the first plane) each
+/// section lies in: where its row's blocks start along the cut.
+fn slabs(facade: &Facade, c: &Constraints) -> Vec<f64> {
+    let first = facade.sections[0].offset - 0.5 * facade.spacing();
+    facade
+        .sections
+        .iter()
+        .map(|s| ((s.offset - first) / c.block[0]).floor().max(0.0))
+        .collect()
 }
 
 /// Pieces from bands: `bands[b][j]` is band b's arc-length range on section j (`None` where
@@ -110,6 +116,13 @@ pub fn pieces_from_bands(
     let rows = rows_of(facade, c);
     let n_rows = rows.iter().copied().max().map_or(0, |r| r + 1);
     let first = facade.sections[0].offset - 0.5 * facade.spacing();
+    // each row's slab along the cut (rows are numbered densely, slabs may skip)
+    let slab = slabs(facade, c);
+    let slab_of_row = |row: usize| {
+        rows.iter()
+            .position(|&r| r == row)
+            .map_or(row as f64, |j| slab[j])
+    };
     let mut pieces = Vec::new();
     for (b, band) in bands.iter().enumerate() {
         for row in 0..n_rows {
@@ -149,7 +162,7 @@ pub fn pieces_from_bands(
                     }
                 }
             }
-            let d0 = first + row as f64 * c.block[0];
+            let d0 = first + slab_of_row(row) * c.block[0];
             let (d_lo, d_hi) = parts
                 .iter()
                 .fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {

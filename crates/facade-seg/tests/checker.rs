@@ -160,6 +160,17 @@ fn check(facade: &Facade, c: &Constraints, seg: &Segmentation, fitted: bool) {
             piece.id,
             uhi - ulo
         );
+        // its block holds it along the cut: every part's plane between the block's faces
+        let d = facade.frame.normal.dot(&Vector3::from(piece.block.origin));
+        for part in &piece.parts {
+            assert!(
+                part.offset >= d - 1e-6 && part.offset <= d + c.block[0] + 1e-6,
+                "piece {}: plane at {} outside its block [{d}, {}]",
+                piece.id,
+                part.offset,
+                d + c.block[0]
+            );
+        }
         assert!(
             piece.verdicts.all(),
             "piece {}: {:?}",
@@ -370,6 +381,21 @@ fn trace_passes_the_checker_on_the_tilted_mesh_facade() {
     };
     let seg = trace(&facade, &c, &TraceParams::default(), &|| {}).unwrap();
     assert!(seg.pieces.len() > 1);
+    check(&facade, &c, &seg, false);
+}
+
+/// Blocks shorter along the cut than the spacing of the sections: one row per section, and
+/// each piece's block still sits on its section (rows are numbered densely, the blocks
+/// placed by the slab they lie in).
+#[test]
+fn blocks_shorter_than_the_section_spacing_sit_on_their_sections() {
+    let facade = meandering(40.0, 90.0, 120.0, 6);
+    let c = Constraints {
+        block: [50.0, 600.0, 400.0],
+        ..constraints()
+    };
+    let seg = trace(&facade, &c, &TraceParams::default(), &|| {}).unwrap();
+    assert_eq!(seg.rows, 6);
     check(&facade, &c, &seg, false);
 }
 

@@ -26,8 +26,8 @@ use crate::error::{GeomError, Result};
 
 /// Most bytes of source an expression may have.
 pub const MAX_LENGTH: usize = 10_000;
-/// Most levels of nesting (parentheses, function calls, signs, powers) an expression may
-/// have.
+/// Most levels of nesting an expression may have: a parenthesis or a function call counts
+/// two (its argument is a new term), a power's exponent one, a run of signs one.
 pub const MAX_DEPTH: usize = 200;
 
 /// A parsed expression in the variables `x` and `y`.

@@ -75,6 +75,10 @@ pub struct Crossing {
     pub s: f64,
 }
 
+/// Largest angle between the vertex normals of one mesh edge taken for the bending of a
+/// smooth surface (≈ 17°); beyond it the edge crosses a crease.
+pub const MAX_FACET_BEND: f64 = 0.3;
+
 /// One connected piece of a mesh section: crossings in order along the piece.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Chain {
@@ -89,16 +93,22 @@ impl Chain {
     /// edge of length `L` whose vertex normals differ by the angle `θ`, the surface bends
     /// by about `θ/L`, so the edge (a chord) is off it by `s(1−s)·L·θ/2` at the crossing's
     /// share `s` — the facet error a smoothing fit should not follow (`normals`: one unit
-    /// normal per vertex, [`TriMesh::vertex_normals`]).
+    /// normal per vertex, [`TriMesh::vertex_normals`]). Edges whose normals differ by more
+    /// than [`MAX_FACET_BEND`] cross a crease of the design, not a facet of a smooth
+    /// surface: they count that much only; a vertex without a normal counts nothing.
     pub fn facet_deviation(&self, mesh: &TriMesh, normals: &[Vector3<f64>]) -> Vec<f64> {
         let v = mesh.vertices();
         self.crossings
             .iter()
             .map(|c| {
                 let (a, b) = (c.a as usize, c.b as usize);
+                let (na, nb) = (normals[a], normals[b]);
+                if na.norm_squared() == 0.0 || nb.norm_squared() == 0.0 {
+                    return 0.0;
+                }
                 let length = (v[b] - v[a]).norm();
-                let cos = normals[a].dot(&normals[b]).clamp(-1.0, 1.0);
-                let d = c.s * (1.0 - c.s) * length * cos.acos() / 2.0;
+                let bend = na.dot(&nb).clamp(-1.0, 1.0).acos().min(MAX_FACET_BEND);
+                let d = c.s * (1.0 - c.s) * length * bend / 2.0;
                 if d.is_finite() {
                     d
                 } else {

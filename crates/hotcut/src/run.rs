@@ -123,14 +123,19 @@ pub fn run_task<T: Task>(
     };
     let dir = out.join(&job.name);
     std::fs::create_dir_all(out).map_err(io(out))?;
-    remove_stale(out, &job.name);
+    remove_stale(out, &job.name, &dir);
     let prefix = format!(".{}.tmp-{}-", job.name, std::process::id());
-    let tmp = tempfile::Builder::new()
-        .prefix(&prefix)
-        .tempdir_in(out)
-        .map_err(io(out))?;
-    let kept = tmp.keep();
-    in_progress().push(kept.clone());
+    let kept = {
+        // made and listed under the lock, so a signal finds it listed
+        let mut list = in_progress();
+        let tmp = tempfile::Builder::new()
+            .prefix(&prefix)
+            .tempdir_in(out)
+            .map_err(io(out))?;
+        let kept = tmp.keep();
+        list.push(kept.clone());
+        kept
+    };
     let rendered = render(&done, outputs, &kept);
     let placed = match rendered {
         Ok(files) => place(&kept, &dir).map(|()| files),
@@ -207,15 +212,24 @@ fn in_progress() -> MutexGuard<'static, Vec<PathBuf>> {
 pub fn remove_temporaries() {
     let mut list = in_progress();
     for p in list.drain(..) {
-        let _ = std::fs::remove_dir_all(p);
+        // the main thread may be writing a file into it: a few tries
+        for _ in 0..20 {
+            if std::fs::remove_dir_all(&p).is_ok() || !p.exists() {
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
     }
     // the lock is held until the process exits
     std::mem::forget(list);
 }
 
 /// Deletes `<out>/.<name>.tmp-<pid>-…` folders of runs whose process is gone (killed
-/// before they could clean up), and those of the older naming without a process id.
-fn remove_stale(out: &Path, name: &str) {
+/// before they could clean up). An earlier output a killed two-step swap left aside
+/// (`….old`, see [`exchange_in_two`]) is put back at `dir` when `dir` is missing, else
+/// deleted. Only names of exactly that form are touched (a job named `a.tmp-x` is
+/// another job).
+fn remove_stale(out: &Path, name: &str, dir: &Path) {
     let prefix = format!(".{name}.tmp-");
     let Ok(entries) = std::fs::read_dir(out) else {
         return;
@@ -225,12 +239,18 @@ fn remove_stale(out: &Path, name: &str) {
         let Some(rest) = file.strip_prefix(&prefix) else {
             continue;
         };
-        let pid = rest.split('-').next().and_then(|p| p.parse::<u32>().ok());
-        let gone = match pid {
-            Some(pid) => pid != std::process::id() && !process_alive(pid),
-            None => true,
+        let Some((pid, _)) = rest.split_once('-') else {
+            continue;
         };
-        if gone {
+        let Ok(pid) = pid.parse::<u32>() else {
+            continue;
+        };
+        if pid == std::process::id() || process_alive(pid) {
+            continue;
+        }
+        if file.ends_with(".old") && !dir.exists() {
+            let _ = std::fs::rename(e.path(), dir);
+        } else {
             let _ = std::fs::remove_dir_all(e.path());
         }
     }

@@ -483,6 +483,12 @@ fn hostile_jobs_keep_the_contract() {
                 if let Some(c @ (0 | 1)) = o.code {
                     counts.lock().unwrap()[c as usize] += 1;
                 }
+                if case.label.ends_with(": as written") && o.code != Some(0) {
+                    failures
+                        .lock()
+                        .unwrap()
+                        .push(format!("{}: a base job must run: {}", case.label, o.stderr));
+                }
                 let mut slow = slowest.lock().unwrap();
                 if o.took > slow.0 {
                     *slow = (o.took, case.label.clone());

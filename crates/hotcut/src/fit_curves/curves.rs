@@ -37,6 +37,18 @@ struct JsonCurve {
 /// malformed JSON or CSV, no curves, a repeated id, a curve with fewer than 3 points, a
 /// non-finite coordinate, or two equal consecutive points.
 pub fn read_curves(path: &Path) -> std::result::Result<Vec<InputCurve>, String> {
+    // a regular file of at most 256 MiB (not a device, not a runaway export)
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_file() && m.len() <= 256 << 20 => {}
+        Ok(m) if m.is_file() => {
+            return Err(format!(
+                "{}: {} bytes, more than 256 MiB",
+                path.display(),
+                m.len()
+            ))
+        }
+        _ => return Err(format!("{}: not a regular file", path.display())),
+    }
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let csv = path
         .extension()

@@ -237,12 +237,25 @@ impl Task for HotBlade {
         let samples = pipeline.samples as f64;
         let grid = (pipeline.grid_points * pipeline.grid_points) as f64;
         let per_block = (pipeline.targets * (pipeline.refine + 1)) as f64;
-        Estimate::new(
+        let mut checks = Vec::new();
+        // the pipeline's own bound on its grid, whatever the limits
+        if !(blocks <= hotblade::MAX_BLOCKS && planes <= hotblade::MAX_PLANES) {
+            checks.push((
+                "/block/size".to_string(),
+                format!(
+                    "the block is far smaller than the surface: {blocks:.3e} blocks on {planes:.3e} planes (at most {:.0e} and {:.0e})",
+                    hotblade::MAX_BLOCKS,
+                    hotblade::MAX_PLANES
+                ),
+            ));
+        }
+        let e = Estimate::new(
             planes * points * 200.0 + fits * samples * 64.0 + blocks * (grid + per_block) * 512.0 + 1e7,
             planes * (cost + 1e3 * points) + fits * samples * 400.0 + blocks * grid * 100.0,
             "/block/size",
             "enlarge block.size, or lower the task's targets_per_block, samples, refine or split_depth",
-        )
+        );
+        Estimate { checks, ..e }
     }
 
     fn run(params: &HotBladeParams, job: &Context, progress: &dyn Progress) -> Result<HotBladeRun> {

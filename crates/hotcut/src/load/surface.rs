@@ -28,7 +28,22 @@ struct SplineFile {
     points: Vec<Vec<[f64; 3]>>,
 }
 
+/// Largest spline control-grid file, bytes.
+const MAX_SPLINE_BYTES: u64 = 64 << 20;
+
 fn load_spline(file: &Path) -> Result<BSplineSurface, String> {
+    match std::fs::metadata(file) {
+        Ok(m) if m.is_file() && m.len() <= MAX_SPLINE_BYTES => {}
+        Ok(m) if m.is_file() => {
+            return Err(format!(
+                "{}: {} bytes, more than a control grid has ({} MiB at most)",
+                file.display(),
+                m.len(),
+                MAX_SPLINE_BYTES >> 20
+            ))
+        }
+        _ => return Err(format!("spline file not found: {}", file.display())),
+    }
     let text = std::fs::read_to_string(file)
         .map_err(|e| format!("cannot read spline file {}: {e}", file.display()))?;
     let f: SplineFile =
