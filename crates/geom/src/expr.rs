@@ -11,7 +11,7 @@
 //! atom  = number | "x" | "y" | "pi" | "e" | func "(" expr ")" | "(" expr ")"
 //! func  = sin | cos | tan | exp | ln | sqrt | abs
 //! ```
-//! Limits: at most [`MAX_LENGTH`] bytes of source and [`MAX_DEPTH`] levels of nesting
+//! Limits: at most [`MAX_LENGTH`](crate::expr::MAX_LENGTH) bytes of source and [`MAX_DEPTH`](crate::expr::MAX_DEPTH) levels of nesting
 //! (parentheses, function calls, signs and powers), so parsing never exhausts the stack.
 //! The parser writes a postfix program (no tree), so evaluating and dropping an expression
 //! is a loop, and every analysis is linear in its length.

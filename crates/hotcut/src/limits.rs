@@ -1,6 +1,6 @@
 //! How much work and memory a run will take, estimated from the resolved job before any
 //! geometry work ([`Task::estimate`](crate::task::Task::estimate)), and the one place the
-//! limits they are checked against live ([`Limits`]; `hotcut run --max-memory GB
+//! limits they are checked against live ([`Limits`](crate::limits::Limits); `hotcut run --max-memory GB
 //! --max-work STEPS` raises them).
 //!
 //! The estimates are coarse on purpose — products of the counts a job sets (blocks ×
