@@ -306,18 +306,24 @@ fn dense_cover(facade: &Facade, seg: &Segmentation) {
     );
 }
 
+/// Runs the three algorithms on `facade` and checks each (longest elastica with its fits).
+fn every_algorithm(facade: &Facade, c: &Constraints) -> [Segmentation; 3] {
+    let a = inflection_points(facade, c, &InflectionParams::default(), &|| {}).unwrap();
+    check(facade, c, &a, false);
+    let b = trace(facade, c, &TraceParams::default(), &|| {}).unwrap();
+    check(facade, c, &b, false);
+    let l = longest_elastica(facade, c, &LongestParams::default(), &|| {}).unwrap();
+    check(facade, c, &l, true);
+    [a, b, l]
+}
+
 /// The jobs' meandering wavy facade (`jobs/seg-wavy-*.ron`): every algorithm passes the
 /// checker, and they need different numbers of pieces.
 #[test]
 fn every_algorithm_passes_the_checker_on_the_meandering_facade() {
     let facade = meandering(40.0, 90.0, 120.0, 26);
     let c = constraints();
-    let a = inflection_points(&facade, &c, &InflectionParams::default(), &|| {}).unwrap();
-    check(&facade, &c, &a, false);
-    let b = trace(&facade, &c, &TraceParams::default(), &|| {}).unwrap();
-    check(&facade, &c, &b, false);
-    let l = longest_elastica(&facade, &c, &LongestParams::default(), &|| {}).unwrap();
-    check(&facade, &c, &l, true);
+    let [a, b, l] = every_algorithm(&facade, &c);
     println!(
         "pieces: inflection {}, trace {}, longest elastica {}",
         a.pieces.len(),
@@ -342,12 +348,7 @@ fn every_algorithm_passes_the_checker_on_oblique_cuts() {
     ] {
         let facade = meandering_cut(40.0, 90.0, 120.0, 14, direction);
         println!("direction {direction:?}");
-        let a = inflection_points(&facade, &c, &InflectionParams::default(), &|| {}).unwrap();
-        check(&facade, &c, &a, false);
-        let b = trace(&facade, &c, &TraceParams::default(), &|| {}).unwrap();
-        check(&facade, &c, &b, false);
-        let l = longest_elastica(&facade, &c, &LongestParams::default(), &|| {}).unwrap();
-        check(&facade, &c, &l, true);
+        every_algorithm(&facade, &c);
     }
 }
 
