@@ -366,6 +366,10 @@ fn run(dir: &Path) -> Outcome {
             "ulimit -v {MEMORY_KIB} && exec \"$0\" run job.ron --out out"
         ))
         .arg(env!("CARGO_BIN_EXE_hotcut"))
+        // the address-space limit must not depend on the machine's core count: a few
+        // worker threads and malloc arenas, whatever the machine
+        .env("RAYON_NUM_THREADS", "2")
+        .env("MALLOC_ARENA_MAX", "2")
         .current_dir(dir)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
