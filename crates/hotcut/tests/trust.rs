@@ -90,15 +90,21 @@ fn references(dir: &Path) -> ([BTreeMap<String, Vec<u8>>; 2], Duration) {
     (refs, took)
 }
 
+/// A folder with both references and version A's output in place at `out/k`.
+fn with_old_output() -> (tempfile::TempDir, [BTreeMap<String, Vec<u8>>; 2], Duration) {
+    let dir = tempfile::tempdir().unwrap();
+    let (refs, took) = references(dir.path());
+    assert!(hotcut(&["run", "a.ron"], dir.path()).status.success());
+    (dir, refs, took)
+}
+
 /// 36 runs killed (SIGKILL) at random instants over their whole span, writing included:
 /// after each, `out/k` is one whole earlier or new output, never a mix or nothing; the
 /// temporary folders the kills leave are deleted by the next run.
 #[test]
 fn a_killed_run_leaves_the_old_or_the_new_output_whole() {
-    let dir = tempfile::tempdir().unwrap();
+    let (dir, refs, took) = with_old_output();
     let d = dir.path();
-    let (refs, took) = references(d);
-    assert!(hotcut(&["run", "a.ron"], d).status.success());
     let mut state = 18u64;
     let (mut old, mut new) = (0, 0);
     let mut current = 0usize;
@@ -134,10 +140,8 @@ fn a_killed_run_leaves_the_old_or_the_new_output_whole() {
 /// output untouched.
 #[test]
 fn interrupted_runs_remove_their_temporary_folder() {
-    let dir = tempfile::tempdir().unwrap();
+    let (dir, refs, took) = with_old_output();
     let d = dir.path();
-    let (refs, took) = references(d);
-    assert!(hotcut(&["run", "a.ron"], d).status.success());
     for (signal, at) in [("INT", 0.3), ("TERM", 0.6), ("INT", 0.9)] {
         let mut child = spawn(&["run", "b.ron"], d);
         std::thread::sleep(took.mul_f64(at));
