@@ -126,11 +126,40 @@ impl Elliptic {
         if !(0.0..=1.0).contains(&m) {
             return Err(EllipticError::Parameter(m));
         }
-        let m1 = 1.0 - m;
+        // 1 − m is exact in f64 for m ≥ 1/2 and the error-free sum covers m < 1/2.
+        let one_minus_m = Dd::from_f64(1.0).add(Dd::from_f64(-m));
+        Ok(Self::with_complement(m, m.sqrt(), one_minus_m))
+    }
+
+    /// Precompute for the modulus `k ∈ [0, 1]` (m = k²). The complementary parameter
+    /// 1 − m = (1 − k)(1 + k) is formed exactly from k, so K, E and the functions keep
+    /// full relative accuracy in 1 − m as k → 1: forming m = k² first rounds away up to
+    /// 1.1·10⁻¹⁶ of 1 − m, which is a relative error of 10⁻⁶ at 1 − m = 10⁻¹⁰.
+    ///
+    /// ```
+    /// use elastica::elliptic::Elliptic;
+    /// let k = 1.0 - 1e-10;
+    /// let e = Elliptic::from_modulus(k).unwrap();
+    /// // K = ln(4/k′) + O(k′²) with k′² = (1 − k)(1 + k) ≈ 2·10⁻¹⁰
+    /// let kp2 = (1.0 - k) * (1.0 + k);
+    /// assert!((e.k() - (4.0 / kp2.sqrt()).ln()).abs() < 1e-9);
+    /// ```
+    pub fn from_modulus(k: f64) -> Result<Self, EllipticError> {
+        if !(0.0..=1.0).contains(&k) {
+            return Err(EllipticError::Parameter(k * k));
+        }
+        let one = Dd::from_f64(1.0);
+        let one_minus_m = one.add(Dd::from_f64(-k)).mul(one.add(Dd::from_f64(k)));
+        Ok(Self::with_complement(k * k, k, one_minus_m))
+    }
+
+    /// Precompute from m, k = √m and 1 − m in double-double (m ∈ [0, 1] checked).
+    fn with_complement(m: f64, k: f64, one_minus_m: Dd) -> Self {
+        let m1 = one_minus_m.hi;
         let mut s = Elliptic {
             m,
             m1,
-            kp: m1.sqrt(),
+            kp: one_minus_m.sqrt().hi,
             k: Dd::from_f64(f64::INFINITY),
             e: 1.0,
             dk: f64::INFINITY,
@@ -139,12 +168,11 @@ impl Elliptic {
             bottom_scale: 1.0,
             bottom_m: m,
         };
-        if m == 1.0 {
-            return Ok(s);
+        if m1 == 0.0 {
+            s.m = 1.0;
+            return s;
         }
-        // K by the AGM in double-double; 1 − m is exact in f64 for m ≥ 1/2 and the
-        // error-free sum covers m < 1/2.
-        let one_minus_m = Dd::from_f64(1.0).add(Dd::from_f64(-m));
+        // K by the AGM in double-double.
         let (mut a, mut b) = (Dd::from_f64(1.0), one_minus_m.sqrt());
         for _ in 0..40 {
             if (a.hi - b.hi).abs() <= 1e-17 * a.hi && (a.add(b.scale(-1.0))).hi.abs() < 1e-32 {
@@ -158,7 +186,7 @@ impl Elliptic {
         s.dk = carlson_rd(0.0, m1, 1.0) / 3.0;
         s.e = s.k.hi - m * s.dk;
         // Landen chain
-        let (mut k, mut kp) = (m.sqrt(), s.kp);
+        let (mut k, mut kp) = (k, s.kp);
         let mut mm = m;
         while mm >= SERIES_M && s.levels < MAX_LANDEN {
             let k1 = (k / (1.0 + kp)).powi(2);
@@ -172,7 +200,7 @@ impl Elliptic {
             mm = k1 * k1;
         }
         s.bottom_m = mm;
-        Ok(s)
+        s
     }
 
     /// The parameter m.

@@ -59,7 +59,7 @@ impl UnitElastica {
         Ok(UnitElastica {
             family,
             k,
-            ell: Elliptic::new(k * k)?,
+            ell: Elliptic::from_modulus(k)?,
         })
     }
 

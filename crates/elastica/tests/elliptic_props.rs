@@ -28,20 +28,27 @@ proptest! {
         prop_assert!(((u - v.eps) - m * v.d).abs() < 1e-12 * (1.0 + u.abs()));
     }
 
+    /// Central differences against the derivative formulas (DLMF 22.13.1–3, 22.16.1/14).
+    /// The tolerance is derived, not tuned: truncation h²/6·max|f‴| (≤ 2·10⁻¹⁰ with
+    /// |f‴| ≤ 10 for m ≤ 1) plus the rounding of the two values, a few ulp of |f| each,
+    /// divided by the step. The step is the one actually taken, (u + h) − (u − h) (exact),
+    /// not 2h: at |u| = 90 the two differ by an ulp of u, 7·10⁻¹⁰ of the quotient.
     #[test]
     fn derivatives_in_u(m in param(), u in -100.0f64..100.0) {
         let e = Elliptic::new(m).unwrap();
         let h = 1e-5;
-        let (a, b, c) = (e.eval(u - h), e.eval(u + h), e.eval(u));
-        let fd = |x: f64, y: f64| (y - x) / (2.0 * h);
-        prop_assert!((fd(a.sn, b.sn) - c.cn * c.dn).abs() < 1e-9);
-        prop_assert!((fd(a.cn, b.cn) + c.sn * c.dn).abs() < 1e-9);
-        prop_assert!((fd(a.dn, b.dn) + m * c.sn * c.cn).abs() < 1e-9);
-        prop_assert!((fd(a.am, b.am) - c.dn).abs() < 1e-9);
-        prop_assert!((fd(a.eps, b.eps) - c.dn * c.dn).abs() < 1e-9);
-        // D = ∫ sn² is computed on its own (Landen recursion), not as (u − E)/m; it grows
-        // like u, and its rounding (a few ulp of D) enters the difference quotient
-        prop_assert!((fd(a.d, b.d) - c.sn * c.sn).abs() < 1e-9 * (1.0 + c.d.abs()));
+        let (lo, hi) = (u - h, u + h);
+        let step = hi - lo;
+        let (a, b, c) = (e.eval(lo), e.eval(hi), e.eval(u));
+        let fd = |x: f64, y: f64| (y - x) / step;
+        let tol = |x: f64, y: f64| 2e-10 + 8.0 * f64::EPSILON * x.abs().max(y.abs()) / step;
+        prop_assert!((fd(a.sn, b.sn) - c.cn * c.dn).abs() < tol(a.sn, b.sn));
+        prop_assert!((fd(a.cn, b.cn) + c.sn * c.dn).abs() < tol(a.cn, b.cn));
+        prop_assert!((fd(a.dn, b.dn) + m * c.sn * c.cn).abs() < tol(a.dn, b.dn));
+        prop_assert!((fd(a.am, b.am) - c.dn).abs() < tol(a.am, b.am));
+        prop_assert!((fd(a.eps, b.eps) - c.dn * c.dn).abs() < tol(a.eps, b.eps));
+        // D = ∫ sn² is computed on its own (Landen recursion), not as (u − E)/m
+        prop_assert!((fd(a.d, b.d) - c.sn * c.sn).abs() < tol(a.d, b.d));
     }
 
     /// D(u|m) = ∫₀ᵘ sn² matches its m = 0 limit (u − sin u cos u)/2 to first order in m.
@@ -102,6 +109,23 @@ proptest! {
         prop_assert!((fd(a.am, b.am) - d.am).abs() < tol(d.am));
         prop_assert!((fd(a.eps, b.eps) - d.eps).abs() < tol(d.eps));
     }
+}
+
+/// The point where a random seed once failed `derivatives_in_u` (m = 3.5·10⁻⁸, u = −90.9):
+/// am itself is right there (60-digit mpmath values of am(u ± 10⁻⁵) and dn(u)); the old
+/// tolerance was what was wrong.
+#[test]
+fn amplitude_at_a_former_failure() {
+    let e = Elliptic::new(3.527401176162884e-8).unwrap();
+    let cases = [
+        (-90.9075984310215, -90.907_597_627_646_986_250_966_03),
+        (-90.9075884310215, -90.907_587_627_646_989_941_845_1),
+        (-90.90757843102149, -90.907_577_627_646_993_633_406_44),
+    ];
+    for (u, am) in cases {
+        assert!((e.eval(u).am - am).abs() <= 2.0 * 1.5e-14, "{u}");
+    }
+    assert!((e.eval(-90.9075884310215).dn - 0.999_999_999_313_464_329_375_683_9).abs() < 1e-16);
 }
 
 #[test]

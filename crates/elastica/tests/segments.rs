@@ -59,6 +59,37 @@ proptest! {
         prop_assert!((ddtheta - expect).abs() < 1e-6 * (1.0 + expect.abs()) / (k * k), "{ddtheta} vs {expect}");
     }
 
+    /// The same identities for moduli near 1 (1 − k² log-uniform in [10⁻¹⁶, 10⁻³]) and arc
+    /// lengths up to 100, where the curve runs close to the separatrix. Tolerances derived:
+    /// truncation h²/6·max|f‴| (|p‴| ≤ |κ′| + κ² ≤ 6, |κ‴| ≤ 20 there) plus, over the step
+    /// actually taken, a few ulp of the values and of the argument σ times |f′| ≤ 2 (an
+    /// ulp of σ = 100 moves every function by ~10⁻¹⁴).
+    #[test]
+    fn unit_speed_and_curvature_near_k_one(fam in family(), x in -16.0f64..-3.0, s in -100.0f64..100.0) {
+        let k = (1.0 - 10f64.powf(x)).sqrt();
+        prop_assume!(k < 1.0);
+        let u = UnitElastica::new(fam, k).unwrap();
+        let h = 1e-5;
+        let (lo, hi) = (s - h, s + h);
+        let step = hi - lo;
+        let (a, b, c) = (u.eval(lo), u.eval(hi), u.eval(s));
+        let tol = |x: f64, y: f64, f3: f64| {
+            f3 * h * h / 6.0 + 8.0 * f64::EPSILON * x.abs().max(y.abs()).max(2.0 * s.abs()) / step
+        };
+        for i in 0..2 {
+            let d = (b.p[i] - a.p[i]) / step;
+            prop_assert!((d - c.t[i]).abs() < tol(a.p[i], b.p[i], 6.0), "{d} vs {:?}", c.t);
+        }
+        prop_assert!(((c.t[0].hypot(c.t[1])) - 1.0).abs() < 1e-14);
+        let t = 1e-13 + 4.0 * f64::EPSILON * c.theta.abs();
+        prop_assert!((c.t[0] - c.theta.cos()).abs() < t && (c.t[1] - c.theta.sin()).abs() < t);
+        let dtheta = (b.theta - a.theta) / step;
+        prop_assert!((dtheta - c.kappa).abs() < tol(a.theta, b.theta, 6.0), "{dtheta} vs {}", c.kappa);
+        let ddtheta = (b.kappa - a.kappa) / step;
+        let expect = -c.theta.sin();
+        prop_assert!((ddtheta - expect).abs() < tol(a.kappa, b.kappa, 20.0), "{ddtheta} vs {expect}");
+    }
+
     /// The derivative with respect to every standard parameter matches central differences.
     #[test]
     fn gradient_matches_finite_differences(p in params(), t in 0.0f64..1.0) {
@@ -74,9 +105,13 @@ proptest! {
                           4 => q.phi += d, 5 => q.x0 += d, _ => q.y0 += d }
                 ElasticaSegment::new(q).unwrap().eval(t).p
             };
+            // Richardson extrapolation of two central differences: truncation O(h⁴). A plain
+            // central difference has h²/6·|∂³p/∂k³|, which at k = 0.05 (arguments σ/k of a
+            // few hundred) is 10⁻⁵ relative at h = 10⁻⁶.
             let (a, b) = (bump(-h), bump(h));
+            let (a2, b2) = (bump(-0.5 * h), bump(0.5 * h));
             for c in 0..2 {
-                let fd = (b[c] - a[c]) / (2.0 * h);
+                let fd = (4.0 * (b2[c] - a2[c]) / h - (b[c] - a[c]) / (2.0 * h)) / 3.0;
                 let tol = 1e-5 * (1.0 + fd.abs().max(gi[c].abs()));
                 prop_assert!((fd - gi[c]).abs() < tol, "param {i} coord {c}: fd {fd} analytic {}", gi[c]);
             }

@@ -118,13 +118,13 @@ pub(crate) fn elastica_guess(data: &Data, local: &Local) -> Option<(Family, [f64
     let l = len / scale;
     if energy < 1.0 {
         let k = ((energy + 1.0) / 2.0).max(0.0).sqrt().clamp(1e-3, 0.999);
-        let ell = Elliptic::new(k * k).ok()?;
+        let ell = Elliptic::from_modulus(k).ok()?;
         let th = wrap(local.theta[0] - phi);
         let am = ((th / 2.0).sin() / k).atan2(scale * local.kappa[0] / (2.0 * k));
         Some((Family::Inflectional, [k, ell.f(am), l]))
     } else {
         let k = (2.0 / (energy + 1.0)).sqrt().clamp(1e-2, 0.999);
-        let ell = Elliptic::new(k * k).ok()?;
+        let ell = Elliptic::from_modulus(k).ok()?;
         let turning: f64 = mean_curvature(data, local);
         if turning >= 0.0 {
             let am = wrap(local.theta[0] - phi) / 2.0;
