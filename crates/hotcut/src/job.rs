@@ -71,8 +71,8 @@ fn default_outputs() -> Vec<OutputSpec> {
 }
 
 /// The task to run: its name, and in parentheses its fields, e.g.
-/// `HotBlade(targets_per_block: 51)`; a task whose fields all have defaults is written
-/// `Analyze()`.
+/// `HotBlade(targets_per_block: 51)`; with all fields at their defaults, `Analyze()` or
+/// just `Analyze`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub enum TaskSpec {

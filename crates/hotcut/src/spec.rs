@@ -66,7 +66,8 @@ pub enum SurfaceSpec {
         /// Path of the `.obj` file, relative to the job file.
         #[schemars(length(min = 1))]
         path: String,
-        /// Require a closed (watertight) mesh. Default: `false` (a facade is an open sheet).
+        /// Require a closed (watertight) mesh. Default: `false` (a facade is an open sheet;
+        /// `BlockSegmentation` checks that its mesh is closed whatever this says).
         #[serde(default)]
         closed: bool,
     },

@@ -22,7 +22,7 @@ fn job(task: &str, extra: &str) -> String {
         r#"Job(
     name: "t",
     units: Metre,
-    surface: Mesh(path: "{}", closed: true),
+    surface: Mesh(path: "{}"),
     block: Block(size: (0.8, 0.8, 0.8)),
     task: {task},
     outputs: [Report, Blocks, Svg, Obj, Gltf],
@@ -166,13 +166,19 @@ fn bad_block_segmentation_jobs_are_rejected_with_a_pointer() {
     for (task, extra, needles) in cases {
         expect_invalid(&job(task, extra), needles);
     }
-    // An open mesh, a height field, no block, a placed block, a negative size.
+    // An open mesh (a cube without its top, `closed` not written: the mesh itself is
+    // checked), a height field, no block, a placed block, a negative size.
     let t = torus().display().to_string();
+    let open = tempfile::tempdir().unwrap();
+    let v = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n";
+    let f = "f 1 3 2\nf 1 4 3\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+    write(open.path(), "open.obj", &format!("{v}{f}"));
+    let o = open.path().join("open.obj").display().to_string();
     expect_invalid(
         &format!(
-            r#"Job(name: "t", surface: Mesh(path: "{t}"), block: Block(size: (1, 1, 1)), task: BlockSegmentation())"#
+            r#"Job(name: "t", surface: Mesh(path: "{o}"), block: Block(size: (1, 1, 1)), task: BlockSegmentation)"#
         ),
-        &["/surface/Mesh/closed"],
+        &["/surface/Mesh/path", "open: 4 boundary edges in 1 loops"],
     );
     expect_invalid(
         r#"Job(name: "t", surface: HeightField(z: "x", x: (0, 1), y: (0, 1)), block: Block(size: (1, 1, 1)), task: BlockSegmentation())"#,

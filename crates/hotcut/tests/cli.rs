@@ -66,6 +66,59 @@ fn syntax_error_reports_file_line_and_column() {
     expect_invalid("", &["job.ron:1:1"]);
 }
 
+/// `task: Analyze` and `algorithm: Trace` (no parentheses) mean all defaults, for every
+/// task and algorithm; errors after them still point at the column as written.
+#[test]
+fn unit_forms_of_tasks_and_algorithms_mean_all_defaults() {
+    use hotcut::load::parse_job;
+    let p = Path::new("job.ron");
+    let tasks = [
+        "Analyze",
+        "FitCurves",
+        "HotBlade",
+        "FacadeSegmentation",
+        "BlockSegmentation",
+        "PreCut",
+    ];
+    for task in tasks {
+        let unit = VALID.replace("task: Analyze()", &format!("task: {task}"));
+        let full = VALID.replace("task: Analyze()", &format!("task: {task}()"));
+        // the same job, or the same error (FacadeSegmentation has a required field)
+        match (parse_job(p, &unit), parse_job(p, &full)) {
+            (Ok(a), Ok(b)) => assert_eq!(a, b),
+            (Err(a), Err(b)) => {
+                let tail = |e: &hotcut::error::JobError| {
+                    e.to_string().split_once(": ").unwrap().1.to_string()
+                };
+                assert_eq!(tail(&a), tail(&b));
+            }
+            (a, b) => panic!("{task}: {a:?} vs {b:?}"),
+        }
+    }
+    for alg in ["Inflection", "Trace", "LongestElastica"] {
+        let with = |a: &str| {
+            VALID.replace(
+                "task: Analyze()",
+                &format!("task: FacadeSegmentation(algorithm: /* here */ {a})"),
+            )
+        };
+        let unit = parse_job(p, &with(alg)).unwrap();
+        assert_eq!(unit, parse_job(p, &with(&format!("{alg}()"))).unwrap());
+    }
+    // the unit form runs; a misspelt field after it on the same line is reported at its
+    // column in the file as written
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "job.ron",
+        &VALID.replace("task: Analyze()", "task: Analyze"),
+    );
+    let o = hotcut(&["run", "job.ron"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = VALID.replace("task: Analyze(),", "task: Analyze, sed: 1,");
+    expect_invalid(&text, &["job.ron:6:20", "/sed"]);
+}
+
 #[test]
 fn unknown_field_reports_its_path() {
     let text = VALID.replace("length: 1000", "lenght: 1000");

@@ -149,15 +149,13 @@ impl Task for BlockSegmentation {
 
     fn check(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
         job.require_surface_and_block(Self::NAME, " (a closed mesh)", "model is", errors);
+        // whether the mesh is closed is checked on the mesh itself (`estimate`), so
+        // `closed: true` need not be written
         match job.surface {
-            Some(SurfaceSpec::Mesh { closed: true, .. }) | None => {}
-            Some(SurfaceSpec::Mesh { closed: false, .. }) => errors.push(job.error(
-                "/surface/Mesh/closed",
-                "BlockSegmentation covers a solid: the mesh must be closed (`closed: true`)",
-            )),
+            Some(SurfaceSpec::Mesh { .. }) | None => {}
             Some(_) => errors.push(job.error(
                 "/surface",
-                "BlockSegmentation needs a closed triangle mesh: `Mesh(path: .., closed: true)`",
+                "BlockSegmentation needs a closed triangle mesh: `Mesh(path: ..)`",
             )),
         }
         if job.block.is_some_and(|b| b.origin.is_some()) {
@@ -179,9 +177,13 @@ impl Task for BlockSegmentation {
     }
 
     fn estimate(p: &blocks::Params, job: &Context) -> Estimate {
-        let samples = match &job.surface {
-            Some(Surface::Mesh(mesh)) => blocks::estimated_samples(mesh, p),
-            _ => 0.0,
+        let (samples, open) = match &job.surface {
+            Some(Surface::Mesh(mesh)) => {
+                let t = mesh.topology();
+                let open = (t.boundary_edges > 0).then_some((t.boundary_edges, t.boundary_loops));
+                (blocks::estimated_samples(mesh, p), open)
+            }
+            _ => (0.0, None),
         };
         let mut e = Estimate::new(
             samples * 96.0 + 1e7,
@@ -189,6 +191,14 @@ impl Task for BlockSegmentation {
             "/block/size",
             "enlarge block.size or the task's sample_spacing, or lower its restarts",
         );
+        if let Some((edges, loops)) = open {
+            e.checks.push((
+                "/surface/Mesh/path".into(),
+                format!(
+                    "BlockSegmentation covers a solid, but the mesh is open: {edges} boundary edges in {loops} loops; close it in the modeller"
+                ),
+            ));
+        }
         if !(samples <= p.max_samples as f64) {
             e.checks.push((
                 format!("{PTR}/sample_spacing"),

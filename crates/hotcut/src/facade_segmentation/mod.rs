@@ -82,7 +82,8 @@ pub struct FacadeSegmentation {
     pub approach: Option<f64>,
 }
 
-/// How a facade is segmented (thesis ch. 5).
+/// How a facade is segmented (thesis ch. 5). With all fields at their defaults the
+/// parentheses may be left out: `algorithm: Trace`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub enum SegAlgorithmSpec {

@@ -27,6 +27,8 @@ mod parse;
 mod schema;
 /// Loading the surface.
 mod surface;
+/// `task: Analyze` read as `task: Analyze()` (the unit form of struct variants).
+mod unit_form;
 
 pub use parse::parse_job;
 pub use schema::{job_schema, validate_schema};

@@ -34,10 +34,15 @@ fn pointer_of(path: &serde_path_to_error::Path) -> String {
 /// # Errors
 /// [`JobError::Syntax`] or [`JobError::Structure`], with line and column.
 pub fn parse_job(path: &Path, text: &str) -> Result<Job, JobError> {
+    // a byte-order mark (editors on Windows write one) is not part of the job
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    // `task: Analyze` is `task: Analyze()`; error columns refer to the text as written
+    let forms = super::unit_form::expand(text);
+    let col = |line: usize, col: usize| forms.original_column(line, col);
     let syntax = |e: ron::error::SpannedError| JobError::Syntax {
         path: path.to_path_buf(),
         line: e.span.start.line,
-        col: e.span.start.col,
+        col: col(e.span.start.line, e.span.start.col),
         message: e.code.to_string(),
     };
     // a task's struct is written inside its variant's parentheses: `HotBlade(samples: 40)`
@@ -45,9 +50,8 @@ pub fn parse_job(path: &Path, text: &str) -> Result<Job, JobError> {
         ron::extensions::Extensions::IMPLICIT_SOME
             | ron::extensions::Extensions::UNWRAP_VARIANT_NEWTYPES,
     );
-    // a byte-order mark (editors on Windows write one) is not part of the job
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut de = ron::de::Deserializer::from_str_with_options(text, &options).map_err(syntax)?;
+    let mut de =
+        ron::de::Deserializer::from_str_with_options(&forms.text, &options).map_err(syntax)?;
     let mut track = serde_path_to_error::Track::new();
     let result = Job::deserialize(serde_path_to_error::Deserializer::new(&mut de, &mut track));
     match result {
@@ -88,7 +92,7 @@ pub fn parse_job(path: &Path, text: &str) -> Result<Job, JobError> {
             Err(JobError::Structure {
                 path: path.to_path_buf(),
                 line: spanned.span.start.line,
-                col: spanned.span.start.col,
+                col: col(spanned.span.start.line, spanned.span.start.col),
                 pointer,
                 message: spanned.code.to_string(),
             })
