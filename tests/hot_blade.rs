@@ -234,8 +234,8 @@ fn columns_over_tolerance_are_halved_and_refitted() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs/hot-blade-facade.ron");
     let text = std::fs::read_to_string(&path).unwrap();
     let mut job = parse_job(&path, &text).unwrap();
-    job.tolerance.max = 0.01;
-    job.tolerance.rms = 0.005;
+    job.tolerance.max = Some(0.01);
+    job.tolerance.rms = Some(0.005);
     let run = rationalize(&resolve(&path, job).unwrap());
     let (tol_max, tol_rms, depth) = (0.01f64, 0.005f64, run.params.split_depth);
     let splits = &run.cut.splits;

@@ -13,8 +13,8 @@ use hotblade::BladeLimits;
 use nalgebra::Vector3;
 
 use crate::error::{HotcutError, JobError};
-use crate::spec::{BladeSpec, BlockSpec, CuttingSpec, OutputSpec, SurfaceSpec, ToleranceSpec};
-use crate::spec::{Units, WireSpec};
+use crate::spec::{defaults, BladeSpec, BlockSpec, CuttingSpec, OutputSpec, SurfaceSpec};
+use crate::spec::{Tolerance, Units, WireSpec};
 
 /// The job's blade, or the default blade (1000 mm, 0.011 /mm, 2 inflections) converted to
 /// `units`.
@@ -28,8 +28,8 @@ pub fn blade_of(spec: Option<&BladeSpec>, units: Units) -> BladeLimits {
         None => {
             let f = units.per_mm();
             BladeLimits {
-                length: 1000.0 * f,
-                max_curvature: 0.011 / f,
+                length: defaults::BLADE_LENGTH_MM * f,
+                max_curvature: defaults::BLADE_MAX_CURVATURE_PER_MM / f,
                 max_inflections: 2,
             }
         }
@@ -59,8 +59,8 @@ pub struct Context {
     pub cutting: CuttingSpec,
     /// Unit cutting direction (the curve's chord when the job gives a curve).
     pub direction: Vector3<f64>,
-    /// Tolerances.
-    pub tolerance: ToleranceSpec,
+    /// Tolerances (defaults applied, in job units).
+    pub tolerance: Tolerance,
     /// Seed of every random choice.
     pub seed: u64,
 }

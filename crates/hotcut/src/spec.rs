@@ -178,25 +178,26 @@ impl Default for CuttingSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, rename = "Tolerance")]
 pub struct ToleranceSpec {
-    /// RMS distance allowed between the surface and what is cut (> 0). Default: 0.5 mm.
-    #[serde(default = "default_rms")]
+    /// RMS distance allowed between the surface and what is cut (> 0). Default: 0.5 mm
+    /// (converted when `units: Metre`).
+    #[serde(default)]
     #[schemars(extend("exclusiveMinimum" = 0))]
-    pub rms: f64,
+    pub rms: Option<f64>,
     /// Largest distance allowed between the surface and what is cut (> 0). Default: 2 mm.
-    #[serde(default = "default_max")]
+    #[serde(default)]
     #[schemars(extend("exclusiveMinimum" = 0))]
-    pub max: f64,
+    pub max: Option<f64>,
     /// Largest deviation allowed when a polyline section (mesh, spline surface) is replaced
     /// by a smoothing spline before curvature is taken (≥ 0). For meshes, a point may also
     /// deviate by its chordal sagitta (how far a facet can be from the true surface there).
     /// Default: 0.05 mm.
-    #[serde(default = "default_smoothing")]
+    #[serde(default)]
     #[schemars(range(min = 0))]
-    pub smoothing: f64,
+    pub smoothing: Option<f64>,
     /// Inflections are located by bisection to within this arc length (> 0). Default: 1e-6 mm.
-    #[serde(default = "default_bisection")]
+    #[serde(default)]
     #[schemars(extend("exclusiveMinimum" = 0))]
-    pub bisection: f64,
+    pub bisection: Option<f64>,
     /// A stretch between inflections that turns the tangent by less than this many radians
     /// is noise, and its inflections are dropped (≥ 0). Default: 0.002.
     #[serde(default = "default_min_turning")]
@@ -204,18 +205,6 @@ pub struct ToleranceSpec {
     pub min_turning: f64,
 }
 
-fn default_rms() -> f64 {
-    0.5
-}
-fn default_max() -> f64 {
-    2.0
-}
-fn default_smoothing() -> f64 {
-    0.05
-}
-fn default_bisection() -> f64 {
-    1e-6
-}
 fn default_min_turning() -> f64 {
     0.002
 }
@@ -223,11 +212,40 @@ fn default_min_turning() -> f64 {
 impl Default for ToleranceSpec {
     fn default() -> Self {
         Self {
-            rms: default_rms(),
-            max: default_max(),
-            smoothing: default_smoothing(),
-            bisection: default_bisection(),
+            rms: None,
+            max: None,
+            smoothing: None,
+            bisection: None,
             min_turning: default_min_turning(),
+        }
+    }
+}
+
+/// The tolerances with their defaults applied, in job units.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct Tolerance {
+    /// RMS distance allowed between the surface and what is cut.
+    pub rms: f64,
+    /// Largest distance allowed between the surface and what is cut.
+    pub max: f64,
+    /// Smoothing-spline deviation of polyline sections.
+    pub smoothing: f64,
+    /// Bisection tolerance of inflections, arc length.
+    pub bisection: f64,
+    /// Least tangent turning between inflections, radians.
+    pub min_turning: f64,
+}
+
+impl ToleranceSpec {
+    /// The tolerances in `units`, each omitted one from its millimetre default.
+    pub fn resolve(&self, units: Units) -> Tolerance {
+        let f = units.per_mm();
+        Tolerance {
+            rms: self.rms.unwrap_or(defaults::RMS_MM * f),
+            max: self.max.unwrap_or(defaults::MAX_MM * f),
+            smoothing: self.smoothing.unwrap_or(defaults::SMOOTHING_MM * f),
+            bisection: self.bisection.unwrap_or(defaults::BISECTION_MM * f),
+            min_turning: self.min_turning,
         }
     }
 }
@@ -394,12 +412,35 @@ impl OutputKind {
     }
 }
 
-/// Default cutting speed of the blade, mm/s (converted by the job's units).
-pub const BLADE_SPEED_MM_PER_S: f64 = 7.0;
-
-/// Default approach and retreat distance of the blade along the cut, mm (converted by the
-/// job's units).
-pub const APPROACH_MM: f64 = 50.0;
+/// Every length default of a job, stated once, in millimetres. They are applied only
+/// through [`Units::per_mm`] (lengths multiplied, curvatures divided), so a job in metres
+/// gets the same physical defaults as one in millimetres.
+pub mod defaults {
+    /// `tolerance.rms`, mm.
+    pub const RMS_MM: f64 = 0.5;
+    /// `tolerance.max`, mm.
+    pub const MAX_MM: f64 = 2.0;
+    /// `tolerance.smoothing`, mm.
+    pub const SMOOTHING_MM: f64 = 0.05;
+    /// `tolerance.bisection`, mm.
+    pub const BISECTION_MM: f64 = 1e-6;
+    /// `blade.length`, mm.
+    pub const BLADE_LENGTH_MM: f64 = 1000.0;
+    /// `blade.max_curvature`, 1/mm.
+    pub const BLADE_MAX_CURVATURE_PER_MM: f64 = 0.011;
+    /// Cutting speed of the blade (`speed` of `HotBlade` and `FacadeSegmentation`), mm/s.
+    pub const BLADE_SPEED_MM_PER_S: f64 = 7.0;
+    /// Approach and retreat distance of the blade along the cut (`approach`), mm.
+    pub const APPROACH_MM: f64 = 50.0;
+    /// `wire.speed`, mm/min.
+    pub const WIRE_SPEED_MM_PER_MIN: f64 = 300.0;
+    /// `wire.lead`, mm.
+    pub const WIRE_LEAD_MM: f64 = 20.0;
+    /// `wire.clearance`, mm.
+    pub const WIRE_CLEARANCE_MM: f64 = 50.0;
+    /// `LongestElastica(precision)`, mm.
+    pub const PRECISION_MM: f64 = 1.0;
+}
 
 /// The fit constraint of a blade that keeps its length: the default of the tasks that
 /// pose the blade.

@@ -70,6 +70,11 @@ pub struct Params {
     pub margin: f64,
     /// Grid cells per side for the volumes.
     pub volume_grid: usize,
+    /// Distance between the wire's tower planes, when the cuts go to a hot-wire machine:
+    /// every leg's line, extended this wide (centred on the block), stays between the
+    /// block's floor (the machine's table) and a block height above its top. Without it,
+    /// the same holds across the block's own width along each direction.
+    pub span: Option<f64>,
 }
 
 impl Default for Params {
@@ -85,6 +90,7 @@ impl Default for Params {
             check_density: 8,
             margin: 1e-5,
             volume_grid: 200,
+            span: None,
         }
     }
 }
@@ -254,6 +260,11 @@ pub fn pre_cut(
     })
 }
 
+/// The block's height.
+fn height_of(block: &Block) -> f64 {
+    block.max[2] - block.min[2]
+}
+
 /// The cut of direction `di` (frame `frame`): the legs, their coefficients in model units,
 /// the result, and the number of samples the optimizer used.
 fn cut_direction(
@@ -313,6 +324,14 @@ fn cut_direction(
             max_rounds: params.max_rounds,
             max_exchanges: 50,
             proximal: 1e-8,
+            // from the floor (the table) to a block height above the top, over the span
+            band: (
+                -height_of(block) / scale,
+                height_of(block) / scale,
+                params
+                    .span
+                    .map_or(1.0, |t| (0.5 * t / legs.w_half).max(1.0)),
+            ),
             direction: di,
         },
         &|round, objective| {

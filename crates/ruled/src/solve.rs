@@ -45,6 +45,12 @@ pub struct SolveOptions {
     pub max_exchanges: usize,
     /// Weight of the proximal term.
     pub proximal: f64,
+    /// `(low, high, reach)`: every leg's line stays within the height range `low..high`
+    /// for `|s| ≤ reach` (reach ≥ 1: the frame's width, or the wire's towers beyond it),
+    /// imposed on the B-spline controls (the curve lies in their convex hull). Where a
+    /// rotated block's chord is short (near its corners) nothing else holds the line's
+    /// slope, and the wire, extended to the towers, would leave any machine's travel.
+    pub band: (f64, f64, f64),
     /// Index of the direction (for errors).
     pub direction: usize,
 }
@@ -325,6 +331,21 @@ fn qp(
                 cols[c].push((r, -v));
             }
             b.push(-(pt.f + opt.margin));
+        }
+    }
+    // band: low ≤ a ± reach·m ≤ high for every control of every leg
+    let k = legs.controls;
+    for j in 0..legs.legs {
+        for c in 0..k {
+            let (a, slope) = (2 * j * k + c, (2 * j + 1) * k + c);
+            for side in [-1.0, 1.0] {
+                for (sign, bound) in [(1.0, opt.band.1), (-1.0, -opt.band.0)] {
+                    let r = b.len();
+                    cols[a].push((r, sign));
+                    cols[slope].push((r, sign * side * opt.band.2));
+                    b.push(bound);
+                }
+            }
         }
     }
     let m = b.len();

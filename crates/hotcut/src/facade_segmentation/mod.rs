@@ -44,8 +44,8 @@ use crate::error::{JobError, Result};
 use crate::limits::{blocks_spanned, section_cost, Estimate};
 use crate::progress::Progress;
 use crate::report::SurfaceInfo;
+use crate::spec::defaults::{APPROACH_MM, BLADE_SPEED_MM_PER_S};
 use crate::spec::{keep_length, FitConstraintSpec, OutputKind, OutputSpec};
-use crate::spec::{APPROACH_MM, BLADE_SPEED_MM_PER_S};
 use crate::task::{Output, Task};
 use export::robot::Motion;
 use report::{SegmentationReport, SegmentationSettings};
@@ -252,7 +252,7 @@ impl Task for FacadeSegmentation {
             },
             blade: job.blade,
             sectioning: job.sectioning(),
-            default_precision: per_mm,
+            default_precision: crate::spec::defaults::PRECISION_MM * per_mm,
         })
     }
 

@@ -140,7 +140,7 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
         wire: job.wire,
         cutting: job.cutting,
         direction,
-        tolerance: job.tolerance,
+        tolerance: job.tolerance.resolve(job.units),
         seed: job.seed,
     };
     let errors = job.task.visit(Resolved {

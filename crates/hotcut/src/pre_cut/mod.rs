@@ -26,7 +26,7 @@ use crate::context::{Context, JobFields};
 use crate::error::{JobError, Result};
 use crate::limits::Estimate;
 use crate::progress::Progress;
-use crate::spec::{OutputKind, OutputSpec, Units};
+use crate::spec::{defaults, OutputKind, OutputSpec, Units};
 use crate::task::{Output, Task};
 
 /// Hot-wire pre-cuts before milling (thesis ch. 2): per cutting direction, `legs`
@@ -177,9 +177,9 @@ pub fn wire_params(job: &Context) -> Option<ruled::wire::WireParams> {
     Some(ruled::wire::WireParams {
         tower_distance: w.tower_distance,
         kerf: w.kerf,
-        speed: w.speed.unwrap_or(300.0 * unit),
-        lead: w.lead.unwrap_or(20.0 * unit),
-        clearance: w.clearance.unwrap_or(50.0 * unit),
+        speed: w.speed.unwrap_or(defaults::WIRE_SPEED_MM_PER_MIN * unit),
+        lead: w.lead.unwrap_or(defaults::WIRE_LEAD_MM * unit),
+        clearance: w.clearance.unwrap_or(defaults::WIRE_CLEARANCE_MM * unit),
         steps: 0,
         mm_per_unit: 1.0 / unit,
     })
@@ -258,7 +258,9 @@ impl Task for PreCut {
                 origin[2] + size[2],
             ],
         };
-        let cut = self.optimizer();
+        let mut cut = self.optimizer();
+        // the legs' lines stay over the table out to the towers
+        cut.span = job.wire.as_ref().map(|w| w.tower_distance);
         let wire = wire_params(job).map(|w| ruled::wire::WireParams {
             steps: cut.sections + 1,
             ..w
