@@ -122,7 +122,8 @@ fn separated(a: &Cuboid, b: &Cuboid, d: &Vector3<f64>) -> bool {
         if len < 1e-9 {
             return false;
         }
-        d.dot(&n).abs() > extent(a, &n) + extent(b, &n) + 1e-12 * len
+        // the slack is relative: separated by more than rounding, in any unit
+        d.dot(&n).abs() > (extent(a, &n) + extent(b, &n)) * (1.0 + 1e-12)
     };
     for k in 0..3 {
         if test(a.axes.column(k).into_owned()) || test(b.axes.column(k).into_owned()) {

@@ -78,7 +78,8 @@ pub struct Params {
     pub coverage: Coverage,
     /// Exponent p of eq. 3.3 (≥ 1).
     pub p: f64,
-    /// ε of eq. 3.3 (> 0).
+    /// ε of eq. 3.3 (> 0), as a fraction of the block's volume (the paper's ε is a
+    /// volume; relative, the energy does not depend on the unit of length).
     pub epsilon: f64,
     /// Independent runs (in parallel), the best kept.
     pub restarts: u32,
@@ -490,7 +491,7 @@ pub fn segment(
         } else {
             100.0 * (initial_blocks - final_blocks) as f64 / initial_blocks as f64
         },
-        lower_bound: (model_volume / block_volume).ceil() as usize,
+        lower_bound: crate::moves::cells(model_volume, block_volume),
         model_volume,
         block_volume,
         bounding_box: Placement {

@@ -218,7 +218,7 @@ impl Grid {
 }
 
 /// Blocks of pitch `pitch` needed to span `length` (at least one).
-fn cells(length: f64, pitch: f64) -> usize {
+pub(crate) fn cells(length: f64, pitch: f64) -> usize {
     ((length / pitch) * (1.0 - 1e-12)).ceil().max(1.0) as usize
 }
 

@@ -76,7 +76,12 @@ pub fn min_box(points: &[Vector3<f64>]) -> Option<BoxFit> {
         let (lo, hi) = local_bounds(&frame, &support);
         let s = hi - lo;
         let measure = (s.x + eta) * (s.y + eta) * (s.z + eta);
-        if best.as_ref().is_none_or(|(m, _)| measure < *m) {
+        // a candidate replaces the best only when smaller beyond rounding (ties keep the
+        // first, whatever the unit)
+        if best
+            .as_ref()
+            .is_none_or(|(m, _)| measure < *m * (1.0 - 1e-9))
+        {
             best = Some((measure, frame));
         }
     }
@@ -198,7 +203,7 @@ fn frame_for(n: &Vector3<f64>, pts: &[Vector3<f64>]) -> Matrix3<f64> {
             b1 = b1.max(b);
         }
         let area = (a1 - a0) * (b1 - b0);
-        if area < best.0 {
+        if area < best.0 * (1.0 - 1e-9) {
             best = (area, e);
         }
     }

@@ -164,7 +164,7 @@ fn move_cycle(state: &mut State<'_>, ops: Ops, rng: &mut ChaCha8Rng, acc: &mut A
         let mut consider = |c: Cuboid, is_translation: bool, state: &State<'_>| {
             let gain = state.pair_sum(i, &c) - base;
             if gain > tolerance
-                && best.as_ref().is_none_or(|(g, ..)| gain > *g)
+                && best.as_ref().is_none_or(|(g, ..)| gain > *g + tolerance)
                 && moves::keeps(std::slice::from_ref(&c), &pts, margin)
             {
                 best = Some((gain, c, is_translation));

@@ -250,7 +250,7 @@ fn surface_samples(mesh: &TriMesh, s: f64, out: &mut Vec<Vector3<f64>>) {
     edges.dedup();
     for (a, b) in edges {
         let (p, q) = (v[a as usize], v[b as usize]);
-        let n = ((q - p).norm() / s).ceil() as usize;
+        let n = crate::moves::cells((q - p).norm(), s);
         for m in 1..n {
             out.push(p + (q - p) * (m as f64 / n as f64));
         }
@@ -258,7 +258,7 @@ fn surface_samples(mesh: &TriMesh, s: f64, out: &mut Vec<Vector3<f64>>) {
     for f in mesh.faces() {
         let [a, b, c] = f.map(|i| v[i as usize]);
         let longest = (b - a).norm().max((c - b).norm()).max((a - c).norm());
-        let n = (longest / s).ceil() as usize;
+        let n = crate::moves::cells(longest, s);
         for i in 1..n {
             for j in 1..n - i {
                 out.push(a + (b - a) * (i as f64 / n as f64) + (c - a) * (j as f64 / n as f64));

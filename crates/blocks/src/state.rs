@@ -188,7 +188,7 @@ impl<'s> State<'s> {
                 }
             }
         }
-        n - sum / (n * ((n - 1.0) * self.volume + self.epsilon).powf(self.p))
+        n - sum / (n * ((n - 1.0 + self.epsilon) * self.volume).powf(self.p))
     }
 
     /// The scale of one pair term, `(2V)^p`, for tolerances.

@@ -70,6 +70,55 @@ pub enum Segment {
     },
 }
 
+impl Segment {
+    /// The segment under the similarity `p ↦ factor·p + offset` (`factor > 0`): lengths
+    /// scale by `factor`, curvatures by `1/factor`, angles and shape are kept.
+    pub fn similar(&self, factor: f64, offset: [f64; 2]) -> Segment {
+        let map = |x: f64, y: f64| (factor * x + offset[0], factor * y + offset[1]);
+        match *self {
+            Segment::Elastica(p) => {
+                let (x0, y0) = map(p.x0, p.y0);
+                Segment::Elastica(ElasticaParams {
+                    scale: p.scale * factor,
+                    x0,
+                    y0,
+                    ..p
+                })
+            }
+            Segment::Line {
+                x0,
+                y0,
+                phi,
+                length,
+            } => {
+                let (x0, y0) = map(x0, y0);
+                Segment::Line {
+                    x0,
+                    y0,
+                    phi,
+                    length: length * factor,
+                }
+            }
+            Segment::Arc {
+                x0,
+                y0,
+                phi,
+                curvature,
+                length,
+            } => {
+                let (x0, y0) = map(x0, y0);
+                Segment::Arc {
+                    x0,
+                    y0,
+                    phi,
+                    curvature: curvature / factor,
+                    length: length * factor,
+                }
+            }
+        }
+    }
+}
+
 /// Point, unit tangent, tangent angle and signed curvature of a segment at one parameter.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct SegmentPoint {

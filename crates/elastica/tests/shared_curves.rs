@@ -263,3 +263,52 @@ fn fit_is_at_least_as_accurate_as_the_generic_baseline() {
         );
     }
 }
+
+/// The fit is unit-free: every shared curve in millimetres (×1000), in metres (÷1000) and
+/// moved far from the origin fits as the same segment kind with the same relative error;
+/// scaled by a power of two (exact), it fits identically.
+#[test]
+fn fits_are_invariant_under_scale_and_translation() {
+    let kind = |f: &FitResult| std::mem::discriminant(&f.segment);
+    for constraint in [FitConstraint::Free, FitConstraint::EndPointsAndLength] {
+        let params = FitParams {
+            constraint,
+            ..Default::default()
+        };
+        for c in load() {
+            let id = c["id"].as_str().unwrap();
+            let pts = points(&c["points"]);
+            let base = fit_points(&pts, &params).unwrap();
+            let len = base.input_length;
+            let exact = [(1024.0, 0.0), (1.0 / 1024.0, 0.0)];
+            for (factor, offset) in [(1e3, 0.0), (1e-3, 0.0), (1.0, 5e4)]
+                .into_iter()
+                .chain(exact)
+            {
+                let moved: Vec<[f64; 2]> = pts
+                    .iter()
+                    .map(|p| [p[0] * factor + offset, p[1] * factor - offset])
+                    .collect();
+                let fit = fit_points(&moved, &params).unwrap();
+                assert_eq!(kind(&fit), kind(&base), "{id} ×{factor} +{offset}");
+                if exact.contains(&(factor, offset)) {
+                    // a power-of-two scale is exact in floating point: with no absolute
+                    // constant anywhere, the very same solve
+                    assert_eq!(
+                        fit.iterations, base.iterations,
+                        "{id} ×{factor}: iterations"
+                    );
+                    assert_eq!(base.rms / len, fit.rms / fit.input_length, "{id} ×{factor}");
+                }
+                // the same fit up to rounding: relative to the curve's length, plus the
+                // rounding of coordinates moved `offset` away (ε·offset/L)
+                let (a, b) = (base.rms / len, fit.rms / fit.input_length);
+                let floor = 1e-14 * (1.0 + offset / fit.input_length);
+                assert!(
+                    (a - b).abs() <= 1e-6 * a + floor,
+                    "{id} ×{factor} +{offset}: rms/L {a:e} vs {b:e}"
+                );
+            }
+        }
+    }
+}

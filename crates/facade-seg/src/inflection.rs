@@ -97,10 +97,11 @@ impl Row<'_> {
     }
 
     fn covered(&self, a: &[f64]) -> bool {
-        a[0] <= self.range.0 + 1e-9
-            && a[a.len() - 1] + self.width >= self.range.1 - 1e-9
+        let slack = 1e-9 * self.width;
+        a[0] <= self.range.0 + slack
+            && a[a.len() - 1] + self.width >= self.range.1 - slack
             && a.windows(2)
-                .all(|w| w[1] >= w[0] && w[1] <= w[0] + self.width + 1e-9)
+                .all(|w| w[1] >= w[0] && w[1] <= w[0] + self.width + slack)
     }
 }
 

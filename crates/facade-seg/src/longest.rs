@@ -110,6 +110,36 @@ fn longest_from(
     }
 }
 
+/// The longest acceptable part of section `j` from `s0` no longer than `len`: `len`
+/// itself when it passes, else a halving search below it to the search's precision (the
+/// shortest tried when none passes).
+fn longest_within(
+    facade: &Facade,
+    c: &Constraints,
+    p: &LongestParams,
+    j: usize,
+    s0: f64,
+    len: f64,
+) -> f64 {
+    let test = |l: f64| accepted(facade, c, j, s0, s0 + l, p.samples);
+    if test(len) {
+        return len;
+    }
+    let steps = (len / p.precision).log2().ceil().clamp(1.0, 60.0) as u32;
+    let (mut lo, mut hi) = (0.0, len);
+    let mut best = None;
+    for _ in 0..steps {
+        let mid = 0.5 * (lo + hi);
+        if test(mid) {
+            best = Some(mid);
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    best.unwrap_or_else(|| hi.max(p.precision.min(len)))
+}
+
 /// The longest part of section `j` from `cur[j]` whose far end stays within a block's width
 /// (across the facade) of the smallest start in its row of blocks (`rows`): a piece is cut
 /// from one block. Infinite when the rest of the section fits. Sections already done
@@ -232,12 +262,27 @@ pub fn longest_elastica(
             .filter(|&j| found[j].is_some_and(|(_, ok)| !ok))
             .map(|j| facade.sections[j].index)
             .collect();
+        // a part cut short (row cap, evening out) is a new part: its elastica can bend
+        // differently (an extra inflection), so it is checked again, and shortened further
+        // where it fails
+        let lengths: Vec<Option<f64>> = (0..n)
+            .into_par_iter()
+            .map(|j| {
+                found[j].map(|(len, ok)| {
+                    let cut = len.min(limit[j]);
+                    if ok && cut < len {
+                        longest_within(facade, c, p, j, cur[j], cut)
+                    } else {
+                        cut
+                    }
+                })
+            })
+            .collect();
         let mut band = Vec::with_capacity(n);
         let mut seam = Vec::new();
         for j in 0..n {
-            match found[j] {
-                Some((len, _)) => {
-                    let len = len.min(limit[j]);
+            match lengths[j] {
+                Some(len) => {
                     band.push(Some((cur[j], cur[j] + len)));
                     cur[j] += len;
                     if !done(j, cur[j]) {

@@ -172,10 +172,15 @@ fn restart_poor_fits(
             };
             fit_points_with_arclength(&design.points, &design.s, &fp).ok()
         };
-        let better = run(FitConstraint::EndPoints, None)
+        // from the end-point fit, and cold (the fit's own candidates): a poor minimum
+        // reached by a chain of warm starts is left whichever start finds a better one
+        let from_ends = run(FitConstraint::EndPoints, None)
             .and_then(|e| run(FitConstraint::EndPointsAndLength, Some(e.segment)));
-        if let Some(b) = better.filter(|b| b.l2 < f.l2) {
-            *f = b;
+        let cold = run(FitConstraint::EndPointsAndLength, None);
+        for b in [from_ends, cold].into_iter().flatten() {
+            if b.l2 < f.l2 {
+                *f = b;
+            }
         }
     }
 }

@@ -44,6 +44,19 @@ impl Facade {
     /// [`SegError::NoSections`] for no sections; [`SegError::Section`] when a curve cannot
     /// be analysed.
     pub fn new(frame: PlaneFrame, sections: &[Section]) -> Result<Self, SegError> {
+        Self::with_analysis(frame, sections, &CurveAnalysisParams::default())
+    }
+
+    /// [`Facade::new`] with the inflections of every section found by `analysis` (the
+    /// job's bisection tolerance and least lobe turning).
+    ///
+    /// # Errors
+    /// As [`Facade::new`].
+    pub fn with_analysis(
+        frame: PlaneFrame,
+        sections: &[Section],
+        analysis: &CurveAnalysisParams,
+    ) -> Result<Self, SegError> {
         let mut best: Vec<(usize, &Section, f64)> = Vec::new();
         for s in sections {
             let arc = ArcLength::new(&s.curve, 64);
@@ -57,7 +70,9 @@ impl Facade {
         best.sort_by_key(|b| b.0);
         let prepared: Result<Vec<_>, _> = best
             .into_iter()
-            .map(|(index, s, _)| PreparedSection::new(index, s.offset, s.curve.clone()))
+            .map(|(index, s, _)| {
+                PreparedSection::with_analysis(index, s.offset, s.curve.clone(), analysis)
+            })
             .collect();
         let sections = prepared?;
         if sections.is_empty() {
@@ -131,17 +146,50 @@ impl Facade {
     }
 }
 
+/// Curvature samples per exact section for its inflections, at least.
+pub const EXACT_SAMPLES: usize = 8192;
+
 impl PreparedSection {
     /// Tabulates the arc length and finds the inflections of one section curve.
     ///
     /// # Errors
     /// [`SegError::Section`] when the curve cannot be analysed.
     pub fn new(index: usize, offset: f64, curve: SectionCurve) -> Result<Self, SegError> {
-        let analysis = analyze_curve(&curve, &CurveAnalysisParams::default()).map_err(|e| {
-            SegError::Section {
-                index,
-                message: e.to_string(),
+        Self::with_analysis(index, offset, curve, &CurveAnalysisParams::default())
+    }
+
+    /// [`PreparedSection::new`] with the inflections found by `params`.
+    ///
+    /// The inflections count against `max_inflections` (the blade's shape), so on an
+    /// exact section (a height field's) every sign change of the curvature counts, as a
+    /// dense count of the exact second derivative finds them: no lobe is dropped as noise
+    /// however little it turns (small ripples on a flat stretch are real inflections the
+    /// blade must make), and the curvature is read at least every 1/[`EXACT_SAMPLES`] of
+    /// the section. `min_lobe_turning` applies to smoothed polyline sections only.
+    ///
+    /// # Errors
+    /// As [`PreparedSection::new`].
+    pub fn with_analysis(
+        index: usize,
+        offset: f64,
+        curve: SectionCurve,
+        params: &CurveAnalysisParams,
+    ) -> Result<Self, SegError> {
+        let exact;
+        let params = match curve {
+            SectionCurve::Graph(_) => {
+                exact = CurveAnalysisParams {
+                    samples: params.samples.max(EXACT_SAMPLES),
+                    min_lobe_turning: 0.0,
+                    ..params.clone()
+                };
+                &exact
             }
+            SectionCurve::Spline(_) => params,
+        };
+        let analysis = analyze_curve(&curve, params).map_err(|e| SegError::Section {
+            index,
+            message: e.to_string(),
         })?;
         let arc = ArcLength::new(&curve, 512);
         Ok(Self {

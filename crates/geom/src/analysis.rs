@@ -308,7 +308,9 @@ pub fn analyze_curve(
     }
     let ks: Vec<f64> = jets.iter().map(signed_curvature).collect();
 
-    let mut raw = sign_changes(curve, &ts, &ks, params.bisection_tolerance);
+    // bisection never below rounding of the parameter domain, whatever its unit
+    let bisection = params.bisection_tolerance.max(1e-12 * (b - a));
+    let mut raw = sign_changes(curve, &ts, &ks, bisection);
 
     // Sign changes inside the end margins carry no information from the data.
     let before = raw.len();
@@ -349,7 +351,7 @@ pub fn analyze_curve(
 
     // One maximum of |κ| per lobe: best sample, then golden-section refinement.
     let dt = (b - a) / m as f64;
-    let tolerance = params.bisection_tolerance.max(1e-12);
+    let tolerance = bisection;
     let maxima: Vec<CurvePoint> = lobes
         .iter()
         .map(|lobe| at(lobe_maximum(curve, lobe, &ts, &ks, dt, tolerance)))

@@ -112,7 +112,8 @@ impl CutFrame {
             let (a, b) = (self.block.min[k], self.block.max[k]);
             let d = self.across[k];
             if d.abs() < 1e-15 {
-                if p[k] < a - 1e-12 || p[k] > b + 1e-12 {
+                let slack = 1e-12 * self.block.scale();
+                if p[k] < a - slack || p[k] > b + slack {
                     return None;
                 }
             } else {

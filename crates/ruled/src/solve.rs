@@ -208,7 +208,15 @@ fn exchange_points(
             }
         }
     }
-    near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+    // closest first; gaps equal to 10⁻¹² (normalised heights: rounding, which differs with
+    // the unit of length) count as ties and keep the grid's order
+    let key = |g: f64| (g * 1e12).round();
+    near.sort_by(|a, b| {
+        key(a.0)
+            .total_cmp(&key(b.0))
+            .then(a.1.cmp(&b.1))
+            .then(a.2.cmp(&b.2))
+    });
     let gap_at = |u: f64, w: f64, j: usize| -> Option<(f64, f64)> {
         let (w0, w1) = (domain.chord)(u)?;
         if u < domain.u.0 || u > domain.u.1 || w < w0 || w > w1 {
@@ -254,7 +262,7 @@ fn exchange_points(
         if g < margin / 2.0
             && out
                 .iter()
-                .all(|p| (p.u - u).abs() + (p.w - w).abs() > 1e-12)
+                .all(|p| (p.u - u).abs() + (p.w - w).abs() > 1e-9 * (domain.step.0 + domain.step.1))
         {
             out.push(Point { u, w, f });
         }

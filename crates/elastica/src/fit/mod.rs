@@ -159,11 +159,102 @@ pub fn fit_points(points: &[[f64; 2]], params: &FitParams) -> Result<FitResult, 
 /// Fit points with given arc-length parameters `s` (increasing; the length is
 /// `s[last] − s[0]`, which is also the target length of
 /// [`FitConstraint::EndPointsAndLength`]).
+///
+/// The fit is unit-free: the points are moved to their first point and divided by the
+/// power of two nearest their length ([`UnitFrame`]) before anything is solved, so every
+/// tolerance inside is relative and a curve in metres fits as the same curve in
+/// millimetres.
 pub fn fit_points_with_arclength(
     points: &[[f64; 2]],
     s: &[f64],
     params: &FitParams,
 ) -> Result<FitResult, FitError> {
+    let Some(frame) = UnitFrame::of(points, s) else {
+        return fit_in_frame(points, s, params);
+    };
+    let (p, t) = frame.points_to_unit(points, s);
+    let params = FitParams {
+        warm_start: params.warm_start.as_ref().map(|w| frame.segment_to_unit(w)),
+        ..params.clone()
+    };
+    Ok(frame.result_from_unit(fit_in_frame(&p, &t, &params)?))
+}
+
+/// The similarity that takes a curve to unit size: `p ↦ (p − origin)/scale`, `scale` the
+/// power of two nearest the curve's length (exact, so it adds no rounding of its own).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct UnitFrame {
+    origin: [f64; 2],
+    scale: f64,
+}
+
+impl UnitFrame {
+    /// The frame of points with arc lengths `s`; `None` when the length is not a positive
+    /// finite number or the first point is not finite (the fit then reports the problem).
+    pub(crate) fn of(points: &[[f64; 2]], s: &[f64]) -> Option<Self> {
+        let (first, last) = (*s.first()?, *s.last()?);
+        let length = last - first;
+        let origin = *points.first()?;
+        if !(length.is_finite() && length > 0.0 && origin[0].is_finite() && origin[1].is_finite()) {
+            return None;
+        }
+        let e = length.log2().round().clamp(-1000.0, 1000.0) as i32;
+        Some(Self {
+            origin,
+            scale: 2f64.powi(e),
+        })
+    }
+
+    /// Points and arc lengths in the frame.
+    pub(crate) fn points_to_unit(
+        &self,
+        points: &[[f64; 2]],
+        s: &[f64],
+    ) -> (Vec<[f64; 2]>, Vec<f64>) {
+        let inv = 1.0 / self.scale;
+        let p = points
+            .iter()
+            .map(|q| [(q[0] - self.origin[0]) * inv, (q[1] - self.origin[1]) * inv])
+            .collect();
+        let t = s.iter().map(|v| (v - s[0]) * inv).collect();
+        (p, t)
+    }
+
+    /// A segment in the frame.
+    pub(crate) fn segment_to_unit(&self, seg: &Segment) -> Segment {
+        let inv = 1.0 / self.scale;
+        seg.similar(inv, [-self.origin[0] * inv, -self.origin[1] * inv])
+    }
+
+    /// A fit in the frame, in the original coordinates (lengths ×scale, l2 ×scale^1.5).
+    pub(crate) fn result_from_unit(&self, r: FitResult) -> FitResult {
+        let c = self.scale;
+        FitResult {
+            segment: r.segment.similar(c, self.origin),
+            rms: r.rms * c,
+            max: r.max * c,
+            l2: r.l2 * c * c.sqrt(),
+            input_length: r.input_length * c,
+            ..r
+        }
+    }
+
+    /// A fit in original coordinates, in the frame.
+    pub(crate) fn result_to_unit(&self, r: &FitResult) -> FitResult {
+        let inv = 1.0 / self.scale;
+        FitResult {
+            segment: self.segment_to_unit(&r.segment),
+            rms: r.rms * inv,
+            max: r.max * inv,
+            l2: r.l2 * inv * inv.sqrt(),
+            input_length: r.input_length * inv,
+            ..r.clone()
+        }
+    }
+}
+
+/// [`fit_points_with_arclength`] in the coordinates given.
+fn fit_in_frame(points: &[[f64; 2]], s: &[f64], params: &FitParams) -> Result<FitResult, FitError> {
     let n = points.len();
     if n < 3 {
         return Err(FitError::TooFewPoints(n));

@@ -123,9 +123,31 @@ impl Problem<'_> {
 /// tangent angle is `start` at t = 0 and `end` at t = 1 (each optional), keeping the end
 /// points, and the length when `constraint` is [`FitConstraint::EndPointsAndLength`].
 ///
+/// Unit-free like [`fit_points_with_arclength`]: solved on the curve moved to unit size.
+///
 /// # Errors
 /// [`FitError::Tangents`] when the constraints cannot be met from this start.
 pub fn fit_with_end_tangents(
+    points: &[[f64; 2]],
+    s: &[f64],
+    fit: &FitResult,
+    warm: Option<&Segment>,
+    start: Option<f64>,
+    end: Option<f64>,
+    constraint: FitConstraint,
+) -> Result<FitResult, FitError> {
+    let Some(frame) = super::UnitFrame::of(points, s) else {
+        return tangents_in_frame(points, s, fit, warm, start, end, constraint);
+    };
+    let (p, t) = frame.points_to_unit(points, s);
+    let fit = frame.result_to_unit(fit);
+    let warm = warm.map(|w| frame.segment_to_unit(w));
+    let r = tangents_in_frame(&p, &t, &fit, warm.as_ref(), start, end, constraint)?;
+    Ok(frame.result_from_unit(r))
+}
+
+/// [`fit_with_end_tangents`] in the coordinates given.
+fn tangents_in_frame(
     points: &[[f64; 2]],
     s: &[f64],
     fit: &FitResult,

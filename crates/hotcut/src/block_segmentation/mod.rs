@@ -49,7 +49,7 @@ pub struct BlockSegmentation {
     #[serde(default = "default_block_p")]
     #[schemars(range(min = 1))]
     pub p: f64,
-    /// ε of eq. 3.3 (> 0). Default: 1e-5.
+    /// ε of eq. 3.3 (> 0), as a fraction of the block's volume. Default: 1e-5.
     #[serde(default = "default_block_epsilon")]
     #[schemars(extend("exclusiveMinimum" = 0))]
     pub epsilon: f64,

@@ -169,6 +169,8 @@ pub struct SegmentationParams {
     pub blade: hotblade::BladeLimits,
     /// Sectioning of the facade.
     pub sectioning: SectionParams,
+    /// How the sections' inflections are found (the job's bisection and least turning).
+    pub analysis: geom::analysis::CurveAnalysisParams,
     /// Precision of the longest-elastica search when the job leaves it out (1 mm).
     pub default_precision: f64,
 }
@@ -252,6 +254,11 @@ impl Task for FacadeSegmentation {
             },
             blade: job.blade,
             sectioning: job.sectioning(),
+            analysis: geom::analysis::CurveAnalysisParams {
+                bisection_tolerance: job.tolerance.bisection,
+                min_lobe_turning: job.tolerance.min_turning,
+                ..Default::default()
+            },
             default_precision: crate::spec::defaults::PRECISION_MM * per_mm,
         })
     }
@@ -289,7 +296,8 @@ impl Task for FacadeSegmentation {
             .sections(&params.sectioning, &|| progress.tick())
             .map_err(job.geom_err("sectioning the facade"))?;
         progress.finish();
-        let facade = Facade::new(frame, &sections).map_err(|e| job.fail(e.to_string()))?;
+        let facade = Facade::with_analysis(frame, &sections, &params.analysis)
+            .map_err(|e| job.fail(e.to_string()))?;
         let segmentation = segment(&facade, params, progress)
             .map_err(|e| job.fail(format!("segmentation failed: {e}")))?;
         let posed = if params.rationalize {

@@ -1,0 +1,492 @@
+//! Unit and scale invariance: every job of `jobs/` is run as written and again in the
+//! other unit (millimetres ↔ metres: every length of the job and of its input files
+//! divided or multiplied by 1000, the same geometry). The two `report.json` must agree:
+//! the same counts, pieces, blocks, verdicts and inflections, and every number either
+//! equal or scaled by a power of 1000 (lengths, curvatures, areas, volumes).
+
+use std::path::{Path, PathBuf};
+
+use hotcut::job::{Job, TaskSpec};
+use hotcut::load::{parse_job, resolve};
+use hotcut::run::run_job;
+use hotcut::spec::{SurfaceSpec, Units};
+use hotcut::NoProgress;
+use hotcut_workspace_tests::root;
+use serde_json::Value;
+
+/// `x` scaled by `f`.
+fn sc(x: f64, f: f64) -> f64 {
+    x * f
+}
+
+fn sc3(p: (f64, f64, f64), f: f64) -> (f64, f64, f64) {
+    (p.0 * f, p.1 * f, p.2 * f)
+}
+
+/// The expression `z(x, y)` of a height field in the new unit: `f · z(x/f, y/f)`.
+fn scale_expression(z: &str, f: f64) -> String {
+    let mut out = String::new();
+    let mut ident = String::new();
+    let flush = |ident: &mut String, out: &mut String| {
+        match ident.as_str() {
+            "x" | "y" => out.push_str(&format!("({ident}/{f})")),
+            _ => out.push_str(ident),
+        }
+        ident.clear();
+    };
+    for c in z.chars() {
+        if c.is_ascii_alphanumeric() || c == '_' || (c == '.' && !ident.is_empty()) {
+            // digits after a letter belong to the identifier; a number starts with a digit
+            if ident.is_empty() && (c.is_ascii_digit() || c == '.') {
+                out.push(c);
+            } else {
+                ident.push(c);
+            }
+        } else {
+            flush(&mut ident, &mut out);
+            out.push(c);
+        }
+    }
+    flush(&mut ident, &mut out);
+    format!("({out})*{f}")
+}
+
+/// Writes `src` (an OBJ mesh, a spline grid or a curves file) scaled by `f` into `dir`.
+fn scale_file(src: &Path, f: f64, dir: &Path) -> PathBuf {
+    let text = std::fs::read_to_string(src).unwrap();
+    let name = src.file_name().unwrap();
+    let out = dir.join(name);
+    let scaled = match src.extension().and_then(|e| e.to_str()) {
+        Some("obj") => text
+            .lines()
+            .map(|l| match l.strip_prefix("v ") {
+                Some(rest) => {
+                    let v: Vec<String> = rest
+                        .split_whitespace()
+                        .map(|c| format!("{:e}", c.parse::<f64>().unwrap() * f))
+                        .collect();
+                    format!("v {}", v.join(" "))
+                }
+                None => l.to_string(),
+            })
+            .collect::<Vec<_>>()
+            .join("\n"),
+        Some("json") => {
+            let mut v: Value = serde_json::from_str(&text).unwrap();
+            let scale_points = |p: &mut Value| scale_numbers(p, f);
+            if let Some(points) = v.get_mut("points") {
+                scale_points(points);
+            }
+            if let Some(curves) = v.get_mut("curves").and_then(Value::as_array_mut) {
+                for c in curves {
+                    scale_points(c.get_mut("points").unwrap());
+                }
+            }
+            v.to_string()
+        }
+        other => panic!("no scaling for {other:?} files"),
+    };
+    std::fs::write(&out, scaled).unwrap();
+    out
+}
+
+fn scale_numbers(v: &mut Value, f: f64) {
+    match v {
+        Value::Number(n) => *v = Value::from(n.as_f64().unwrap() * f),
+        Value::Array(a) => a.iter_mut().for_each(|x| scale_numbers(x, f)),
+        _ => {}
+    }
+}
+
+/// Every length default written out, in the job's units (so that scaling the job keeps
+/// them when its units do not change).
+fn with_defaults(job: &Job) -> Job {
+    use hotcut::spec::{defaults as d, BladeSpec};
+    let mut j = job.clone();
+    let u = job.units.per_mm();
+    j.blade.get_or_insert(BladeSpec {
+        length: d::BLADE_LENGTH_MM * u,
+        max_curvature: d::BLADE_MAX_CURVATURE_PER_MM / u,
+        max_inflections: 2,
+    });
+    if let Some(w) = j.wire.as_mut() {
+        w.speed.get_or_insert(d::WIRE_SPEED_MM_PER_MIN * u);
+        w.lead.get_or_insert(d::WIRE_LEAD_MM * u);
+        w.clearance.get_or_insert(d::WIRE_CLEARANCE_MM * u);
+    }
+    let t = &mut j.tolerance;
+    t.rms.get_or_insert(d::RMS_MM * u);
+    t.max.get_or_insert(d::MAX_MM * u);
+    t.smoothing.get_or_insert(d::SMOOTHING_MM * u);
+    t.bisection.get_or_insert(d::BISECTION_MM * u);
+    match &mut j.task {
+        TaskSpec::HotBlade(h) => {
+            h.speed.get_or_insert(d::BLADE_SPEED_MM_PER_S * u);
+            h.approach.get_or_insert(d::APPROACH_MM * u);
+        }
+        TaskSpec::FacadeSegmentation(s) => {
+            s.speed.get_or_insert(d::BLADE_SPEED_MM_PER_S * u);
+            s.approach.get_or_insert(d::APPROACH_MM * u);
+            if let hotcut::facade_segmentation::SegAlgorithmSpec::LongestElastica {
+                precision,
+                ..
+            } = &mut s.algorithm
+            {
+                precision.get_or_insert(d::PRECISION_MM * u);
+            }
+        }
+        _ => {}
+    }
+    j
+}
+
+/// The job in `units`, every length scaled by `f` (new units per old unit), its input
+/// files scaled into `dir`.
+fn convert(job: &Job, base: &Path, units: Units, f: f64, dir: &Path) -> Job {
+    let mut j = job.clone();
+    j.units = units;
+    j.surface = job.surface.as_ref().map(|s| match s {
+        SurfaceSpec::HeightField { z, x, y } => SurfaceSpec::HeightField {
+            z: scale_expression(z, f),
+            x: (sc(x.0, f), sc(x.1, f)),
+            y: (sc(y.0, f), sc(y.1, f)),
+        },
+        SurfaceSpec::Mesh { path, closed } => SurfaceSpec::Mesh {
+            path: scale_file(&base.join(path), f, dir).display().to_string(),
+            closed: *closed,
+        },
+        SurfaceSpec::Spline { path } => SurfaceSpec::Spline {
+            path: scale_file(&base.join(path), f, dir).display().to_string(),
+        },
+    });
+    if let Some(b) = j.block.as_mut() {
+        b.size = sc3(b.size, f);
+        b.origin = b.origin.map(|o| sc3(o, f));
+    }
+    if let Some(b) = j.blade.as_mut() {
+        b.length *= f;
+        b.max_curvature /= f;
+    }
+    if let Some(w) = j.wire.as_mut() {
+        w.tower_distance *= f;
+        w.kerf *= f;
+        for x in [&mut w.speed, &mut w.lead, &mut w.clearance] {
+            *x = x.map(|v| v * f);
+        }
+    }
+    if let Some(c) = j.cutting.curve.as_mut() {
+        c.iter_mut().for_each(|p| *p = (p.0 * f, p.1 * f));
+    }
+    let t = &mut j.tolerance;
+    for x in [&mut t.rms, &mut t.max, &mut t.smoothing, &mut t.bisection] {
+        *x = x.map(|v| v * f);
+    }
+    match &mut j.task {
+        TaskSpec::HotBlade(h) => {
+            h.speed = h.speed.map(|v| v * f);
+            h.approach = h.approach.map(|v| v * f);
+        }
+        TaskSpec::FacadeSegmentation(s) => {
+            s.speed = s.speed.map(|v| v * f);
+            s.approach = s.approach.map(|v| v * f);
+            use hotcut::facade_segmentation::SegAlgorithmSpec as A;
+            match &mut s.algorithm {
+                A::Inflection { .. } => {}
+                A::Trace {
+                    link_distance,
+                    merge_distance,
+                    ..
+                } => {
+                    *link_distance = link_distance.map(|v| v * f);
+                    *merge_distance = merge_distance.map(|v| v * f);
+                }
+                A::LongestElastica {
+                    precision,
+                    max_step,
+                } => {
+                    *precision = precision.map(|v| v * f);
+                    *max_step = max_step.map(|v| v * f);
+                }
+            }
+        }
+        TaskSpec::FitCurves(c) => {
+            c.input = c
+                .input
+                .as_ref()
+                .map(|p| scale_file(&base.join(p), f, dir).display().to_string());
+        }
+        // no lengths: sample counts, fractions of the block, angles
+        TaskSpec::Analyze(_) | TaskSpec::BlockSegmentation(_) | TaskSpec::PreCut(_) => {}
+    }
+    j
+}
+
+/// Compares report `a` with report `b` of the same job with every length multiplied by
+/// `f` (< 1), at `path`: numbers equal (counts, fractions, angles) or scaled as a length
+/// (×f), a curvature (÷f), an area, a volume, or an L2 distance along a curve (f^1.5).
+fn compare(a: &Value, b: &Value, path: &str, f: f64, errors: &mut Vec<String>) {
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => {
+            let (x, y) = (x.as_f64().unwrap(), y.as_f64().unwrap());
+            let ok = [1.0, f, 1.0 / f, f * f, f * f * f, f * f.sqrt()]
+                .iter()
+                .any(|&s| {
+                    // fits converge to 10⁻⁴ or so of their own parameters, and residuals
+                    // at the rounding floor are noise: 0.1 µm (in millimetres) of slack
+                    let xs = x * s;
+                    (y - xs).abs() <= 1e-4 * y.abs().max(xs.abs()) + 1e-4 * s
+                });
+            if !ok {
+                errors.push(format!("{path}: {x} vs {y}"));
+            }
+        }
+        (Value::Array(x), Value::Array(y)) => {
+            if x.len() != y.len() {
+                errors.push(format!("{path}: {} vs {} elements", x.len(), y.len()));
+                return;
+            }
+            for (i, (p, q)) in x.iter().zip(y).enumerate() {
+                compare(p, q, &format!("{path}/{i}"), f, errors);
+            }
+        }
+        (Value::Object(x), Value::Object(y)) => {
+            for (k, p) in x {
+                match y.get(k) {
+                    Some(q) => compare(p, q, &format!("{path}/{k}"), f, errors),
+                    None => errors.push(format!("{path}/{k}: missing")),
+                }
+            }
+        }
+        (Value::String(x), Value::String(y)) => {
+            let units = |s: &str| matches!(s, "Millimetre" | "Metre" | "mm" | "m");
+            // the input file's path differs (a scaled copy)
+            let file = |s: &str| s.starts_with("file ");
+            if x != y && !(units(x) && units(y)) && !(file(x) && file(y)) {
+                errors.push(format!("{path}: {x:?} vs {y:?}"));
+            }
+        }
+        _ => {
+            if a != b {
+                errors.push(format!("{path}: {a} vs {b}"));
+            }
+        }
+    }
+}
+
+fn report(job: Job, path: &Path, out: &Path) -> Value {
+    let job = resolve(path, job).unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
+    let run = run_job(&job, out, &NoProgress).unwrap();
+    serde_json::from_str(&std::fs::read_to_string(run.dir.join("report.json")).unwrap()).unwrap()
+}
+
+/// Every job of `jobs/`, sorted.
+fn jobs() -> (PathBuf, Vec<PathBuf>) {
+    let jobs = root().join("jobs");
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(&jobs)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    paths.sort();
+    assert!(paths.len() >= 20);
+    (jobs, paths)
+}
+
+/// Runs every job as written and converted by `convert(job, base, dir)`, and returns the
+/// differences between the two reports, per job (`scale`: converted per original length).
+fn differences(
+    prepare: impl Fn(&Job) -> Job,
+    convert: impl Fn(&Job, &Path, &Path) -> Job,
+    scale: impl Fn(&Job) -> f64,
+) -> Vec<(String, Vec<String>)> {
+    let (base, paths) = jobs();
+    let mut out = Vec::new();
+    for path in &paths {
+        let text = std::fs::read_to_string(path).unwrap();
+        let job = prepare(&parse_job(path, &text).unwrap());
+        let dir = tempfile::tempdir().unwrap();
+        let other = convert(&job, &base, dir.path());
+        let other_path = dir.path().join(path.file_name().unwrap());
+        let mine = report(job.clone(), path, &dir.path().join("a"));
+        let theirs = report(other, &other_path, &dir.path().join("b"));
+        let mut errors = Vec::new();
+        // counts and verdicts exactly
+        if mine.get("counts") != theirs.get("counts") {
+            errors.push(format!(
+                "counts: {:?} vs {:?}",
+                mine.get("counts"),
+                theirs.get("counts")
+            ));
+        }
+        // `compare` takes the larger-unit report second
+        let s = scale(&job);
+        if s < 1.0 {
+            compare(&mine, &theirs, "", s, &mut errors);
+        } else {
+            compare(&theirs, &mine, "", 1.0 / s, &mut errors);
+        }
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        out.push((name, errors));
+    }
+    out
+}
+
+fn summary(diffs: &[(String, Vec<String>)]) -> String {
+    diffs
+        .iter()
+        .filter(|(_, e)| !e.is_empty())
+        .map(|(name, e)| {
+            let shown: Vec<&String> = e.iter().take(6).collect();
+            format!(
+                "{name}: {} differences\n  {}",
+                e.len(),
+                shown
+                    .iter()
+                    .map(|s| s.as_str())
+                    .collect::<Vec<_>>()
+                    .join("\n  ")
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// No absolute length anywhere in the code: every job scaled by 2⁻⁴ (exact in floating
+/// point: the scaled inputs are the same numbers with another exponent; small enough a
+/// step that the machine limits in millimetres, wire speed and travel, still hold), its
+/// defaults written out, gives the same results with every length scaled.
+#[test]
+fn every_job_is_invariant_under_an_exact_change_of_scale() {
+    let f = 1.0 / 16.0;
+    let diffs = differences(
+        with_defaults,
+        |job, base, dir| convert(job, base, job.units, f, dir),
+        |_| f,
+    );
+    let s = summary(&diffs);
+    assert!(s.is_empty(), "{s}");
+}
+
+/// Jobs whose results turn on decisions that a change of an input's last bit can flip,
+/// so that ÷1000 (which rounds every input) is not the same job to the last bit, and
+/// what of them must still agree. The exact-scale test above shows that none of this is
+/// an absolute length in the code: scaled exactly, these jobs agree to the last digit.
+/// - BlockSegmentation: a randomized local search over thousands of accept/reject
+///   decisions; the block count must agree within 5 %.
+/// - PreCut: the exchange of constraint points follows near-ties; the removed volume
+///   must agree within 0.5 % of the block.
+/// - HotBlade, FacadeSegmentation, FitCurves: fits of a few parts land in another local
+///   minimum (a piece's blade fit 5.4 mm rms in millimetres, 0.23 mm in metres); the
+///   segmentation itself (pieces, blocks, bands, rows, sections, parts) must agree.
+const ROUNDING_SENSITIVE: &[&str] = &[
+    "blocks-hand.ron",
+    "blocks-torus.ron",
+    "fit-curves.ron",
+    "hot-blade-facade.ron",
+    "precut-bump-xy.ron",
+    "precut-bump.ron",
+    "precut-depression.ron",
+    "precut-ridge.ron",
+    "precut-wavy-30.ron",
+    "precut-wavy.ron",
+    "seg-mesh-45-inflection.ron",
+    "seg-mesh-tilted.ron",
+    "seg-wavy-45-longest.ron",
+    "seg-wavy-45-trace.ron",
+    "seg-wavy-inflection.ron",
+];
+
+/// What a rounding-sensitive job's two reports must still share (see
+/// [`ROUNDING_SENSITIVE`]).
+fn coarse_agreement(name: &str, mm: &Value, m: &Value) -> Result<(), String> {
+    let num = |v: &Value, p: &str| v.pointer(p).and_then(Value::as_f64);
+    if name.starts_with("blocks-") {
+        let (a, b) = (
+            num(mm, "/segmentation/final_blocks").unwrap(),
+            num(m, "/segmentation/final_blocks").unwrap(),
+        );
+        return ((a - b).abs() <= 0.05 * a)
+            .then_some(())
+            .ok_or(format!("{a} vs {b} blocks"));
+    }
+    if name.starts_with("precut-") {
+        let p = "/volumes/more_than_box_percent";
+        let (a, b) = (num(mm, p).unwrap(), num(m, p).unwrap());
+        return ((a - b).abs() <= 0.5)
+            .then_some(())
+            .ok_or(format!("{a} vs {b} % removed"));
+    }
+    for key in ["pieces", "blocks", "bands", "rows", "sections", "parts"] {
+        let p = format!("/counts/{key}");
+        if mm.pointer(&p) != m.pointer(&p) {
+            return Err(format!(
+                "{key}: {:?} vs {:?}",
+                mm.pointer(&p),
+                m.pointer(&p)
+            ));
+        }
+    }
+    let p = "/curves";
+    if let (Some(a), Some(b)) = (mm.pointer(p), m.pointer(p)) {
+        let kinds = |v: &Value| -> Vec<Value> {
+            v.as_array()
+                .unwrap()
+                .iter()
+                .map(|c| c["family"].clone())
+                .collect()
+        };
+        if kinds(a) != kinds(b) {
+            return Err("fitted families differ".into());
+        }
+    }
+    Ok(())
+}
+
+/// Every job in millimetres and in metres (÷1000, inputs included): the same counts,
+/// pieces, blocks, verdicts and inflections, every number the same or scaled; for the
+/// rounding-sensitive jobs, what [`coarse_agreement`] asks.
+#[test]
+fn every_job_gives_the_same_results_in_millimetres_and_in_metres() {
+    let (base, paths) = jobs();
+    let mut failures = Vec::new();
+    for path in &paths {
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        let job = parse_job(path, &std::fs::read_to_string(path).unwrap()).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let (units, f) = match job.units {
+            Units::Millimetre => (Units::Metre, 1e-3),
+            Units::Metre => (Units::Millimetre, 1e3),
+        };
+        let other = convert(&job, &base, units, f, dir.path());
+        let mine = report(job.clone(), path, &dir.path().join("a"));
+        let theirs = report(other, &dir.path().join(&name), &dir.path().join("b"));
+        let (mm, m) = match job.units {
+            Units::Millimetre => (mine, theirs),
+            Units::Metre => (theirs, mine),
+        };
+        if ROUNDING_SENSITIVE.contains(&name.as_str()) {
+            if let Err(e) = coarse_agreement(&name, &mm, &m) {
+                failures.push(format!("{name}: {e}"));
+            }
+            continue;
+        }
+        let mut errors = Vec::new();
+        if mm.get("counts") != m.get("counts") {
+            errors.push("counts differ".to_string());
+        }
+        compare(&mm, &m, "", 1e-3, &mut errors);
+        if !errors.is_empty() {
+            failures.push(format!("{name}: {}", errors.join("; ")));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn height_field_expressions_are_rescaled_by_token() {
+    assert_eq!(
+        scale_expression("exp(x)*sin(y/100)+x2", 1e-3),
+        "(exp((x/0.001))*sin((y/0.001)/100)+x2)*0.001"
+    );
+}
