@@ -323,6 +323,9 @@ fn cut_direction(
             margin: params.margin,
             max_rounds: params.max_rounds,
             max_exchanges: 50,
+            // bounds the run: a QP and its exchange take up to ~0.4 s on a 4 × 3 m block
+            // at the default density
+            max_qps: 3 * params.max_rounds.max(1),
             proximal: 1e-8,
             // from the floor (the table) to a block height above the top, over the span
             band: (

@@ -43,6 +43,10 @@ pub struct SolveOptions {
     pub max_rounds: usize,
     /// Most exchange rounds per assignment round.
     pub max_exchanges: usize,
+    /// Most QPs in all: past it, the alternation stops with the last round's verified
+    /// legs (each round ends verified, so what it returns is as safe, if less tight). The
+    /// first round always finishes (at most `max_exchanges` + 1 QPs).
+    pub max_qps: usize,
     /// Weight of the proximal term.
     pub proximal: f64,
     /// `(low, high, reach)`: every leg's line stays within the height range `low..high`
@@ -102,11 +106,20 @@ pub fn solve(
     let mut qps = 0;
     let mut clearance = f64::NEG_INFINITY;
     let mut rounds = 0;
-    for round in 0..opt.max_rounds {
+    // the last round's verified legs: what a run that reaches its QP budget returns
+    let mut verified: Option<(Vec<f64>, f64)> = None;
+    'rounds: for round in 0..opt.max_rounds {
         rounds = round + 1;
         // Solve with exchange until the check grid is clear.
         let mut exchanges = 0;
         loop {
+            if qps >= opt.max_qps {
+                if let Some((vx, vc)) = verified.take() {
+                    (x, clearance) = (vx, vc);
+                    rounds -= 1;
+                    break 'rounds;
+                }
+            }
             x = qp(
                 legs,
                 samples,
@@ -138,6 +151,7 @@ pub fn solve(
         let objective = objective(legs, &x, samples, &sample_basis);
         history.push(objective);
         progress(round, objective);
+        verified = Some((x.clone(), clearance));
         let next: Vec<usize> = samples
             .iter()
             .zip(&sample_basis)
@@ -183,6 +197,9 @@ pub struct Domain<'a> {
 
 /// Candidates (check points closest to a leg) searched per exchange round.
 const SEARCH_STARTS: usize = 256;
+
+/// Most compass moves at one step size before it is halved anyway.
+const MOVES_PER_STEP: usize = 8;
 
 /// The smallest `leg − f` seen, and the points to add as constraints: from the check
 /// points where some leg comes within `margin` of the design, the closest ones are
@@ -231,6 +248,10 @@ fn exchange_points(
         let mut f = check[i].f;
         let (mut hu, mut hw) = domain.step;
         let stop = 1e-7 * domain.step.0.max(domain.step.1);
+        // moves at one step size, at most: along an oblique trough the gap keeps falling
+        // a little at every step, and an unbounded walk at a tiny step crossed the block
+        // in millions of steps (a default PreCut ran for hours)
+        let mut moves_here = 0;
         while hu.max(hw) > stop {
             let mut moved = false;
             for (du, dw) in [
@@ -250,21 +271,26 @@ fn exchange_points(
                     }
                 }
             }
-            if !moved {
+            moves_here += 1;
+            if !moved || moves_here >= MOVES_PER_STEP {
                 hu /= 2.0;
                 hw /= 2.0;
+                moves_here = 0;
             }
         }
         worst = worst.min(g);
-        if gap < margin / 2.0 {
-            out.push(check[i]);
-        }
-        if g < margin / 2.0
-            && out
-                .iter()
-                .all(|p| (p.u - u).abs() + (p.w - w).abs() > 1e-9 * (domain.step.0 + domain.step.1))
-        {
+        // the start's local maximum, or the start itself where the search found none below
+        // it: the constraint set grew by both per start before (11 000 points on a rotated
+        // cut, a QP of seconds); points already added (to rounding) are not added again
+        let radius = 1e-9 * (domain.step.0 + domain.step.1);
+        let fresh = |out: &[Point], u: f64, w: f64| {
+            out.iter()
+                .all(|p| (p.u - u).abs() + (p.w - w).abs() > radius)
+        };
+        if g < margin / 2.0 && fresh(&out, u, w) {
             out.push(Point { u, w, f });
+        } else if gap < margin / 2.0 && fresh(&out, check[i].u, check[i].w) {
+            out.push(check[i]);
         }
     }
     (worst, out)

@@ -168,3 +168,37 @@ fn checker_detects_a_lowered_cut() {
     let (_, worst) = check(&cut, &p, &|x, y| Some(expr.eval(x, y)));
     assert!(worst > 0.005, "{worst}");
 }
+
+/// Oblique travelling waves (crests neither along nor across the cut, several wavelengths
+/// over the block): the exchange's local searches once walked along the troughs at a
+/// tiny step for hours. Now every direction ends within its QP budget, with its constraint
+/// set bounded (one point per basin), and the cut is still never above the design.
+#[test]
+fn oblique_waves_end_within_budget_and_are_never_overcut() {
+    let tol = 1e-6 * block().scale();
+    let waves = [
+        "0.5 + 0.15*sin((0.866*x + 0.5*y)*8)",
+        "0.5 + 0.2*sin((0.6*x - 0.8*y)*5) + 0.05*cos((0.9*x + 0.44*y)*14)",
+    ];
+    for z in waves {
+        let expr = Expr::parse(z).unwrap();
+        let h = HeightField::try_new(expr.clone(), (-1.0, 1.0), (-1.0, 1.0)).unwrap();
+        for dirs in [vec![[1.0, 0.0]], vec![[0.5, 0.866]]] {
+            let p = params(dirs.clone());
+            let cut = pre_cut(&Surface::HeightField(h.clone()), &block(), &p, &|_| {}).unwrap();
+            let (_, worst) = check(&cut, &p, &|x, y| Some(expr.eval(x, y)));
+            for d in &cut.directions {
+                println!(
+                    "{z} {dirs:?}: {} rounds, {} QPs, {} constraint points",
+                    d.rounds, d.qps, d.constraint_points
+                );
+                assert!(d.qps <= 3 * p.max_rounds + 51, "{z}: {} QPs", d.qps);
+                assert!(d.constraint_points <= 20 * p.sections * p.samples, "{z}");
+            }
+            assert!(
+                worst <= tol,
+                "{z} {dirs:?}: design {worst:.3e} above a ruling"
+            );
+        }
+    }
+}
