@@ -161,7 +161,7 @@ pub fn fit_points(points: &[[f64; 2]], params: &FitParams) -> Result<FitResult, 
 /// [`FitConstraint::EndPointsAndLength`]).
 ///
 /// The fit is unit-free: the points are moved to their first point and divided by the
-/// power of two nearest their length ([`UnitFrame`]) before anything is solved, so every
+/// power of two nearest their length (exact) before anything is solved, so every
 /// tolerance inside is relative and a curve in metres fits as the same curve in
 /// millimetres.
 pub fn fit_points_with_arclength(
