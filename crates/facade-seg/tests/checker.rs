@@ -34,44 +34,28 @@ fn meandering_cut(
     count: usize,
     direction: Vector3<f64>,
 ) -> Facade {
-    let h = HeightField::try_new(
-        Expr::parse(&format!(
-            "{amplitude}*sin((y + {meander}*sin(x/300))/{period}) + 20*cos(x/300)"
-        ))
-        .unwrap(),
-        (0.0, 1200.0),
-        (0.0, 2400.0),
-    )
-    .unwrap();
-    let (frame, sections) = Surface::HeightField(h)
-        .sections(
-            &SectionParams {
-                direction,
-                count,
-                ..SectionParams::default()
-            },
-            &|| {},
-        )
-        .unwrap();
-    Facade::new(frame, &sections).unwrap()
+    let z = format!("{amplitude}*sin((y + {meander}*sin(x/300))/{period}) + 20*cos(x/300)");
+    facade_of(&z, count, direction)
 }
 
 /// A facade of small ripples (`ripple` mm high every `2π·period` mm) on a wave (`wave`
 /// mm high every 2π·150 mm), meandering along the cut: the ripples' inflections cluster
 /// and some lobes turn very little.
 fn rippled(ripple: f64, period: f64, wave: f64, count: usize) -> Facade {
-    let h = HeightField::try_new(
-        Expr::parse(&format!(
-            "{wave}*sin((y + 60*sin(x/300))/150) + {ripple}*sin((y + 40*sin(x/200))/{period}) + 20*cos(x/300)"
-        ))
-        .unwrap(),
-        (0.0, 1200.0),
-        (0.0, 2400.0),
-    )
-    .unwrap();
+    let z = format!(
+        "{wave}*sin((y + 60*sin(x/300))/150) + {ripple}*sin((y + 40*sin(x/200))/{period}) + 20*cos(x/300)"
+    );
+    facade_of(&z, count, Vector3::x())
+}
+
+/// The facade of the height field `z` over 1200 × 2400 mm, `count` sections normal to
+/// `direction`.
+fn facade_of(z: &str, count: usize, direction: Vector3<f64>) -> Facade {
+    let h = HeightField::try_new(Expr::parse(z).unwrap(), (0.0, 1200.0), (0.0, 2400.0)).unwrap();
     let (frame, sections) = Surface::HeightField(h)
         .sections(
             &SectionParams {
+                direction,
                 count,
                 ..SectionParams::default()
             },
