@@ -71,7 +71,12 @@ impl Facade {
         let prepared: Result<Vec<_>, _> = best
             .into_iter()
             .map(|(index, s, _)| {
-                PreparedSection::with_analysis(index, s.offset, s.curve.clone(), analysis)
+                PreparedSection::with_analysis(
+                    index,
+                    s.offset,
+                    s.curve.clone(),
+                    &s.analysis_params(analysis),
+                )
             })
             .collect();
         let sections = prepared?;

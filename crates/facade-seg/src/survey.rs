@@ -159,10 +159,7 @@ pub fn survey(
     let analysed: Vec<Result<(Section, CurveAnalysis), SegError>> = sections
         .into_par_iter()
         .map(|s| {
-            let curve_params = CurveAnalysisParams {
-                end_margins: s.end_margins,
-                ..params.curve.clone()
-            };
+            let curve_params = s.analysis_params(&params.curve);
             let a = analyze_curve(&s.curve, &curve_params).map_err(|e| SegError::Section {
                 index: s.index,
                 message: format!("piece {}: {e}", s.piece),

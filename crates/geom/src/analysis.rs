@@ -21,6 +21,7 @@
 
 use nalgebra::Vector2;
 
+use crate::ends::EndTrend;
 use crate::error::{GeomError, Result};
 use crate::planar::{signed_curvature, ArcLength, Jet2, PlanarCurve};
 
@@ -38,7 +39,19 @@ pub struct CurveAnalysisParams {
     /// determined by data (the first and last segment of a fitted polyline; 0 for exact
     /// curves). Sign changes there are not reported as inflections.
     pub end_margins: (f64, f64),
+    /// Parameters of the points the curve was fitted to, in order (empty for exact
+    /// curves). A lobe holding at least [`RESOLVED_POINTS`] of them is determined by the
+    /// data and is kept however little it turns; `min_lobe_turning` applies to the others.
+    pub data_params: Vec<f64>,
+    /// Curvature at the start and the end as the data show it (see [`crate::ends`]).
+    /// Where the spline's end lobe has the other sign and is more than twice as long as
+    /// the data window, the inflection the data show there is added.
+    pub end_trends: (Option<EndTrend>, Option<EndTrend>),
 }
+
+/// Data points a lobe must hold to be kept whatever its turning (three points give one
+/// curvature of their own).
+pub const RESOLVED_POINTS: usize = 3;
 
 impl Default for CurveAnalysisParams {
     fn default() -> Self {
@@ -47,6 +60,8 @@ impl Default for CurveAnalysisParams {
             bisection_tolerance: 1e-9,
             min_lobe_turning: 1e-3,
             end_margins: (0.0, 0.0),
+            data_params: Vec::new(),
+            end_trends: (None, None),
         }
     }
 }
@@ -202,15 +217,25 @@ fn sign_changes(curve: &dyn PlanarCurve, ts: &[f64], ks: &[f64], tolerance: f64)
 
 /// The false-inflection rule: the interior lobe (between `bounds`) turning least is merged
 /// with its neighbours, dropping its two inflections, while it turns less than
-/// `min_turning`. Returns the inflections dropped. End lobes have one inflection, not a
-/// pair, and are kept.
-fn merge_flat_lobes(bounds: &mut Vec<f64>, turns: &mut Vec<f64>, min_turning: f64) -> usize {
+/// `min_turning`. Lobes holding [`RESOLVED_POINTS`] of `data` (sorted data parameters;
+/// none for an exact curve) are kept. Returns the inflections dropped. End lobes have one
+/// inflection, not a pair, and are kept.
+fn merge_flat_lobes(
+    bounds: &mut Vec<f64>,
+    turns: &mut Vec<f64>,
+    min_turning: f64,
+    data: &[f64],
+) -> usize {
+    let held =
+        |t0: f64, t1: f64| data.partition_point(|&t| t < t1) - data.partition_point(|&t| t <= t0);
     let mut suppressed = 0;
+    // each pass removes two bounds, so at most bounds.len() / 2 passes
     while let Some((i, &tmin)) = turns
         .iter()
         .enumerate()
         .take(turns.len().saturating_sub(1))
         .skip(1)
+        .filter(|(i, _)| held(bounds[*i], bounds[*i + 1]) < RESOLVED_POINTS)
         .min_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
     {
         if tmin.abs() >= min_turning {
@@ -222,6 +247,57 @@ fn merge_flat_lobes(bounds: &mut Vec<f64>, turns: &mut Vec<f64>, min_turning: f6
         suppressed += 2;
     }
     suppressed
+}
+
+/// Adds the inflection the data show near an end (`params.end_trends`) where the spline's
+/// end lobe has the other sign and is more than twice as long as the data window (so the
+/// curvature varies slowly there and the window's linear trend holds). The new end lobe's
+/// turning is the local fit's (curvature linear to zero). Returns the data's curvature at
+/// each end where an inflection was added.
+fn add_end_inflections(
+    curve: &dyn PlanarCurve,
+    bounds: &mut Vec<f64>,
+    turns: &mut Vec<f64>,
+    params: &CurveAnalysisParams,
+    ts: &[f64],
+) -> (Option<f64>, Option<f64>) {
+    let mut added = (None, None);
+    if let Some(tr) = params.end_trends.0 {
+        let (a, next) = (bounds[0], bounds[1]);
+        if sign(tr.curvature) != sign(turns[0]) && turns[0] != 0.0 && next - a > 2.0 * tr.window {
+            let t = a + tr
+                .zero_at
+                .unwrap_or(params.end_margins.0)
+                .clamp(0.0, tr.window);
+            if t > a && t < next {
+                bounds.insert(1, t);
+                let rest = turning(curve, t, next, ts);
+                turns.splice(0..1, [0.5 * tr.curvature * (t - a), rest]);
+                added.0 = Some(tr.curvature);
+            }
+        }
+    }
+    if let Some(tr) = params.end_trends.1 {
+        let n = bounds.len();
+        let (prev, b) = (bounds[n - 2], bounds[n - 1]);
+        let last = turns.len() - 1;
+        if sign(tr.curvature) != sign(turns[last])
+            && turns[last] != 0.0
+            && b - prev > 2.0 * tr.window
+        {
+            let t = b - tr
+                .zero_at
+                .unwrap_or(params.end_margins.1)
+                .clamp(0.0, tr.window);
+            if t > prev && t < b {
+                bounds.insert(n - 1, t);
+                let rest = turning(curve, prev, t, ts);
+                turns.splice(last..=last, [rest, 0.5 * tr.curvature * (b - t)]);
+                added.1 = Some(tr.curvature);
+            }
+        }
+    }
+    added
 }
 
 /// The parameter of the largest |κ| in `lobe`: the best sample (`ks` at `ts`), refined by
@@ -326,8 +402,14 @@ pub fn analyze_curve(
         .windows(2)
         .map(|w| turning(curve, w[0], w[1], &ts))
         .collect();
-    let suppressed =
-        in_margins + merge_flat_lobes(&mut bounds, &mut turns, params.min_lobe_turning);
+    let suppressed = in_margins
+        + merge_flat_lobes(
+            &mut bounds,
+            &mut turns,
+            params.min_lobe_turning,
+            &params.data_params,
+        );
+    let added = add_end_inflections(curve, &mut bounds, &mut turns, params, &ts);
 
     let at = |t: f64| {
         let j = curve.jet(t);
@@ -352,10 +434,23 @@ pub fn analyze_curve(
     // One maximum of |κ| per lobe: best sample, then golden-section refinement.
     let dt = (b - a) / m as f64;
     let tolerance = bisection;
-    let maxima: Vec<CurvePoint> = lobes
+    let mut maxima: Vec<CurvePoint> = lobes
         .iter()
         .map(|lobe| at(lobe_maximum(curve, lobe, &ts, &ks, dt, tolerance)))
         .collect();
+    // an added end lobe's largest |κ| is the data's, at the end
+    if let (Some(k), Some(first)) = (added.0, maxima.first_mut()) {
+        *first = CurvePoint {
+            curvature: k,
+            ..at(a)
+        };
+    }
+    if let (Some(k), Some(last)) = (added.1, maxima.last_mut()) {
+        *last = CurvePoint {
+            curvature: k,
+            ..at(b)
+        };
+    }
     let mut max_point = at(a);
     for (&t, &k) in ts.iter().zip(&ks) {
         if k.abs() > max_point.curvature.abs() {

@@ -25,6 +25,8 @@ mod banded;
 pub mod bbox;
 /// B-spline curves: evaluation, derivatives, knot insertion.
 pub mod bspline;
+/// Curvature at the ends of a sampled curve, from local fits to its points.
+pub mod ends;
 /// The error type.
 pub mod error;
 /// Height-field expressions with exact derivatives along lines.

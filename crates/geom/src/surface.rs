@@ -13,9 +13,11 @@
 use nalgebra::{Vector2, Vector3};
 use rayon::prelude::*;
 
+use crate::analysis::CurveAnalysisParams;
 use crate::bbox::Aabb;
+use crate::ends::end_trends;
 use crate::error::{GeomError, Result};
-use crate::fit::{fit_smoothing_allowing, SmoothingParams};
+use crate::fit::{chord_length_params, fit_smoothing_allowing, SmoothingParams};
 use crate::heightfield::{GraphCurve, HeightField};
 use crate::mesh::TriMesh;
 use crate::planar::{Jet2, PlanarCurve, SplineCurve2};
@@ -101,6 +103,29 @@ pub struct Section {
     /// Parameter length of the first and last polyline segment, where the fitted curve's
     /// curvature is not determined by data (0 for exact sections).
     pub end_margins: (f64, f64),
+}
+
+impl Section {
+    /// `base` with what this section's data say: its end margins, the parameters of its
+    /// points (so lobes the points resolve are kept) and the curvature at its ends from
+    /// local fits to them (for an open piece). An exact section adds nothing.
+    pub fn analysis_params(&self, base: &CurveAnalysisParams) -> CurveAnalysisParams {
+        if self.points.is_empty() {
+            return base.clone();
+        }
+        let data_params = chord_length_params(&self.points);
+        let end_trends = if self.closed {
+            (None, None)
+        } else {
+            end_trends(&self.points, &data_params)
+        };
+        CurveAnalysisParams {
+            end_margins: self.end_margins,
+            data_params,
+            end_trends,
+            ..base.clone()
+        }
+    }
 }
 
 impl Surface {

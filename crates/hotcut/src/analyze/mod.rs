@@ -104,7 +104,7 @@ impl Task for Analyze {
                     samples: self.samples as usize,
                     bisection_tolerance: t.bisection,
                     min_lobe_turning: t.min_turning,
-                    end_margins: (0.0, 0.0),
+                    ..Default::default()
                 },
                 blade_length: job.blade.length,
                 max_curvature: job.blade.max_curvature,

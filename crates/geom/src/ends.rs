@@ -1,0 +1,167 @@
+//! What the data say about the curvature at the ends of a sampled curve.
+//!
+//! A smoothing spline fitted to a polyline has, inside its first and last few segments,
+//! curvature set by its penalty rather than by the points (the penalty pulls it towards
+//! zero there). An inflection a few millimetres from a section's end is then lost. This
+//! module reads the curvature at each end from a local cubic least-squares fit to the
+//! last [`END_WINDOW`] points instead, with its standard error, so that
+//! [`analyze_curve`](crate::analysis::analyze_curve) can restore an end inflection that the
+//! data show and the spline does not.
+//!
+//! Written here rather than taken from a crate: it is a 4-parameter least-squares fit in a
+//! local frame, and the point is its error estimate, which ties the decision to the data.
+
+use nalgebra::{Matrix4, Vector2, Vector4};
+
+/// Number of points the local fit at each end uses.
+pub const END_WINDOW: usize = 16;
+
+/// The curvature at one end of a sampled curve, from a local cubic fit to its last points.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EndTrend {
+    /// Signed curvature at the end point (the curve's orientation, first to last point).
+    pub curvature: f64,
+    /// Parameter distance from the end to where the local fit's curvature is zero, when
+    /// that lies within the fitted points.
+    pub zero_at: Option<f64>,
+    /// Parameter length the local fit spans.
+    pub window: f64,
+}
+
+/// How many standard errors the end curvature must lie from zero to count.
+const SIGNIFICANCE: f64 = 3.0;
+
+/// Curvature trends at the start and at the end of the open polyline `points` (parameters
+/// `params`, e.g. chord length). `None` at an end when there are too few points, the
+/// points fold back within the window, or the curvature there is not significantly
+/// different from zero (the fit's residuals say how well it is known).
+pub fn end_trends(points: &[Vector2<f64>], params: &[f64]) -> (Option<EndTrend>, Option<EndTrend>) {
+    let n = points.len();
+    if n < 2 * END_WINDOW || params.len() != n {
+        return (None, None);
+    }
+    let start = local_fit(&points[..END_WINDOW], true).map(|(k, zero, _)| EndTrend {
+        curvature: k,
+        zero_at: zero,
+        window: params[END_WINDOW - 1] - params[0],
+    });
+    let end = local_fit(&points[n - END_WINDOW..], false).map(|(k, zero, w)| EndTrend {
+        curvature: k,
+        zero_at: zero.map(|z| w - z),
+        window: params[n - 1] - params[n - END_WINDOW],
+    });
+    (start, end)
+}
+
+/// Cubic fit η(ξ) over the window's chord frame. Returns the curvature at the first
+/// (`at_start`) or last point, the chord distance ξ of the curvature's zero from the
+/// window's first point (if inside the window) and the window's chord length.
+fn local_fit(w: &[Vector2<f64>], at_start: bool) -> Option<(f64, Option<f64>, f64)> {
+    let (first, last) = (w.first()?, w.last()?);
+    let chord = last - first;
+    let len = chord.norm();
+    if !(len > 0.0) || !len.is_finite() {
+        return None;
+    }
+    let d = chord / len;
+    let nrm = Vector2::new(-d.y, d.x);
+    let uv: Vec<(f64, f64)> = w
+        .iter()
+        .map(|p| ((p - first).dot(&d) / len, (p - first).dot(&nrm) / len))
+        .collect();
+    // the window must be a graph over its chord
+    if uv.windows(2).any(|q| !(q[1].0 > q[0].0)) {
+        return None;
+    }
+    let mut ata = Matrix4::zeros();
+    let mut atb = Vector4::zeros();
+    for &(u, v) in &uv {
+        let row = Vector4::new(1.0, u, u * u, u * u * u);
+        ata += row * row.transpose();
+        atb += row * v;
+    }
+    let inv = ata.try_inverse()?;
+    let c = inv * atb;
+    let rss: f64 = uv
+        .iter()
+        .map(|&(u, v)| {
+            let r = v - (c[0] + c[1] * u + c[2] * u * u + c[3] * u * u * u);
+            r * r
+        })
+        .sum();
+    let dof = (uv.len() - 4) as f64;
+    let s2 = rss / dof;
+    let ue = if at_start { 0.0 } else { uv[uv.len() - 1].0 };
+    // η'' (in window units) at the end, its variance, and the curvature
+    let g = Vector4::new(0.0, 0.0, 2.0, 6.0 * ue);
+    let second = g.dot(&c);
+    let var = s2 * (g.transpose() * inv * g)[0];
+    let slope = c[1] + 2.0 * c[2] * ue + 3.0 * c[3] * ue * ue;
+    let kappa_unit = second / (1.0 + slope * slope).powf(1.5);
+    // significant against the residuals, and above rounding of the unit-scaled fit
+    if !(second.abs() > SIGNIFICANCE * var.max(0.0).sqrt()) || !(second.abs() > 1e-9) {
+        return None;
+    }
+    let zero = (c[3] != 0.0)
+        .then(|| -c[2] / (3.0 * c[3]))
+        .filter(|u| *u > 0.0 && *u < uv[uv.len() - 1].0)
+        .map(|u| u * len);
+    Some((kappa_unit / len, zero, len))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// y = x³ − a x: curvature 6x/(…) changes sign at x = 0.
+    fn cubic(x0: f64, x1: f64, n: usize) -> (Vec<Vector2<f64>>, Vec<f64>) {
+        let pts: Vec<Vector2<f64>> = (0..n)
+            .map(|i| {
+                let x = x0 + (x1 - x0) * i as f64 / (n - 1) as f64;
+                Vector2::new(x, 0.3 * x * x * x - 0.2 * x)
+            })
+            .collect();
+        let t = crate::fit::chord_length_params(&pts);
+        (pts, t)
+    }
+
+    #[test]
+    fn finds_the_sign_and_zero_of_the_curvature_at_both_ends() {
+        // inflection at x = 0, inside the first window; the end is far from it
+        let (p, t) = cubic(-0.004, 2.0, 4000);
+        let (s, e) = end_trends(&p, &t);
+        let s = s.unwrap();
+        assert!(s.curvature < 0.0, "{s:?}");
+        // the zero's distance along the window's chord: 0.004 along x, slope ≈ −0.2
+        let z = s.zero_at.unwrap();
+        let want = 0.004 * (1.0f64 + 0.04).sqrt();
+        assert!((z - want).abs() < 1e-3 * want, "{z} vs {want}");
+        let e = e.unwrap();
+        assert!(e.curvature > 0.0 && e.zero_at.is_none(), "{e:?}");
+        // exact: κ = y''/(1+y'²)^1.5 at x = 2
+        let (d1, d2) = (0.9 * 4.0 - 0.2, 1.8 * 2.0);
+        let k = d2 / (1.0f64 + d1 * d1).powf(1.5);
+        assert!((e.curvature - k).abs() < 1e-3 * k, "{} vs {k}", e.curvature);
+    }
+
+    #[test]
+    fn a_straight_line_has_no_trend_and_reversal_flips_the_sign() {
+        let pts: Vec<Vector2<f64>> = (0..40)
+            .map(|i| Vector2::new(i as f64, 2.0 * i as f64))
+            .collect();
+        let t = crate::fit::chord_length_params(&pts);
+        assert_eq!(end_trends(&pts, &t), (None, None));
+        let (p, t) = cubic(0.5, 2.0, 100);
+        let (s, _) = end_trends(&p, &t);
+        let rev: Vec<_> = p.iter().rev().copied().collect();
+        let (_, e) = end_trends(&rev, &crate::fit::chord_length_params(&rev));
+        let (s, e) = (s.unwrap(), e.unwrap());
+        assert!((s.curvature + e.curvature).abs() < 1e-9 * s.curvature.abs());
+    }
+
+    #[test]
+    fn too_few_points_say_nothing() {
+        let (p, t) = cubic(-1.0, 1.0, 2 * END_WINDOW - 1);
+        assert_eq!(end_trends(&p, &t), (None, None));
+    }
+}
