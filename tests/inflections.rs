@@ -300,10 +300,6 @@ const RIPPLES: &[Ripple] = &[
 ];
 
 /// Sign changes of ∂²z/∂y² along x = const (zeros skipped), from `f` in millimetres.
-fn ripple_reference(r: &Ripple, x: f64) -> usize {
-    ripple_reference_at(r, x).len()
-}
-
 fn ripple_reference_at(r: &Ripple, x: f64) -> Vec<f64> {
     let mut at = Vec::new();
     let n = 200_000;
