@@ -299,7 +299,7 @@ const RIPPLES: &[Ripple] = &[
     },
 ];
 
-/// Sign changes of ∂²z/∂y² along x = const (zeros skipped), from `f` in millimetres.
+/// Where ∂²z/∂y² changes sign along x = const (zeros skipped), from `f` in millimetres.
 fn ripple_reference_at(r: &Ripple, x: f64) -> Vec<f64> {
     let mut at = Vec::new();
     let n = 200_000;

@@ -539,6 +539,72 @@ mod tests {
     }
 
     #[test]
+    fn a_dent_the_data_resolve_is_kept_one_they_do_not_is_dropped() {
+        // the dent's lobe spans about t ∈ [4.86, 5.14]
+        let fine: Vec<f64> = (0..=1000).map(|i| i as f64 / 100.0).collect();
+        let coarse: Vec<f64> = (0..=10).map(|i| i as f64).collect();
+        let with = |data: Vec<f64>| {
+            analyze_curve(
+                &Wiggle,
+                &CurveAnalysisParams {
+                    data_params: data,
+                    ..Default::default()
+                },
+            )
+            .unwrap()
+        };
+        assert_eq!(with(fine).inflections.len(), 2, "28 points inside the lobe");
+        let a = with(coarse);
+        assert!(a.inflections.is_empty());
+        assert_eq!(a.suppressed_inflections, 2);
+    }
+
+    #[test]
+    fn an_end_trend_of_the_other_sign_adds_one_inflection_at_its_zero() {
+        // y = t²: convex throughout; the data say the curvature is negative at t = 0
+        // and crosses zero 0.5 in
+        let trend = EndTrend {
+            curvature: -0.01,
+            zero_at: Some(0.5),
+            window: 1.0,
+        };
+        let a = analyze_curve(
+            &Wiggle,
+            &CurveAnalysisParams {
+                end_trends: (Some(trend), None),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(a.inflections.len(), 1);
+        assert!((a.inflections[0].t - 0.5).abs() < 1e-12);
+        assert_eq!(a.lobes.len(), 2);
+        assert!(a.lobes[0].turning < 0.0 && a.lobes[1].turning > 0.0);
+        assert_eq!(a.curvature_maxima[0].curvature, -0.01);
+        // the same sign as the spline's lobe, or a window too long for the lobe: nothing
+        for tr in [
+            EndTrend {
+                curvature: 0.01,
+                ..trend
+            },
+            EndTrend {
+                window: 6.0,
+                ..trend
+            },
+        ] {
+            let a = analyze_curve(
+                &Wiggle,
+                &CurveAnalysisParams {
+                    end_trends: (None, Some(tr)),
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            assert!(a.inflections.is_empty(), "{tr:?}");
+        }
+    }
+
+    #[test]
     fn line_has_zero_curvature() {
         struct Line;
         impl PlanarCurve for Line {

@@ -160,6 +160,31 @@ mod tests {
     }
 
     #[test]
+    fn curvature_scales_with_units_and_ignores_rigid_motion() {
+        let (p, t) = cubic(-0.004, 2.0, 4000);
+        let (s0, e0) = end_trends(&p, &t);
+        let (s0, e0) = (s0.unwrap(), e0.unwrap());
+        let (c, sn) = (0.6f64.cos(), 0.6f64.sin());
+        for scale in [1e-3, 1.0, 1e3] {
+            let q: Vec<Vector2<f64>> = p
+                .iter()
+                .map(|v| {
+                    scale * Vector2::new(c * v.x - sn * v.y, sn * v.x + c * v.y)
+                        + Vector2::new(7.0, -3.0) * scale
+                })
+                .collect();
+            let (s, e) = end_trends(&q, &crate::fit::chord_length_params(&q));
+            let (s, e) = (s.unwrap(), e.unwrap());
+            for (a, b) in [(s, s0), (e, e0)] {
+                assert!((a.curvature * scale - b.curvature).abs() < 1e-6 * b.curvature.abs());
+                assert!((a.window / scale - b.window).abs() < 1e-9 * b.window);
+            }
+            let z = s.zero_at.unwrap() / scale;
+            assert!((z - s0.zero_at.unwrap()).abs() < 1e-6 * z);
+        }
+    }
+
+    #[test]
     fn too_few_points_say_nothing() {
         let (p, t) = cubic(-1.0, 1.0, 2 * END_WINDOW - 1);
         assert_eq!(end_trends(&p, &t), (None, None));
