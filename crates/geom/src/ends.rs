@@ -4,7 +4,7 @@
 //! curvature set by its penalty rather than by the points (the penalty pulls it towards
 //! zero there). An inflection a few millimetres from a section's end is then lost. This
 //! module reads the curvature at each end from a local cubic least-squares fit to the
-//! last [`END_WINDOW`] points instead, with its standard error, so that
+//! last [`END_WINDOW`](crate::ends::END_WINDOW) points instead, with its standard error, so that
 //! [`analyze_curve`](crate::analysis::analyze_curve) can restore an end inflection that the
 //! data show and the spline does not.
 //!
