@@ -23,6 +23,7 @@
 //! - [`frame`]: the block and a cutting direction's `(u, w, z)` frame.
 //! - [`height`]: the design surface as a height function (exact or by mesh).
 //! - [`legs`]: the moving polygon by its legs' lines, B-splines along the cut.
+//! - [`search`]: the search over cutting directions (`Auto(n)`).
 //! - [`solve`]: the alternating convex-QP optimization with constraint exchange.
 //! - [`volume`]: the volumes of Table 2.1.
 //! - [`wire`]: wire paths to the tower planes, G-code and CSV.
@@ -31,6 +32,7 @@ pub mod error;
 pub mod frame;
 pub mod height;
 pub mod legs;
+pub mod search;
 pub mod solve;
 pub mod volume;
 pub mod wire;

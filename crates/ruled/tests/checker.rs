@@ -8,6 +8,7 @@
 use geom::bspline::BSplineCurve;
 use geom::{expr::Expr, heightfield::HeightField, mesh::TriMesh, surface::Surface};
 use nalgebra::{Vector2, Vector3};
+use ruled::search::search_directions;
 use ruled::{pre_cut, Block, DirectionCut, Params, PreCut};
 
 const SURFACES: [(&str, &str); 5] = [
@@ -55,7 +56,16 @@ fn leg_curves(d: &DirectionCut) -> Vec<BSplineCurve<2>> {
 /// Checks `cut` against `design` on a jittered grid 4N × 4M per direction over the whole
 /// block; returns (points checked, largest excess of design over a leg).
 fn check(cut: &PreCut, params: &Params, design: &dyn Fn(f64, f64) -> Option<f64>) -> (usize, f64) {
-    let b = block();
+    check_in(&block(), cut, params, design)
+}
+
+/// [`check`] in block `b`.
+fn check_in(
+    b: &Block,
+    cut: &PreCut,
+    params: &Params,
+    design: &dyn Fn(f64, f64) -> Option<f64>,
+) -> (usize, f64) {
     let mut rng = Rng(0xC0FFEE);
     let (n, m) = (4 * params.sections, 4 * params.samples);
     let mut worst = f64::NEG_INFINITY;
@@ -201,4 +211,127 @@ fn oblique_waves_end_within_budget_and_are_never_overcut() {
             );
         }
     }
+}
+
+/// `Auto(n)` (ruled::search): the kept direction leaves the least material of all
+/// candidates, +x is a candidate (so the search never does worse than cutting along x),
+/// the kept cuts are never above the design, and the choice is the same on one thread.
+#[test]
+fn the_direction_search_keeps_the_best_candidate_and_never_overcuts() {
+    let tol = 1e-6 * block().scale();
+    for (name, z) in [SURFACES[3], SURFACES[1]] {
+        let expr = Expr::parse(z).unwrap();
+        let h = Surface::HeightField(
+            HeightField::try_new(expr.clone(), (-1.0, 1.0), (-1.0, 1.0)).unwrap(),
+        );
+        let p = Params {
+            sections: 8,
+            samples: 8,
+            controls: 5,
+            ..params(vec![[1.0, 0.0]])
+        };
+        let (cut, search) = search_directions(&h, &block(), &p, 4, &|_| {}).unwrap();
+        let best = search.candidates[search.best].left_for_milling.unwrap();
+        for c in &search.candidates {
+            println!("{name}: {:5.1}° leaves {:?}", c.degrees, c.left_for_milling);
+            assert!(
+                c.left_for_milling.is_some_and(|v| v >= best),
+                "{name}: {c:?}"
+            );
+        }
+        assert_eq!(cut.volumes.ruled, best);
+        let d = search.candidates[search.best].direction;
+        assert_eq!(cut.directions.len(), 1);
+        assert!((cut.directions[0].direction[0] - d[0]).abs() < 1e-12);
+        let along_x = pre_cut(&h, &block(), &p, &|_| {}).unwrap();
+        assert_eq!(search.candidates[0].degrees, 0.0);
+        assert_eq!(
+            search.candidates[0].left_for_milling,
+            Some(along_x.volumes.ruled)
+        );
+        let (count, worst) = check(&cut, &p, &|x, y| Some(expr.eval(x, y)));
+        assert!(
+            count > 0 && worst <= tol,
+            "{name}: design {worst:.3e} above a ruling"
+        );
+        if name != "ridge" {
+            continue;
+        }
+        let one = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap()
+            .install(|| search_directions(&h, &block(), &p, 4, &|_| {}))
+            .unwrap();
+        assert_eq!(one.1, search, "{name}: thread count changed the search");
+        assert_eq!(one.0, cut);
+    }
+}
+
+#[test]
+fn a_search_needs_1_to_36_candidates() {
+    let h = Surface::HeightField(
+        HeightField::try_new(
+            Expr::parse(SURFACES[0].1).unwrap(),
+            (-1.0, 1.0),
+            (-1.0, 1.0),
+        )
+        .unwrap(),
+    );
+    for n in [0, 37] {
+        let e = search_directions(&h, &block(), &params(vec![[1.0, 0.0]]), n, &|_| {}).unwrap_err();
+        assert!(e.to_string().contains("1–36"), "{e}");
+    }
+}
+
+/// Issue 19 item 7, measured by hand (about 10 minutes on 2 cores; the figures are in
+/// BENCHMARKS.md): `cargo test --release -p ruled --test checker -- --ignored --nocapture
+/// direction_search_gain`. Nine non-convex surfaces of our own in a 1000 × 1000 × 600 mm
+/// block (the jobs of `benches/precut-auto/`), default parameters, `Auto(8)`: the mean
+/// gain over the convex hull is at least 60 %, no kept cut is above the design on the
+/// checker's jittered 4× grid, and no search leaves more than cutting along x.
+#[test]
+#[ignore = "about 10 minutes; run by hand, figures in BENCHMARKS.md"]
+fn direction_search_gain_over_the_hull_on_nine_surfaces() {
+    let surfaces = [
+        ("bump-field", "150 + 120*exp(-((x-250)^2+(y-200)^2)/30000) + 150*exp(-((x+200)^2+(y+250)^2)/40000) + 100*exp(-((x+150)^2+(y-280)^2)/20000) + 90*exp(-((x-300)^2+(y+250)^2)/25000)"),
+        ("crater", "200 + 250*exp(-(x^2+y^2)/120000) - 180*exp(-(x^2+y^2)/25000)"),
+        ("crossing-ridges", "120 + 200*exp(-8*((x - y)/700)^2) + 200*exp(-8*((x + 0.4*y)/600)^2)"),
+        ("oblique-ridge", "120 + 330*exp(-6*(x/500 - 0.6*y/500)^2)"),
+        ("oblique-valley", "450 - 300*exp(-5*((x + 0.8*y)/500)^2)"),
+        ("oblique-waves", "300 + 120*sin(2*pi*(x*0.6 + y*0.8)/450)"),
+        ("s-step", "300 + 150*(1 - 2/(exp(2*(4*((x*0.8 + y*0.6)/500 - 0.3*sin(3*(y*0.8 - x*0.6)/500)))) + 1))"),
+        ("saddle", "300 + 250*((x/500)^2 - (y/500)^2)"),
+        ("twisted-valleys", "300 + 100*cos(2*pi*x/700)*cos(2*pi*y/900) + 80*x*y/250000"),
+    ];
+    let b = Block {
+        min: [-500.0, -500.0, 0.0],
+        max: [500.0, 500.0, 600.0],
+    };
+    let tol = 1e-6 * b.scale();
+    let p = Params::default();
+    let mut gains = Vec::new();
+    for (name, z) in surfaces {
+        let expr = Expr::parse(z).unwrap();
+        let h = Surface::HeightField(
+            HeightField::try_new(expr.clone(), (-500.0, 500.0), (-500.0, 500.0)).unwrap(),
+        );
+        let (cut, search) = search_directions(&h, &b, &p, 8, &|_| {}).unwrap();
+        let (count, worst) = check_in(&b, &cut, &p, &|x, y| Some(expr.eval(x, y)));
+        let gain = cut.volumes.more_than_hull_percent;
+        let along_x = search.candidates[0].more_than_hull_percent.unwrap();
+        println!(
+            "{name}: along x {along_x:.1} %, best {:.1}° {gain:.1} % ({count} points checked, largest excess {worst:.2e})",
+            search.candidates[search.best].degrees
+        );
+        assert!(
+            count > 0 && worst <= tol,
+            "{name}: design {worst:.3e} above a ruling"
+        );
+        assert!(gain >= along_x, "{name}");
+        gains.push(gain);
+    }
+    let mean = gains.iter().sum::<f64>() / gains.len() as f64;
+    println!("mean {mean:.1} % more removed than the hull");
+    assert!(mean >= 60.0, "mean {mean:.1} %");
 }

@@ -42,11 +42,11 @@ pub struct PreCut {
     #[serde(default = "default_legs")]
     #[schemars(range(min = 1, max = 32))]
     pub legs: u32,
-    /// Cutting directions in the xy plane: `X`, `Y`, `Degrees(a)` (from +x towards
-    /// +y) or `Vector(dx, dy)`. Default: `[X]`.
+    /// Cutting directions in the xy plane: a list of `X`, `Y`, `Degrees(a)` (from +x
+    /// towards +y) or `Vector(dx, dy)`, or `Auto(n)` to try `n` directions evenly over
+    /// the half turn and keep the one that leaves the least material. Default: `[X]`.
     #[serde(default = "default_cut_directions")]
-    #[schemars(length(min = 1, max = 8))]
-    pub directions: Vec<CutDirection>,
+    pub directions: Directions,
     /// B-spline degree of the cuts along the cutting direction (thesis p), 1–5.
     /// Default: 3.
     #[serde(default = "default_cut_degree")]
@@ -69,6 +69,28 @@ pub struct PreCut {
     #[serde(default = "default_cut_rounds")]
     #[schemars(range(min = 1, max = 10000))]
     pub max_rounds: u32,
+}
+
+/// The cutting directions of a `PreCut`: a list, or a search.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(
+    untagged,
+    expecting = "a list of cutting directions such as [X, Degrees(30)], or Auto(n)"
+)]
+pub enum Directions {
+    /// These directions (1–8), each cut in turn, e.g. `[X, Degrees(30)]`.
+    List(#[schemars(length(min = 1, max = 8))] Vec<CutDirection>),
+    /// `Auto(n)`: see [`SearchDirections`].
+    Search(SearchDirections),
+}
+
+/// A search over cutting directions (thesis §2.4).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub enum SearchDirections {
+    /// `n` directions (1–36) at `i · 180° / n` from +x, each cut on its own; the one that
+    /// leaves the least material for milling is kept, and every candidate is reported.
+    Auto(#[schemars(range(min = 1, max = 36))] u32),
 }
 
 /// A cutting direction in the xy plane.
@@ -100,8 +122,8 @@ impl CutDirection {
 fn default_legs() -> u32 {
     4
 }
-fn default_cut_directions() -> Vec<CutDirection> {
-    vec![CutDirection::X]
+fn default_cut_directions() -> Directions {
+    Directions::List(vec![CutDirection::X])
 }
 fn default_cut_degree() -> u32 {
     3
@@ -129,6 +151,9 @@ pub struct PreCutReport {
     pub volumes: ruled::Volumes,
     /// Per direction: rounds, QPs, constraint points, objective history, clearance.
     pub directions: Vec<DirectionSummary>,
+    /// With `directions: Auto(n)`: every candidate direction and what it left; the one
+    /// kept is `best` (and the report's `directions`).
+    pub search: Option<ruled::search::DirectionSearch>,
 }
 
 /// What the optimizer did for one direction.
@@ -157,6 +182,8 @@ pub struct PreCutParams {
     pub block: ruled::Block,
     /// The wire machine, when the job has one (`GCode`, `Csv`), stepping once per section.
     pub wire: Option<ruled::wire::WireParams>,
+    /// With `directions: Auto(n)`: `n` (the optimizer's `directions` are then ignored).
+    pub search: Option<usize>,
 }
 
 /// A finished run.
@@ -168,6 +195,8 @@ pub struct PreCutRun {
     pub surface: Surface,
     /// Per direction, the wire's path of every cut (none without a wire machine).
     pub wires: Vec<Vec<ruled::wire::WirePath>>,
+    /// The direction search, with `directions: Auto(n)`.
+    pub search: Option<ruled::search::DirectionSearch>,
 }
 
 /// The wire machine's settings of a job, in job units (`None` without `wire`).
@@ -207,8 +236,20 @@ impl Task for PreCut {
         // the optimizer's own checks, on these fields
         let problems = self.optimizer().problems();
         let problems = problems.into_iter().map(|e| (e.field, e.index, e.message));
-        let element = |i: usize| format!("{:?}", self.directions[i]);
+        let element = |i: usize| match &self.directions {
+            Directions::List(list) => format!("{:?}", list[i]),
+            Directions::Search(s) => format!("{s:?}"),
+        };
         job.param_problems(PTR, problems, element, errors);
+        if let Directions::Search(SearchDirections::Auto(n)) = self.directions {
+            let max = ruled::search::MAX_CANDIDATES;
+            if !(1..=max as u32).contains(&n) {
+                errors.push(job.error(
+                    &format!("{PTR}/directions"),
+                    format!("Auto needs 1–{max} directions, got {n}"),
+                ));
+            }
+        }
         for (i, o) in job.outputs.iter().enumerate() {
             if matches!(o, OutputSpec::GCode | OutputSpec::Csv) && job.wire.is_none() {
                 errors.push(job.error(
@@ -265,7 +306,12 @@ impl Task for PreCut {
             steps: cut.sections + 1,
             ..w
         });
-        Ok(PreCutParams { cut, block, wire })
+        Ok(PreCutParams {
+            cut,
+            block,
+            wire,
+            search: self.search(),
+        })
     }
 
     fn estimate(p: &PreCutParams, _job: &Context) -> Estimate {
@@ -286,7 +332,7 @@ impl Task for PreCut {
         }
         checks.dedup();
         let c = &p.cut;
-        let dirs = c.directions.len() as f64;
+        let dirs = p.search.unwrap_or(c.directions.len()) as f64;
         // the constraint points of one direction's program, each touching `degree + 1`
         // controls of every leg
         let points = (c.sections * c.samples * c.check_density.max(1)) as f64;
@@ -309,8 +355,9 @@ impl Task for PreCut {
     fn run(params: &PreCutParams, job: &Context, progress: &dyn Progress) -> Result<PreCutRun> {
         let surface = job.surface(Self::NAME)?;
         let p = &params.cut;
-        progress.start("pre-cut", (p.directions.len() * p.max_rounds) as u64);
-        let cut = ruled::pre_cut(surface, &params.block, p, &|p: ruled::Progress| {
+        let dirs = params.search.unwrap_or(p.directions.len());
+        progress.start("pre-cut", (dirs * p.max_rounds) as u64);
+        let tick = |p: ruled::Progress| {
             progress.tick();
             progress.message(&format!(
                 "direction {} · round {} · Σd² {:.4e}",
@@ -318,8 +365,20 @@ impl Task for PreCut {
                 p.round + 1,
                 p.objective
             ));
-        })
-        .map_err(|e| job.fail(e.to_string()))?;
+        };
+        let (cut, search) = match params.search {
+            Some(n) => {
+                let (cut, search) =
+                    ruled::search::search_directions(surface, &params.block, p, n, &tick)
+                        .map_err(|e| job.fail(e.to_string()))?;
+                (cut, Some(search))
+            }
+            None => (
+                ruled::pre_cut(surface, &params.block, p, &tick)
+                    .map_err(|e| job.fail(e.to_string()))?,
+                None,
+            ),
+        };
         progress.finish();
         // the wire's paths now: bad machine settings fail the run, not the writing
         let wires = match &params.wire {
@@ -336,6 +395,7 @@ impl Task for PreCut {
             cut,
             surface: surface.clone(),
             wires,
+            search,
         })
     }
 
@@ -345,10 +405,21 @@ impl Task for PreCut {
     }
 
     fn report(params: &PreCutParams, run: &PreCutRun, job: &Context) -> PreCutReport {
+        // the directions as run (a search's: the one kept)
+        let directions = run
+            .cut
+            .directions
+            .iter()
+            .map(|d| [d.direction[0], d.direction[1]])
+            .collect();
         PreCutReport {
             units: job.units,
             block: params.block,
-            params: params.cut.clone(),
+            params: ruled::Params {
+                directions,
+                ..params.cut.clone()
+            },
+            search: run.search.clone(),
             volumes: run.cut.volumes,
             directions: run
                 .cut
@@ -368,10 +439,17 @@ impl Task for PreCut {
 
     fn summary(r: &PreCutReport, job: &Context) -> String {
         let v = &r.volumes;
+        let dirs = match &r.search {
+            Some(s) => format!(
+                "the best of {} directions ({:.1}°)",
+                s.candidates.len(),
+                s.candidates[s.best].degrees
+            ),
+            None => format!("{} direction(s)", r.directions.len()),
+        };
         format!(
-            "{} (PreCut): {} direction(s) × {} cut(s); left for milling {:.4} of the block (convex hull {:.4}, block {:.4}): {:.0} % more removed than the hull, {:.0} % more than the block; model {:.4}",
+            "{} (PreCut): {dirs} × {} cut(s); left for milling {:.4} of the block (convex hull {:.4}, block {:.4}): {:.0} % more removed than the hull, {:.0} % more than the block; model {:.4}",
             job.name,
-            r.directions.len(),
             r.params.legs,
             v.ruled,
             v.convex_hull,
@@ -384,11 +462,24 @@ impl Task for PreCut {
 }
 
 impl PreCut {
-    /// The optimizer's parameters.
+    /// `n` of `directions: Auto(n)`.
+    fn search(&self) -> Option<usize> {
+        match self.directions {
+            Directions::Search(SearchDirections::Auto(n)) => Some(n as usize),
+            Directions::List(_) => None,
+        }
+    }
+
+    /// The optimizer's parameters (with `Auto(n)`, +x stands for the candidates, which
+    /// the search sets itself).
     fn optimizer(&self) -> ruled::Params {
+        let directions = match &self.directions {
+            Directions::List(list) => list.iter().map(|d| d.vector()).collect(),
+            Directions::Search(_) => vec![[1.0, 0.0]],
+        };
         ruled::Params {
             legs: self.legs as usize,
-            directions: self.directions.iter().map(|d| d.vector()).collect(),
+            directions,
             degree: self.degree as usize,
             controls: self.controls as usize,
             sections: self.sections as usize,
