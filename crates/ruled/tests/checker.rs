@@ -284,14 +284,14 @@ fn a_search_needs_1_to_36_candidates() {
     }
 }
 
-/// Issue 19 item 7, measured by hand (about 10 minutes on 2 cores; the figures are in
+/// Issue 19 item 7, measured by hand (several minutes to tens of minutes; the figures are in
 /// BENCHMARKS.md): `cargo test --release -p ruled --test checker -- --ignored --nocapture
 /// direction_search_gain`. Nine non-convex surfaces of our own in a 1000 × 1000 × 600 mm
 /// block (the jobs of `benches/precut-auto/`), default parameters, `Auto(8)`: the mean
 /// gain over the convex hull is at least 60 %, no kept cut is above the design on the
 /// checker's jittered 4× grid, and no search leaves more than cutting along x.
 #[test]
-#[ignore = "about 10 minutes; run by hand, figures in BENCHMARKS.md"]
+#[ignore = "long (eight default pre-cuts per surface); run by hand, figures in BENCHMARKS.md"]
 fn direction_search_gain_over_the_hull_on_nine_surfaces() {
     let surfaces = [
         ("bump-field", "150 + 120*exp(-((x-250)^2+(y-200)^2)/30000) + 150*exp(-((x+200)^2+(y+250)^2)/40000) + 100*exp(-((x+150)^2+(y-280)^2)/20000) + 90*exp(-((x-300)^2+(y+250)^2)/25000)"),
