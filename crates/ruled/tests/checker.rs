@@ -5,11 +5,13 @@
 //! B-spline data with `geom`'s de Boor evaluation, and mesh heights by brute force over
 //! all triangles — not the optimizer's code paths.
 
-use geom::bspline::BSplineCurve;
 use geom::{expr::Expr, heightfield::HeightField, mesh::TriMesh, surface::Surface};
 use nalgebra::{Vector2, Vector3};
 use ruled::search::search_directions;
-use ruled::{pre_cut, Block, DirectionCut, Params, PreCut};
+use ruled::{pre_cut, Block, Params, PreCut};
+
+mod common;
+use common::check_in;
 
 const SURFACES: [(&str, &str); 5] = [
     ("bump", "0.35 + 0.35*exp(-3*(x*x + y*y))"),
@@ -26,73 +28,10 @@ fn block() -> Block {
     }
 }
 
-/// SplitMix64 in [0, 1).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
-/// Every leg's `(a, m)` curve along the cut, rebuilt from the result.
-fn leg_curves(d: &DirectionCut) -> Vec<BSplineCurve<2>> {
-    d.legs
-        .iter()
-        .map(|l| {
-            let ctrl =
-                l.a.iter()
-                    .zip(&l.m)
-                    .map(|(a, m)| nalgebra::Vector2::new(*a, *m))
-                    .collect();
-            BSplineCurve::try_new(d.degree, d.knots.clone(), ctrl).unwrap()
-        })
-        .collect()
-}
-
 /// Checks `cut` against `design` on a jittered grid 4N × 4M per direction over the whole
 /// block; returns (points checked, largest excess of design over a leg).
 fn check(cut: &PreCut, params: &Params, design: &dyn Fn(f64, f64) -> Option<f64>) -> (usize, f64) {
     check_in(&block(), cut, params, design)
-}
-
-/// [`check`] in block `b`.
-fn check_in(
-    b: &Block,
-    cut: &PreCut,
-    params: &Params,
-    design: &dyn Fn(f64, f64) -> Option<f64>,
-) -> (usize, f64) {
-    let mut rng = Rng(0xC0FFEE);
-    let (n, m) = (4 * params.sections, 4 * params.samples);
-    let mut worst = f64::NEG_INFINITY;
-    let mut count = 0;
-    for d in &cut.directions {
-        let curves = leg_curves(d);
-        let along = Vector2::new(d.direction[0], d.direction[1]);
-        let across = Vector2::new(d.across[0], d.across[1]);
-        for i in 0..n {
-            let u = d.u.0 + (d.u.1 - d.u.0) * (i as f64 + rng.next()) / n as f64;
-            for k in 0..m {
-                let w = d.w.0 + (d.w.1 - d.w.0) * (k as f64 + rng.next()) / m as f64;
-                let p = along * u + across * w;
-                if !(b.covers(p.x, p.y)) {
-                    continue;
-                }
-                let Some(f) = design(p.x, p.y) else { continue };
-                count += 1;
-                for c in &curves {
-                    let am = c.eval(u);
-                    let z = am[0] + am[1] * (w - d.w_mid) / d.w_half;
-                    worst = worst.max(f - z);
-                }
-            }
-        }
-    }
-    (count, worst)
 }
 
 fn params(directions: Vec<[f64; 2]>) -> Params {
@@ -282,56 +221,4 @@ fn a_search_needs_1_to_36_candidates() {
         let e = search_directions(&h, &block(), &params(vec![[1.0, 0.0]]), n, &|_| {}).unwrap_err();
         assert!(e.to_string().contains("1–36"), "{e}");
     }
-}
-
-/// Issue 19 item 7, measured by hand (several minutes to tens of minutes; the figures are in
-/// BENCHMARKS.md): `cargo test --release -p ruled --test checker -- --ignored --nocapture
-/// direction_search_gain`. Nine non-convex surfaces of our own in a 1000 × 1000 × 600 mm
-/// block (the jobs of `benches/precut-auto/`), default parameters, `Auto(8)`: the mean
-/// gain over the convex hull is at least 60 %, no kept cut is above the design on the
-/// checker's jittered 4× grid, and no search leaves more than cutting along x.
-#[test]
-#[ignore = "long (eight default pre-cuts per surface); run by hand, figures in BENCHMARKS.md"]
-fn direction_search_gain_over_the_hull_on_nine_surfaces() {
-    let surfaces = [
-        ("bump-field", "150 + 120*exp(-((x-250)^2+(y-200)^2)/30000) + 150*exp(-((x+200)^2+(y+250)^2)/40000) + 100*exp(-((x+150)^2+(y-280)^2)/20000) + 90*exp(-((x-300)^2+(y+250)^2)/25000)"),
-        ("crater", "200 + 250*exp(-(x^2+y^2)/120000) - 180*exp(-(x^2+y^2)/25000)"),
-        ("crossing-ridges", "120 + 200*exp(-8*((x - y)/700)^2) + 200*exp(-8*((x + 0.4*y)/600)^2)"),
-        ("oblique-ridge", "120 + 330*exp(-6*(x/500 - 0.6*y/500)^2)"),
-        ("oblique-valley", "450 - 300*exp(-5*((x + 0.8*y)/500)^2)"),
-        ("oblique-waves", "300 + 120*sin(2*pi*(x*0.6 + y*0.8)/450)"),
-        ("s-step", "300 + 150*(1 - 2/(exp(2*(4*((x*0.8 + y*0.6)/500 - 0.3*sin(3*(y*0.8 - x*0.6)/500)))) + 1))"),
-        ("saddle", "300 + 250*((x/500)^2 - (y/500)^2)"),
-        ("twisted-valleys", "300 + 100*cos(2*pi*x/700)*cos(2*pi*y/900) + 80*x*y/250000"),
-    ];
-    let b = Block {
-        min: [-500.0, -500.0, 0.0],
-        max: [500.0, 500.0, 600.0],
-    };
-    let tol = 1e-6 * b.scale();
-    let p = Params::default();
-    let mut gains = Vec::new();
-    for (name, z) in surfaces {
-        let expr = Expr::parse(z).unwrap();
-        let h = Surface::HeightField(
-            HeightField::try_new(expr.clone(), (-500.0, 500.0), (-500.0, 500.0)).unwrap(),
-        );
-        let (cut, search) = search_directions(&h, &b, &p, 8, &|_| {}).unwrap();
-        let (count, worst) = check_in(&b, &cut, &p, &|x, y| Some(expr.eval(x, y)));
-        let gain = cut.volumes.more_than_hull_percent;
-        let along_x = search.candidates[0].more_than_hull_percent.unwrap();
-        println!(
-            "{name}: along x {along_x:.1} %, best {:.1}° {gain:.1} % ({count} points checked, largest excess {worst:.2e})",
-            search.candidates[search.best].degrees
-        );
-        assert!(
-            count > 0 && worst <= tol,
-            "{name}: design {worst:.3e} above a ruling"
-        );
-        assert!(gain >= along_x, "{name}");
-        gains.push(gain);
-    }
-    let mean = gains.iter().sum::<f64>() / gains.len() as f64;
-    println!("mean {mean:.1} % more removed than the hull");
-    assert!(mean >= 60.0, "mean {mean:.1} %");
 }
