@@ -228,69 +228,61 @@ fn a_mesh_cut_at_45_degrees_agrees_with_its_height_field() {
     assert!(a.iter().zip(&b).all(|(p, q)| q.1 <= p.1 + 1));
 }
 
-/// A rippled surface of the held-out class of issue 19 (10–20 inflections per section,
-/// amplitudes of 0.1–1 % of the section, meshes at 0.2 % of the extent), written in
-/// millimetres with `X` and `Y` for the coordinates so the same surface can be stated in
-/// metres.
-struct Ripple {
-    name: &'static str,
-    expr: &'static str,
-    f: fn(f64, f64) -> f64,
-    x: (f64, f64),
-    y: (f64, f64),
-}
-
-const RIPPLES: &[Ripple] = &[
-    Ripple {
+/// Rippled surfaces of the held-out class of issue 19 (10–20 inflections per section,
+/// amplitudes of 0.1–1 % of the section, meshes at 0.2 % of the extent). Their `expr` is
+/// in millimetres with `X` and `Y` for the coordinates, so the same surface can be stated
+/// in metres (`ripple_expr`).
+const RIPPLES: &[Case] = &[
+    Case {
         name: "tilted-crests",
         expr: "12*sin(Y/45 + X/400)",
         f: |x, y| 12.0 * (y / 45.0 + x / 400.0).sin(),
         x: (0.0, 1000.0),
         y: (0.0, 1500.0),
     },
-    Ripple {
+    Case {
         name: "two-waves",
         expr: "8*sin(Y/50) + 1.5*sin(Y/23 + X/300)",
         f: |x, y| 8.0 * (y / 50.0).sin() + 1.5 * (y / 23.0 + x / 300.0).sin(),
         x: (0.0, 1200.0),
         y: (0.0, 1500.0),
     },
-    Ripple {
+    Case {
         name: "chirp",
         expr: "10*sin(1.5*(Y/300)^2 + X/700)",
         f: |x, y| 10.0 * (1.5 * (y / 300.0).powi(2) + x / 700.0).sin(),
         x: (0.0, 1000.0),
         y: (0.0, 1500.0),
     },
-    Ripple {
+    Case {
         name: "decaying",
         expr: "15*exp(-Y/900)*sin(Y/55 + X/500)",
         f: |x, y| 15.0 * (-y / 900.0).exp() * (y / 55.0 + x / 500.0).sin(),
         x: (0.0, 1000.0),
         y: (0.0, 1800.0),
     },
-    Ripple {
+    Case {
         name: "vault-ripples",
         expr: "(Y - 750)^2/4000 + 4*sin(Y/40 + X/250)",
         f: |x, y| (y - 750.0).powi(2) / 4000.0 + 4.0 * (y / 40.0 + x / 250.0).sin(),
         x: (0.0, 1000.0),
         y: (0.0, 1500.0),
     },
-    Ripple {
+    Case {
         name: "oblique-wave",
         expr: "10*sin(X/120 + Y/75)",
         f: |x, y| 10.0 * (x / 120.0 + y / 75.0).sin(),
         x: (0.0, 1500.0),
         y: (0.0, 2400.0),
     },
-    Ripple {
+    Case {
         name: "egg-crate",
         expr: "6*sin(X/80)*sin(Y/45) + X/20",
         f: |x, y| 6.0 * (x / 80.0).sin() * (y / 45.0).sin() + x / 20.0,
         x: (0.0, 1000.0),
         y: (0.0, 1600.0),
     },
-    Ripple {
+    Case {
         name: "shallow",
         expr: "2*sin(Y/35 + X/600) + Y/10",
         f: |x, y| 2.0 * (y / 35.0 + x / 600.0).sin() + y / 10.0,
@@ -302,7 +294,7 @@ const RIPPLES: &[Ripple] = &[
 /// Where the second derivative of z along the section changes sign (zeros skipped): the
 /// section by the plane `d · p = offset`, `d = (cos θ, sin θ)`, inside the rectangle, as
 /// the coordinate along `t = (−sin θ, cos θ)` (y for θ = 0).
-fn ripple_reference_along(r: &Ripple, theta: f64, offset: f64) -> Vec<f64> {
+fn ripple_reference_along(r: &Case, theta: f64, offset: f64) -> Vec<f64> {
     let (d, t) = ((theta.cos(), theta.sin()), (-theta.sin(), theta.cos()));
     let (mut s0, mut s1) = (f64::NEG_INFINITY, f64::INFINITY);
     for (o, dir, (lo, hi)) in [(offset * d.0, t.0, r.x), (offset * d.1, t.1, r.y)] {
@@ -338,7 +330,7 @@ fn ripple_reference_along(r: &Ripple, theta: f64, offset: f64) -> Vec<f64> {
 }
 
 /// The surface's expression in units of `scale` job units per millimetre.
-fn ripple_expr(r: &Ripple, scale: f64) -> String {
+fn ripple_expr(r: &Case, scale: f64) -> String {
     let body = r
         .expr
         .replace('X', &format!("(x/{scale})"))
