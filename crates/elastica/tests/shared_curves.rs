@@ -86,7 +86,8 @@ fn run(constraint: FitConstraint) {
                 let tol = if constraint == FitConstraint::EndPointsAndLength {
                     1e-4
                 } else {
-                    1e-13
+                    // the fit is made to the points rounded to its grid
+                    4.0 * elastica::fit::FIT_GRID
                 };
                 assert!(
                     fit.max < tol * len,
@@ -301,11 +302,17 @@ fn fits_are_invariant_under_scale_and_translation() {
                     assert_eq!(base.rms / len, fit.rms / fit.input_length, "{id} ×{factor}");
                 }
                 // the same fit up to rounding: relative to the curve's length, plus the
-                // rounding of coordinates moved `offset` away (ε·offset/L)
+                // rounding of coordinates moved `offset` away (ε·offset/L). A scale by 1000
+                // gives the fit the same points on its grid, so the same solve. A
+                // translation's rounding moves a point across a grid midpoint now and then
+                // (ε·offset/L ≈ 10⁻¹¹ against a 10⁻⁹ grid): another start of the
+                // Levenberg–Marquardt path, which on noisy curves ends where the cost creeps
+                // by less than 10⁻⁴ per step, so within that of the same valley's floor.
                 let (a, b) = (base.rms / len, fit.rms / fit.input_length);
                 let floor = 1e-14 * (1.0 + offset / fit.input_length);
+                let rel = if offset == 0.0 { 1e-6 } else { 1e-4 };
                 assert!(
-                    (a - b).abs() <= 1e-6 * a + floor,
+                    (a - b).abs() <= rel * a + floor,
                     "{id} ×{factor} +{offset}: rms/L {a:e} vs {b:e}"
                 );
             }

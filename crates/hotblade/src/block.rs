@@ -79,19 +79,15 @@ fn fold(sections: &[FittedSection], f: impl Fn(&FittedSection) -> f64) -> f64 {
     sections.iter().map(f).fold(0.0, f64::max)
 }
 
-/// Index of the section with the largest L2 distance (the first of equals).
+/// Index of the section with the largest L2 distance: the first of those within 10⁻⁶ of
+/// the largest, so that sections equal but for rounding (mirror images on a symmetric
+/// surface) give the same answer in any unit.
 fn worst_section(sections: &[FittedSection]) -> usize {
+    let max = fold(sections, |s| s.fit.l2);
     sections
         .iter()
-        .enumerate()
-        .fold((0, f64::NEG_INFINITY), |(bi, bv), (i, s)| {
-            if s.fit.l2 > bv {
-                (i, s.fit.l2)
-            } else {
-                (bi, bv)
-            }
-        })
-        .0
+        .position(|s| s.fit.l2 >= max * (1.0 - 1e-6))
+        .unwrap_or(0)
 }
 
 /// Which production constraints the block breaks.

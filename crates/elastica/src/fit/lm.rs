@@ -5,7 +5,7 @@
 //! on nalgebra 0.34 (the workspace uses 0.35), and variable projection needs control over
 //! the residual evaluation that a generic problem trait hides.
 
-use super::model::{cost, jacobian, place, plausible, Data, Placement, Shape, C};
+use super::model::{cost, feasible_start, jacobian, place, plausible, Data, Placement, Shape, C};
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 /// Outcome of one solve.
@@ -35,7 +35,23 @@ pub(crate) fn solve(
     let l_sign = if theta0[2] < 0.0 { -1.0 } else { 1.0 };
     let mut theta = theta0;
     shape.clamp(&mut theta, l_sign);
-    let mut ev = shape.eval(&theta, data, theta0[2])?;
+    let mut ev = match shape.eval(&theta, data, theta0[2]) {
+        Some(ev) => ev,
+        None => {
+            // a length-keeping start where the length cannot be matched: moved to the
+            // nearest start where it can
+            let Shape::Elastica {
+                family,
+                fixed_length: true,
+            } = *shape
+            else {
+                return None;
+            };
+            theta = feasible_start(family, theta, data)?;
+            shape.clamp(&mut theta, l_sign);
+            shape.eval(&theta, data, theta[2])?
+        }
+    };
     let (mut a, mut b) = place(&ev.z, data, placement)?;
     if !plausible(shape, &theta, ev.l, a, data) {
         return None;

@@ -247,6 +247,58 @@ pub(crate) fn chord_ratio(data: &Data) -> f64 {
     (data.p[n - 1] - data.p[0]).norm() / data.length
 }
 
+/// Moves a length-keeping elastica start θ = [k, s₀, ℓ] to the nearest point (in θ) where
+/// the length can be matched, |f(s₀ + ℓ) − f(s₀)| = ρ|ℓ|, by minimum-norm Newton steps on
+/// all three parameters. `None` when that does not converge.
+///
+/// Eliminating ℓ (as [`Shape::eval`] does) fails near a fold of the constraint, where the
+/// chord ratio |f(s₀ + ℓ) − f(s₀)|/ℓ is stationary in ℓ: on one side no ℓ matches the
+/// length for these (k, s₀), though a slightly different k or s₀ does. A free end-point fit
+/// within 0.003 % of the design's length sat there (a 600 mm section whose length-keeping
+/// fit then fell back to an arc 84 mm off); both other parameters still move the chord, so
+/// the constraint's gradient does not vanish and the projection lands next to the start.
+pub(crate) fn feasible_start(family: Family, theta: [f64; 3], data: &Data) -> Option<[f64; 3]> {
+    let rho = chord_ratio(data);
+    let sign = if theta[2] < 0.0 { -1.0 } else { 1.0 };
+    let lo = match family {
+        Family::Inflectional => 0.0,
+        Family::NonInflectional => 1e-3,
+    };
+    let mut th = theta;
+    for _ in 0..40 {
+        let unit = UnitElastica::new(family, th[0]).ok()?;
+        let (p0, t0, k0) = unit.eval_fit(th[1]);
+        let (p1, t1, k1) = unit.eval_fit(th[1] + th[2]);
+        let c = C::new(p1[0] - p0[0], p1[1] - p0[1]);
+        let norm = c.norm();
+        if !(norm > 0.0) {
+            return None;
+        }
+        let g = norm - rho * th[2].abs();
+        if g.abs() <= 16.0 * f64::EPSILON * th[2].abs().max(1.0) {
+            return Some(th);
+        }
+        let proj = |v: [f64; 2]| (v[0] * c.re + v[1] * c.im) / norm;
+        let grad = [
+            proj([k1[0] - k0[0], k1[1] - k0[1]]),
+            proj([t1[0] - t0[0], t1[1] - t0[1]]),
+            proj(t1) - rho * sign,
+        ];
+        let nn: f64 = grad.iter().map(|v| v * v).sum();
+        if !(nn > 1e-24) {
+            return None;
+        }
+        for j in 0..3 {
+            th[j] -= g * grad[j] / nn;
+        }
+        th[0] = th[0].clamp(lo, 1.0 - 1e-9);
+        if !(th[2] * sign > 1e-4) || !th.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+    }
+    None
+}
+
 /// Solve |f(s₀ + ℓ) − f(s₀)| = ρ|ℓ| for ℓ near `l0` by a safeguarded Newton iteration.
 fn solve_length(unit: &UnitElastica, s0: f64, l0: f64, data: &Data) -> Option<f64> {
     let rho = chord_ratio(data);
