@@ -463,19 +463,36 @@ fn every_job_gives_the_same_results_in_millimetres_and_in_metres() {
     for path in &paths {
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
         let job = parse_job(path, &std::fs::read_to_string(path).unwrap()).unwrap();
-        let dir = tempfile::tempdir().unwrap();
+        let dir = tempfile::Builder::new()
+            .keep(std::env::var("KEEP").is_ok())
+            .tempdir()
+            .unwrap();
+        if std::env::var("KEEP").is_ok() {
+            eprintln!("KEEP {name} {}", dir.path().display());
+        }
         let (units, f) = match job.units {
             Units::Millimetre => (Units::Metre, 1e-3),
             Units::Metre => (Units::Millimetre, 1e3),
         };
         let other = convert(&job, &base, units, f, dir.path());
+        if std::env::var("KEEP").is_ok() {
+            std::fs::write(
+                dir.path().join(&name),
+                ron::ser::to_string_pretty(
+                    &other,
+                    ron::ser::PrettyConfig::default().struct_names(true),
+                )
+                .unwrap(),
+            )
+            .unwrap();
+        }
         let mine = report(job.clone(), path, &dir.path().join("a"));
         let theirs = report(other, &dir.path().join(&name), &dir.path().join("b"));
         let (mm, m) = match job.units {
             Units::Millimetre => (mine, theirs),
             Units::Metre => (theirs, mine),
         };
-        if ROUNDING_SENSITIVE.contains(&name.as_str()) {
+        if std::env::var("STRICT").is_err() && ROUNDING_SENSITIVE.contains(&name.as_str()) {
             if let Err(e) = coarse_agreement(&name, &mm, &m) {
                 failures.push(format!("{name}: {e}"));
             }
