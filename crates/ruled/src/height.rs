@@ -13,6 +13,7 @@ use geom::surface::Surface;
 use nalgebra::{Vector2, Vector3};
 
 use crate::error::{PreCutError, Result};
+use crate::unit::{round, UnitFrame};
 
 /// Parameter samples per side when a B-spline surface is tessellated.
 pub const SPLINE_GRID: usize = 256;
@@ -24,6 +25,17 @@ pub enum Height {
     Field(HeightField),
     /// A triangle mesh with a column index.
     Mesh(MeshHeight),
+    /// An exact height field seen in a block's unit frame: evaluated at the model point,
+    /// the height mapped to the frame and rounded ([`UnitFrame::height`]).
+    FieldInFrame {
+        /// The height field (model units).
+        field: HeightField,
+        /// The frame.
+        frame: UnitFrame,
+        /// The field's `x` and `y` ranges in the frame, rounded: a point's coverage is
+        /// decided on the frame's numbers, the same in any unit.
+        range: [(f64, f64); 2],
+    },
 }
 
 impl Height {
@@ -48,6 +60,19 @@ impl Height {
                 (x >= x0 && x <= x1 && y >= y0 && y <= y1).then(|| h.expr().eval(x, y))
             }
             Self::Mesh(m) => m.at(x, y),
+            Self::FieldInFrame {
+                field,
+                frame,
+                range: [(x0, x1), (y0, y1)],
+            } => {
+                if !(x >= *x0 && x <= *x1 && y >= *y0 && y <= *y1) {
+                    return None;
+                }
+                let p = frame.to_model(Vector3::new(x, y, 0.0));
+                let ((a0, a1), (b0, b1)) = (field.x_range(), field.y_range());
+                let z = field.expr().eval(p.x.clamp(a0, a1), p.y.clamp(b0, b1));
+                Some(round((z - frame.origin.z) / frame.scale))
+            }
         }
     }
 }

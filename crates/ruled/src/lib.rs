@@ -25,6 +25,7 @@
 //! - [`legs`]: the moving polygon by its legs' lines, B-splines along the cut.
 //! - [`search`]: the search over cutting directions (`Auto(n)`).
 //! - [`solve`]: the alternating convex-QP optimization with constraint exchange.
+//! - [`unit`]: the block's unit frame the optimization runs in.
 //! - [`volume`]: the volumes of Table 2.1.
 //! - [`wire`]: wire paths to the tower planes, G-code and CSV.
 
@@ -34,6 +35,7 @@ pub mod height;
 pub mod legs;
 pub mod search;
 pub mod solve;
+pub mod unit;
 pub mod volume;
 pub mod wire;
 
@@ -233,13 +235,31 @@ pub fn pre_cut(
     progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<PreCut> {
     validate(block, params)?;
-    let height = Height::new(surface)?;
+    // computed in the block's unit frame, the same numbers in any unit
+    let unit = unit::UnitFrame::of(block);
+    let height = unit.height(surface)?;
+    let params = Params {
+        span: params.span.map(|s| unit.length(s)),
+        ..params.clone()
+    };
+    let cut = pre_cut_in(&unit, &height, &unit.block(block), &params, progress)?;
+    Ok(unit.result(cut))
+}
+
+/// [`pre_cut`] in the unit frame `unit` (for messages in model units).
+fn pre_cut_in(
+    unit: &unit::UnitFrame,
+    height: &Height,
+    block: &Block,
+    params: &Params,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> Result<PreCut> {
     let mut directions = Vec::new();
     let mut samples_used = 0;
     for (di, &dir) in params.directions.iter().enumerate() {
         let frame = CutFrame::new(dir, block)?;
         let (legs, x, result, samples) =
-            cut_direction(&frame, &height, block, params, di, progress)?;
+            cut_direction(unit, &frame, height, block, params, di, progress)?;
         samples_used = samples;
         directions.push((frame, legs, x, result));
     }
@@ -254,7 +274,7 @@ pub fn pre_cut(
             })
             .fold(f64::INFINITY, f64::min)
     };
-    let volumes = volume::volumes(&height, block, params.volume_grid, &cut)?;
+    let volumes = volume::volumes(height, block, params.volume_grid, &cut)?;
     Ok(PreCut {
         directions: directions.into_iter().map(|d| d.3).collect(),
         volumes,
@@ -270,6 +290,7 @@ fn height_of(block: &Block) -> f64 {
 /// The cut of direction `di` (frame `frame`): the legs, their coefficients in model units,
 /// the result, and the number of samples the optimizer used.
 fn cut_direction(
+    unit: &unit::UnitFrame,
     frame: &CutFrame,
     height: &Height,
     block: &Block,
@@ -282,8 +303,8 @@ fn cut_direction(
     // Normalised heights: (z − z_top)/scale, so the numbers the QP sees are O(1).
     let norm = |z: f64| (z - z_top) / scale;
     let (n, m, dense) = (params.sections, params.samples, params.check_density);
-    let samples = grid_points(frame, height, n, m, false, block)?;
-    let check = grid_points(frame, height, n * dense, m * dense, true, block)?;
+    let samples = grid_points(unit, frame, height, n, m, false, block)?;
+    let check = grid_points(unit, frame, height, n * dense, m * dense, true, block)?;
     if samples.is_empty() {
         return Err(PreCutError::Placement(
             "no part of the surface lies over the block".into(),
@@ -436,6 +457,7 @@ fn polygons(
 /// from end to end) along the cut and across each chord, where the surface is over the
 /// block. Checks the surface stays inside the block.
 fn grid_points(
+    unit: &unit::UnitFrame,
     frame: &CutFrame,
     height: &Height,
     n: usize,
@@ -465,9 +487,11 @@ fn grid_points(
                 continue;
             };
             if !f.is_finite() || f > block.max[2] + tol || f < block.min[2] - tol {
+                let at = unit.to_model(nalgebra::Vector3::new(p.x, p.y, f));
+                let (lo, hi) = (unit.origin.z, unit.to_model(block.max.into()).z);
                 return Err(PreCutError::Placement(format!(
-                    "the surface is at z = {f} over ({:.6}, {:.6}), outside the block's z range [{}, {}]",
-                    p.x, p.y, block.min[2], block.max[2]
+                    "the surface is at z = {} over ({:.6}, {:.6}), outside the block's z range [{lo}, {hi}]",
+                    at.z, at.x, at.y
                 )));
             }
             out.push(Point { u, w, f });
