@@ -42,6 +42,8 @@ pub mod optimize;
 pub mod samples;
 /// Blocks, cover counts and the objective E.
 pub mod state;
+/// The unit frame a segmentation is computed in.
+pub mod unit;
 
 use std::time::Instant;
 
@@ -412,6 +414,18 @@ pub fn segment(
     validate(params)?;
     mesh.validate(true)
         .map_err(|e| BlockError::Model(e.to_string()))?;
+    // computed in the unit frame, the same numbers in any unit
+    let unit = unit::UnitFrame::of(mesh, params);
+    let seg = segment_in(&unit.mesh(mesh)?, &unit.params(params), progress)?;
+    Ok(unit.result(seg))
+}
+
+/// [`segment`] of a mesh and parameters in the unit frame.
+fn segment_in(
+    mesh: &TriMesh,
+    params: &Params,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> Result<Segmentation> {
     let model_volume = mesh.volume().abs();
     if !(model_volume > 0.0) {
         return Err(BlockError::Model("the mesh encloses no volume".into()));

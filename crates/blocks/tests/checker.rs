@@ -191,3 +191,51 @@ fn surface_coverage_is_checked_on_the_surface() {
         );
     }
 }
+
+/// The segmentation runs in a unit frame: the model in other units and moved far from the
+/// origin (×1000, then translated) gives the same blocks, mapped by the same similarity,
+/// every length of the result back in model units.
+#[test]
+fn results_come_back_in_model_units_in_any_unit_and_place() {
+    let mesh = TriMesh::load_obj(&mesh_dir().join("torus.obj")).unwrap();
+    let edge = edge_for("torus.obj");
+    let (s, o) = (1000.0, Vector3::new(5000.0, -7000.0, 300.0));
+    let moved = TriMesh::try_new(
+        mesh.vertices().iter().map(|v| v * s + o).collect(),
+        mesh.faces().to_vec(),
+    )
+    .unwrap();
+    let params = |edge: f64| Params {
+        block_size: [edge; 3],
+        sample_spacing: 0.1,
+        max_iterations: 6,
+        seed: 5,
+        ..Params::default()
+    };
+    let a = segment(&mesh, &params(edge), &|_| {}).unwrap();
+    let b = segment(&moved, &params(edge * s), &|_| {}).unwrap();
+    assert_eq!(a.final_blocks, b.final_blocks);
+    assert_eq!(a.history, b.history);
+    assert_eq!(a.energy, b.energy);
+    let close = |x: f64, y: f64, what: &str| {
+        assert!(
+            (x - y).abs() <= 1e-9 * (y.abs() + s * edge),
+            "{what}: {x} vs {y}"
+        );
+    };
+    let placed = |p: &blocks::Placement, q: &blocks::Placement| {
+        (0..3).for_each(|k| close(q.center[k], p.center[k] * s + o[k], "centre"));
+        (0..3).for_each(|k| close(q.size[k], p.size[k] * s, "size"));
+        (0..4).for_each(|k| assert!((q.rotation[k] - p.rotation[k]).abs() < 1e-9));
+    };
+    for (p, q) in a.blocks.iter().zip(&b.blocks) {
+        placed(p, q);
+    }
+    placed(&a.bounding_box, &b.bounding_box);
+    let cube = s * s * s;
+    assert!((b.model_volume - a.model_volume * cube).abs() <= 1e-9 * b.model_volume);
+    assert!((b.block_volume - a.block_volume * cube).abs() <= 1e-9 * b.block_volume);
+    close(b.sampling.spacing, a.sampling.spacing * s, "spacing");
+    close(b.sampling.margin, a.sampling.margin * s, "margin");
+    assert!((a.model_volume - mesh.volume().abs()).abs() <= 1e-6 * a.model_volume);
+}

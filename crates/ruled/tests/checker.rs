@@ -222,3 +222,89 @@ fn a_search_needs_1_to_36_candidates() {
         assert!(e.to_string().contains("1–36"), "{e}");
     }
 }
+
+/// The optimization runs in the block's unit frame: moved far from the origin and
+/// scaled, the same job gives the same cut mapped by the same similarity, every number of
+/// the result (ranges, knots, legs, polygons, lines, clearance) back in model units.
+#[test]
+fn results_come_back_in_model_units_wherever_the_block_is() {
+    let p = Params {
+        sections: 8,
+        samples: 8,
+        ..params(vec![[1.0, 0.0], [0.6, 0.8]])
+    };
+    let z = SURFACES[0].1;
+    let unit = pre_cut(
+        &Surface::HeightField(
+            HeightField::try_new(Expr::parse(z).unwrap(), (-1.0, 1.0), (-1.0, 1.0)).unwrap(),
+        ),
+        &block(),
+        &p,
+        &|_| {},
+    )
+    .unwrap();
+    // x ↦ 250·x + (4000, −3000, 120), exact in floating point for the inputs below
+    let (s, o) = (250.0, [4000.0, -3000.0, 120.0]);
+    // (the surfaces' only function name, `exp`, holds an `x`)
+    let moved = format!("{o2} + {s}*({z})", o2 = o[2])
+        .replace("exp", "E")
+        .replace('x', &format!("((X - {})/{s})", o[0]))
+        .replace('y', &format!("((Y - ({}))/{s})", o[1]))
+        .replace('X', "x")
+        .replace('Y', "y")
+        .replace('E', "exp");
+    let far = Block {
+        min: [o[0] - s, o[1] - s, o[2]],
+        max: [o[0] + s, o[1] + s, o[2] + s],
+    };
+    let h = HeightField::try_new(
+        Expr::parse(&moved).unwrap(),
+        (far.min[0], far.max[0]),
+        (far.min[1], far.max[1]),
+    )
+    .unwrap();
+    let cut = pre_cut(&Surface::HeightField(h.clone()), &far, &p, &|_| {}).unwrap();
+    assert_eq!(cut.volumes, unit.volumes);
+    let close = |a: f64, b: f64, what: &str| {
+        assert!(
+            (a - b).abs() <= 1e-9 * s * (1.0 + b.abs() / s),
+            "{what}: {a} vs {b}"
+        );
+    };
+    let map = |v: f64, k: usize| o[k] + s * v;
+    for (d, e) in cut.directions.iter().zip(&unit.directions) {
+        let (du, dw) = (
+            d.direction[0] * o[0] + d.direction[1] * o[1],
+            d.across[0] * o[0] + d.across[1] * o[1],
+        );
+        close(d.u.0, du + s * e.u.0, "u");
+        close(d.w.1, dw + s * e.w.1, "w");
+        close(d.w_mid, dw + s * e.w_mid, "w_mid");
+        close(d.w_half, s * e.w_half, "w_half");
+        close(d.clearance, s * e.clearance, "clearance");
+        for (a, b) in d.knots.iter().zip(&e.knots) {
+            close(*a, du + s * b, "knot");
+        }
+        for (a, b) in d.legs.iter().zip(&e.legs) {
+            for (x, y) in a.a.iter().zip(&b.a) {
+                close(*x, map(*y, 2), "leg a");
+            }
+            for (x, y) in a.m.iter().zip(&b.m) {
+                close(*x, s * y, "leg m");
+            }
+        }
+        for (a, b) in d.sections.iter().zip(&e.sections) {
+            close(a.offset, du + s * b.offset, "offset");
+            for (p, q) in a.polygon.iter().zip(&b.polygon) {
+                (0..3).for_each(|k| close(p[k], map(q[k], k), "polygon"));
+            }
+        }
+        for (a, b) in d.lines.iter().flatten().zip(e.lines.iter().flatten()) {
+            close(a.a, map(b.a, 2), "line a");
+            close(a.m, s * b.m, "line m");
+        }
+    }
+    let design = |x: f64, y: f64| far.covers(x, y).then(|| h.expr().eval(x, y));
+    let (_, worst) = check_in(&far, &cut, &p, &design);
+    assert!(worst <= 1e-6 * s, "over-cut by {worst}");
+}

@@ -142,7 +142,28 @@ pub fn fit_with_end_tangents(
     let (p, t) = frame.points_to_unit(points, s);
     let fit = frame.result_to_unit(fit);
     let warm = warm.map(|w| frame.segment_to_unit(w));
-    let r = tangents_in_frame(&p, &t, &fit, warm.as_ref(), start, end, constraint)?;
+    // as `fit_points_with_arclength`: solved on the points rounded to the grid (the same
+    // numbers in any unit), the residuals measured to the points as given
+    let (pq, tq) = (super::quantize_points(&p), super::quantize_all(&t));
+    let r = if tq.windows(2).all(|w| w[1] > w[0]) {
+        let q = |a: Option<f64>| a.map(super::quantize);
+        let r = tangents_in_frame(
+            &pq,
+            &tq,
+            &super::quantize_result(&fit),
+            warm.map(super::quantize_segment).as_ref(),
+            q(start),
+            q(end),
+            constraint,
+        )?;
+        let r = FitResult {
+            segment: super::pinned(r.segment, &pq, &p),
+            ..r
+        };
+        super::remeasured(r, &p, &tq)?
+    } else {
+        tangents_in_frame(&p, &t, &fit, warm.as_ref(), start, end, constraint)?
+    };
     Ok(frame.result_from_unit(r))
 }
 
