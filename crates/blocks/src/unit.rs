@@ -5,7 +5,7 @@
 //! decisions, and a decision can turn on the last bits of its input: the same model in
 //! metres and in millimetres, whose vertices differ by the rounding of a ÷1000, ended
 //! with 173 and 179 blocks. In the unit frame the two are the same numbers once rounded to
-//! [`UNIT_GRID`], so they make the same decisions; the result is mapped back to model
+//! [`UNIT_GRID`](crate::unit::UNIT_GRID), so they make the same decisions; the result is mapped back to model
 //! units at the end.
 
 use geom::mesh::TriMesh;

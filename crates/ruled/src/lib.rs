@@ -25,7 +25,7 @@
 //! - [`legs`]: the moving polygon by its legs' lines, B-splines along the cut.
 //! - [`search`]: the search over cutting directions (`Auto(n)`).
 //! - [`solve`]: the alternating convex-QP optimization with constraint exchange.
-//! - [`unit`]: the block's unit frame the optimization runs in.
+//! - [`unit`](mod@unit): the block's unit frame the optimization runs in.
 //! - [`volume`]: the volumes of Table 2.1.
 //! - [`wire`]: wire paths to the tower planes, G-code and CSV.
 
