@@ -70,11 +70,6 @@ fn run(constraint: FitConstraint) {
             );
             assert!((b[0] - p1[0]).hypot(b[1] - p1[1]) < tol, "{id}: end moved");
             if constraint == FitConstraint::EndPointsAndLength {
-                // the fit keeps the length of the points rounded to its grid and is then
-                // moved onto the end points as given: a change of scale of at most the
-                // rounding of the far end (FIT_GRID/√2 of the length) over the chord
-                let chord = (p1[0] - p0[0]).hypot(p1[1] - p0[1]);
-                let tol = elastica::fit::FIT_GRID * fit.input_length * fit.input_length / chord;
                 assert!(
                     (seg.length() - fit.input_length).abs() < tol,
                     "{id}: length {} vs {}",

@@ -348,11 +348,84 @@ fn fit_in_frame(
     if let Some(p) = exact {
         if placement == Placement::EndPoints {
             best.segment = pinned(best.segment, points, p);
+            if fixed_length {
+                best.segment = with_length(best.segment, p, s[s.len() - 1] - s[0]);
+            }
         }
         // the feet found for the rounded points are within the grid of the exact ones'
         best.data.p = p.iter().map(|q| C::new(q[0], q[1])).collect();
     }
     finish(best, iterations, input_length)
+}
+
+/// A segment through the end points of `exact` (as [`pinned`] leaves it), its shape moved
+/// by the least change of (k, s₀, ℓ) (an arc's curvature) that makes its length `length`
+/// again: pinning scaled it by up to the rounding of the far end over the chord, and a
+/// length-keeping fit keeps both to rounding. Unchanged when that does not converge.
+pub(crate) fn with_length(seg: Segment, exact: &[[f64; 2]], length: f64) -> Segment {
+    let (Some(p0), Some(p1)) = (exact.first(), exact.last()) else {
+        return seg;
+    };
+    let (p0, p1) = (C::new(p0[0], p0[1]), C::new(p1[0], p1[1]));
+    let chord = p1 - p0;
+    let rho = chord.norm() / length;
+    if !(rho > 0.0 && rho < 1.0 && length.is_finite()) {
+        return seg;
+    }
+    match seg {
+        Segment::Elastica(e) => {
+            let data = Data {
+                p: vec![p0, p1],
+                w: vec![0.5, 0.5],
+                t: vec![0.0, 1.0],
+                length,
+            };
+            let Some(th) = model::feasible_start(e.family, [e.k, e.s0, e.l], &data) else {
+                return seg;
+            };
+            let Ok(unit) = crate::unit::UnitElastica::new(e.family, th[0]) else {
+                return seg;
+            };
+            let (f0, f1) = (unit.eval(th[1]).p, unit.eval(th[1] + th[2]).p);
+            let dz = C::new(f1[0] - f0[0], f1[1] - f0[1]);
+            if dz.norm() == 0.0 {
+                return seg;
+            }
+            let a = chord / dz;
+            let b = p0 - a * C::new(f0[0], f0[1]);
+            Segment::Elastica(ElasticaParams {
+                k: th[0],
+                s0: th[1],
+                l: th[2],
+                scale: a.norm(),
+                phi: a.arg(),
+                x0: b.re,
+                y0: b.im,
+                ..e
+            })
+        }
+        Segment::Arc { curvature, .. } => {
+            // sinc(x) = ρ for x = κL/2 ∈ (0, π), sinc decreasing there
+            let (mut lo, mut hi) = (0.0f64, std::f64::consts::PI);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if crate::segment::sinc(mid) > rho {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let kappa = curvature.signum() * 2.0 * lo / length;
+            Segment::Arc {
+                x0: p0.re,
+                y0: p0.im,
+                phi: chord.arg() - 0.5 * kappa * length,
+                curvature: kappa,
+                length,
+            }
+        }
+        Segment::Line { .. } => seg,
+    }
 }
 
 /// A segment through the first and last of the rounded points `rounded`, moved by the
