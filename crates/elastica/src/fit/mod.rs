@@ -405,17 +405,7 @@ pub(crate) fn with_length(seg: Segment, exact: &[[f64; 2]], length: f64) -> Segm
             })
         }
         Segment::Arc { curvature, .. } => {
-            // sinc(x) = ρ for x = κL/2 ∈ (0, π), sinc decreasing there
-            let (mut lo, mut hi) = (0.0f64, std::f64::consts::PI);
-            for _ in 0..200 {
-                let mid = 0.5 * (lo + hi);
-                if crate::segment::sinc(mid) > rho {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            let kappa = curvature.signum() * 2.0 * lo / length;
+            let kappa = curvature.signum() * 2.0 * arc_half_turn(rho) / length;
             Segment::Arc {
                 x0: p0.re,
                 y0: p0.im,
@@ -825,13 +815,9 @@ fn same_minimum(sa: &Shape, a: &lm::Solved, sb: &Shape, b: &lm::Solved) -> bool 
         && (a.cost - b.cost).abs() <= 1e-4 * a.cost.max(b.cost)
 }
 
-/// Curvature of the arc with the data's end points and length (sign from the data).
-fn arc_curvature_for_length(data: &Data, local: &guess::Local) -> Option<f64> {
-    let rho = model::chord_ratio(data);
-    if rho >= 1.0 {
-        return Some(0.0);
-    }
-    // sinc(x) = ρ with x = κL/2 ∈ (0, π): bisection (sinc decreases on (0, π))
+/// Half the turning x = κL/2 ∈ (0, π) of an arc whose chord is `rho` of its length:
+/// sinc(x) = ρ by bisection (sinc decreases on (0, π)).
+fn arc_half_turn(rho: f64) -> f64 {
     let (mut lo, mut hi) = (0.0f64, std::f64::consts::PI);
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
@@ -841,6 +827,16 @@ fn arc_curvature_for_length(data: &Data, local: &guess::Local) -> Option<f64> {
             hi = mid;
         }
     }
+    lo
+}
+
+/// Curvature of the arc with the data's end points and length (sign from the data).
+fn arc_curvature_for_length(data: &Data, local: &guess::Local) -> Option<f64> {
+    let rho = model::chord_ratio(data);
+    if rho >= 1.0 {
+        return Some(0.0);
+    }
+    let lo = arc_half_turn(rho);
     let sign = if guess::mean_curvature(data, local) < 0.0 {
         -1.0
     } else {
