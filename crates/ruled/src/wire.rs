@@ -241,16 +241,21 @@ fn leg_curves(d: &DirectionCut) -> Result<Vec<geom::bspline::BSplineCurve<2>>> {
 /// Shortest cutting move a program holds, mm.
 const MIN_MOVE_MM: f64 = 0.05;
 
-/// Formats an inverse-time feed: 4 decimals from 1 up, 8 significant digits below (a slow
-/// cut's feed is far below 1, and 4 decimals would round its speed by percents), always as
-/// a plain decimal (controllers read no exponents).
+/// Formats an inverse-time feed with 8 significant digits (at least 4 decimals): a slow
+/// cut's feed is far below 1, and a fixed 4 decimals would round its speed by percents.
+/// Always a plain decimal (controllers read no exponents).
 fn feed(v: f64) -> String {
-    if v >= 1.0 || !(v > 0.0) {
+    if !(v > 0.0) || !v.is_finite() {
         num(v)
     } else {
         let decimals = (7.0 - v.log10().floor()).clamp(4.0, 15.0) as usize;
         format!("{v:.decimals$}")
     }
+}
+
+/// A coordinate as the program holds it: [`num`] read back.
+fn written(v: f64) -> f64 {
+    num(v).parse().unwrap_or(v)
 }
 
 /// Formats a coordinate with 4 decimals (0.1 µm), `-0` as `0`.
@@ -304,8 +309,12 @@ pub fn gcode(path: &WirePath, p: &WireParams, top: f64, floor: f64, name: &str) 
     let mut at = first;
     for t in &path.steps[1..] {
         let s = at;
-        let da = (t.a[0] - s.a[0]).hypot(t.a[1] - s.a[1]);
-        let db = (t.b[0] - s.b[0]).hypot(t.b[1] - s.b[1]);
+        // the travel the controller will see: between the coordinates as written (the
+        // 0.1 µm rounding is up to 0.2 % of the shortest move)
+        let w = |p: [f64; 2]| [written(p[0]), written(p[1])];
+        let (ta, tb, sa, sb) = (w(t.a), w(t.b), w(s.a), w(s.b));
+        let da = (ta[0] - sa[0]).hypot(ta[1] - sa[1]);
+        let db = (tb[0] - sb[0]).hypot(tb[1] - sb[1]);
         // a move shorter than 0.05 mm (500 steps of the program's 0.1 µm resolution) is
         // left to the next one: its inverse-time feed would be huge, and its length,
         // rounded in the program, too uncertain to read back
