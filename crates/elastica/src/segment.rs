@@ -74,12 +74,21 @@ impl Segment {
     /// The segment under the similarity `p ↦ factor·p + offset` (`factor > 0`): lengths
     /// scale by `factor`, curvatures by `1/factor`, angles and shape are kept.
     pub fn similar(&self, factor: f64, offset: [f64; 2]) -> Segment {
-        let map = |x: f64, y: f64| (factor * x + offset[0], factor * y + offset[1]);
+        self.mapped([factor, 0.0], offset)
+    }
+
+    /// The segment under the similarity `p ↦ a·p + b` of the complex plane (`a`, `b` as
+    /// `[re, im]`, `a ≠ 0`): turned by arg a, lengths scaled by |a|, curvatures by 1/|a|,
+    /// then moved by `b`; the shape is kept.
+    pub fn mapped(&self, a: [f64; 2], b: [f64; 2]) -> Segment {
+        let (k, turn) = (a[0].hypot(a[1]), a[1].atan2(a[0]));
+        let map = |x: f64, y: f64| (a[0] * x - a[1] * y + b[0], a[1] * x + a[0] * y + b[1]);
         match *self {
             Segment::Elastica(p) => {
                 let (x0, y0) = map(p.x0, p.y0);
                 Segment::Elastica(ElasticaParams {
-                    scale: p.scale * factor,
+                    scale: p.scale * k,
+                    phi: p.phi + turn,
                     x0,
                     y0,
                     ..p
@@ -95,8 +104,8 @@ impl Segment {
                 Segment::Line {
                     x0,
                     y0,
-                    phi,
-                    length: length * factor,
+                    phi: phi + turn,
+                    length: length * k,
                 }
             }
             Segment::Arc {
@@ -110,9 +119,9 @@ impl Segment {
                 Segment::Arc {
                     x0,
                     y0,
-                    phi,
-                    curvature: curvature / factor,
-                    length: length * factor,
+                    phi: phi + turn,
+                    curvature: curvature / k,
+                    length: length * k,
                 }
             }
         }

@@ -438,50 +438,7 @@ pub(crate) fn pinned(seg: Segment, rounded: &[[f64; 2]], exact: &[[f64; 2]]) -> 
     if !(a.re.is_finite() && a.im.is_finite() && b.re.is_finite() && b.im.is_finite()) {
         return seg;
     }
-    let (k, turn) = (a.norm(), a.arg());
-    let at = |x: f64, y: f64| a * C::new(x, y) + b;
-    match seg {
-        Segment::Elastica(e) => {
-            let o = at(e.x0, e.y0);
-            Segment::Elastica(ElasticaParams {
-                scale: e.scale * k,
-                phi: e.phi + turn,
-                x0: o.re,
-                y0: o.im,
-                ..e
-            })
-        }
-        Segment::Line {
-            x0,
-            y0,
-            phi,
-            length,
-        } => {
-            let o = at(x0, y0);
-            Segment::Line {
-                x0: o.re,
-                y0: o.im,
-                phi: phi + turn,
-                length: length * k,
-            }
-        }
-        Segment::Arc {
-            x0,
-            y0,
-            phi,
-            curvature,
-            length,
-        } => {
-            let o = at(x0, y0);
-            Segment::Arc {
-                x0: o.re,
-                y0: o.im,
-                phi: phi + turn,
-                curvature: curvature / k,
-                length: length * k,
-            }
-        }
-    }
+    seg.mapped([a.re, a.im], [b.re, b.im])
 }
 
 /// The data of a fit, checked, with its placement and whether it keeps its length.
