@@ -169,9 +169,25 @@ fn convert(job: &Job, base: &Path, units: Units, f: f64, dir: &Path) -> Job {
     }
     if let Some(w) = j.wire.as_mut() {
         w.tower_distance *= f;
-        w.kerf *= f;
-        for x in [&mut w.speed, &mut w.lead, &mut w.clearance] {
+        for x in [
+            &mut w.kerf,
+            &mut w.speed,
+            &mut w.lead,
+            &mut w.clearance,
+            &mut w.max_speed,
+        ] {
             *x = x.map(|v| v * f);
+        }
+        let pair = |p: (f64, f64)| (p.0 * f, p.1 * f);
+        w.origin = w.origin.map(pair);
+        if let Some(t) = w.kerf_table.as_mut() {
+            t.iter_mut().for_each(|r| *r = pair(*r));
+        }
+        if let Some(t) = w.travel.as_mut() {
+            t.along = pair(t.along);
+            t.up = pair(t.up);
+            t.b_along = t.b_along.map(pair);
+            t.b_up = t.b_up.map(pair);
         }
     }
     if let Some(c) = j.cutting.curve.as_mut() {

@@ -151,6 +151,32 @@ fn wire_outputs_need_a_fitting_machine() {
         &job("PreCut()", "wire: Wire(tower_distance: -5, kerf: 1),"),
         &["/wire/tower_distance"],
     );
+    // the kerf given once: missing, twice, or a table out of order
+    for (wire, field) in [
+        ("wire: Wire(tower_distance: 1500),", "/wire/kerf"),
+        (
+            "wire: Wire(tower_distance: 1500, kerf: 1, kerf_table: [(100, 1)]),",
+            "/wire/kerf",
+        ),
+        (
+            "wire: Wire(tower_distance: 1500, kerf_table: [(300, 1), (100, 2)]),",
+            "/wire/kerf_table",
+        ),
+        (
+            "wire: Wire(tower_distance: 1500, kerf: 1, preheat_s: 900),",
+            "/wire/preheat_s",
+        ),
+        (
+            "wire: Wire(tower_distance: 1500, kerf: 1, speed: 3000, max_speed: 2000),",
+            "/wire/speed",
+        ),
+        (
+            "wire: Wire(machine: FluidNc, tower_distance: 1500, kerf: 1),",
+            "/wire/machine",
+        ),
+    ] {
+        expect_invalid(&job("PreCut()", wire), &[field]);
+    }
     // Towers closer than the block is wide: refused when the cut is known.
     let dir = tempfile::tempdir().unwrap();
     let text = job(

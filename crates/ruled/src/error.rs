@@ -38,6 +38,22 @@ pub enum PreCutError {
         /// Allowed excess.
         tolerance: f64,
     },
+    /// A wire program leaves the machine's travel.
+    #[error("{program}: axis {axis} goes to {value:.3} mm, outside the machine's travel {min}..{max} mm (spanning {:.3}..{:.3} mm on {axis})", extent.0, extent.1)]
+    OutOfTravel {
+        /// The program: `direction D cut C`.
+        program: String,
+        /// The axis letter.
+        axis: char,
+        /// The coordinate out of travel, mm.
+        value: f64,
+        /// The axis's least travel, mm.
+        min: f64,
+        /// The axis's greatest travel, mm.
+        max: f64,
+        /// The program's range on the axis, mm.
+        extent: (f64, f64),
+    },
     /// A geometry error from `geom`.
     #[error(transparent)]
     Geom(#[from] geom::GeomError),

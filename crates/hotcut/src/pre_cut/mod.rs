@@ -14,9 +14,15 @@
 //! # Ok(()) }
 //! ```
 
-/// Its files: `precut.json`, `sections.svg`, `precut.obj`, `model.gltf`, wire G-code and
-/// CSV.
+/// The job's `wire` as path settings and a controller dialect.
+mod machine;
+/// Its files: `precut.json`, `sections.svg`, `precut.obj`, `model.gltf`, wire G-code with
+/// its preview, and CSV.
 mod outputs;
+/// The drawing of one wire program: both towers' paths, the block, the travel.
+mod preview;
+
+pub use machine::{machine, wire_params};
 
 use geom::surface::Surface;
 use schemars::JsonSchema;
@@ -26,7 +32,7 @@ use crate::context::{Context, JobFields};
 use crate::error::{JobError, Result};
 use crate::limits::Estimate;
 use crate::progress::Progress;
-use crate::spec::{defaults, OutputKind, OutputSpec, Units};
+use crate::spec::{OutputKind, OutputSpec, Units};
 use crate::task::{Output, Task};
 
 /// Hot-wire pre-cuts before milling (thesis ch. 2): per cutting direction, `legs`
@@ -154,6 +160,20 @@ pub struct PreCutReport {
     /// With `directions: Auto(n)`: every candidate direction and what it left; the one
     /// kept is `best` (and the report's `directions`).
     pub search: Option<ruled::search::DirectionSearch>,
+    /// With `wire`: the controller profile the programs are written for.
+    pub machine: Option<String>,
+    /// With `wire`: every cut's program, its extents per axis and its cut time.
+    pub programs: Vec<WireProgram>,
+}
+
+/// One cut's program in the report.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct WireProgram {
+    /// The program's file: `wire_dD_cC.gcode`.
+    pub file: String,
+    /// What it makes the machine do.
+    #[serde(flatten)]
+    pub summary: ruled::wire::ProgramSummary,
 }
 
 /// What the optimizer did for one direction.
@@ -182,6 +202,8 @@ pub struct PreCutParams {
     pub block: ruled::Block,
     /// The wire machine, when the job has one (`GCode`, `Csv`), stepping once per section.
     pub wire: Option<ruled::wire::WireParams>,
+    /// Its controller, with the job's `wire`.
+    pub machine: Option<ruled::wire::Machine>,
     /// With `directions: Auto(n)`: `n` (the optimizer's `directions` are then ignored).
     pub search: Option<usize>,
 }
@@ -195,23 +217,10 @@ pub struct PreCutRun {
     pub surface: Surface,
     /// Per direction, the wire's path of every cut (none without a wire machine).
     pub wires: Vec<Vec<ruled::wire::WirePath>>,
+    /// Per direction, every cut's program, checked against the machine's travel.
+    pub programs: Vec<Vec<ruled::wire::Program>>,
     /// The direction search, with `directions: Auto(n)`.
     pub search: Option<ruled::search::DirectionSearch>,
-}
-
-/// The wire machine's settings of a job, in job units (`None` without `wire`).
-pub fn wire_params(job: &Context) -> Option<ruled::wire::WireParams> {
-    let w = job.wire.as_ref()?;
-    let unit = job.per_mm();
-    Some(ruled::wire::WireParams {
-        tower_distance: w.tower_distance,
-        kerf: w.kerf,
-        speed: w.speed.unwrap_or(defaults::WIRE_SPEED_MM_PER_MIN * unit),
-        lead: w.lead.unwrap_or(defaults::WIRE_LEAD_MM * unit),
-        clearance: w.clearance.unwrap_or(defaults::WIRE_CLEARANCE_MM * unit),
-        steps: 0,
-        mm_per_unit: 1.0 / unit,
-    })
 }
 
 const PTR: &str = "/task/PreCut";
@@ -259,25 +268,7 @@ impl Task for PreCut {
             }
         }
         if let Some(w) = job.wire {
-            let positive = |v: Option<f64>| v.is_none_or(|v| v.is_finite() && v > 0.0);
-            let mut bad = |field: &str, message: &str| {
-                errors.push(job.error(&format!("/wire/{field}"), message));
-            };
-            if !(w.tower_distance.is_finite() && w.tower_distance > 0.0) {
-                bad("tower_distance", "tower_distance must be positive");
-            }
-            if !(w.kerf.is_finite() && w.kerf >= 0.0) {
-                bad("kerf", "kerf must be at least 0");
-            }
-            if !positive(w.speed) {
-                bad("speed", "speed must be positive");
-            }
-            if !w.lead.is_none_or(|v| v.is_finite() && v >= 0.0) {
-                bad("lead", "lead must be at least 0");
-            }
-            if !positive(w.clearance) {
-                bad("clearance", "clearance must be positive");
-            }
+            machine::check(job, w, errors);
         }
     }
 
@@ -310,6 +301,7 @@ impl Task for PreCut {
             cut,
             block,
             wire,
+            machine: machine(job),
             search: self.search(),
         })
     }
@@ -321,11 +313,8 @@ impl Task for PreCut {
             match ruled::CutFrame::new(*d, &p.block) {
                 Err(e) => checks.push((format!("{PTR}/directions/{i}"), e.to_string())),
                 Ok(frame) => {
-                    let width = frame.w.1 - frame.w.0;
-                    if let Some(Err(ruled::PreCutError::InvalidParameter { name, reason })) =
-                        p.wire.as_ref().map(|w| ruled::wire::check(width, w))
-                    {
-                        checks.push((format!("/wire/{name}"), format!("{name} {reason}")));
+                    if let (Some(w), Some(m)) = (&p.wire, &p.machine) {
+                        checks.extend(wire_checks(&frame, &p.block, w, m));
                     }
                 }
             }
@@ -380,21 +369,17 @@ impl Task for PreCut {
             ),
         };
         progress.finish();
-        // the wire's paths now: bad machine settings fail the run, not the writing
-        let wires = match &params.wire {
-            Some(w) => cut
-                .directions
-                .iter()
-                .enumerate()
-                .map(|(i, d)| ruled::wire::paths(d, i, params.block.min[2], w))
-                .collect::<std::result::Result<Vec<_>, _>>()
-                .map_err(|e| job.fail(e.to_string()))?,
-            None => Vec::new(),
+        // the wire's paths and programs now: bad machine settings and programs outside the
+        // machine's travel fail the run, before any file is written
+        let (wires, programs) = match (&params.wire, &params.machine) {
+            (Some(w), Some(m)) => wire_programs(&cut, params, w, m, job)?,
+            _ => (Vec::new(), Vec::new()),
         };
         Ok(PreCutRun {
             cut,
             surface: surface.clone(),
             wires,
+            programs,
             search,
         })
     }
@@ -420,6 +405,16 @@ impl Task for PreCut {
                 ..params.cut.clone()
             },
             search: run.search.clone(),
+            machine: params.machine.as_ref().map(|m| m.profile.clone()),
+            programs: run
+                .programs
+                .iter()
+                .flatten()
+                .map(|p| WireProgram {
+                    file: program_file(&p.summary, "gcode"),
+                    summary: p.summary.clone(),
+                })
+                .collect(),
             volumes: run.cut.volumes,
             directions: run
                 .cut
@@ -459,6 +454,83 @@ impl Task for PreCut {
             v.model
         )
     }
+}
+
+/// The file of a cut's program or CSV: `wire_dD_cC.{ext}`, 1-based.
+pub fn program_file(s: &ruled::wire::ProgramSummary, ext: &str) -> String {
+    format!("wire_d{}_c{}.{ext}", s.direction + 1, s.cut + 1)
+}
+
+/// The wire's checks for one direction's frame, as the run makes them: the settings
+/// against the block's width, the dialect, and the block with its lead and clearance
+/// within the machine's travel. `(pointer, message)` pairs.
+fn wire_checks(
+    frame: &ruled::CutFrame,
+    block: &ruled::Block,
+    w: &ruled::wire::WireParams,
+    m: &ruled::wire::Machine,
+) -> Vec<(String, String)> {
+    let width = frame.w.1 - frame.w.0;
+    let length = frame.u.1 - frame.u.0;
+    let height = block.max[2] - block.min[2];
+    let results = [
+        ruled::wire::check(width, w),
+        m.check(),
+        ruled::wire::check_fit(length, height, w, m),
+    ];
+    results
+        .into_iter()
+        .filter_map(|r| match r {
+            Err(ruled::PreCutError::InvalidParameter { name, reason }) => {
+                Some((machine::pointer(name), format!("{name} {reason}")))
+            }
+            Err(e @ ruled::PreCutError::OutOfTravel { .. }) => Some((
+                "/wire/travel".into(),
+                format!("{e}: the block does not fit the machine; place it with `wire.origin`, or shorten `wire.lead` or `wire.clearance`"),
+            )),
+            Err(e) => Some(("/wire".into(), e.to_string())),
+            Ok(()) => None,
+        })
+        .collect()
+}
+
+/// Paths and programs per direction.
+type WirePrograms = (
+    Vec<Vec<ruled::wire::WirePath>>,
+    Vec<Vec<ruled::wire::Program>>,
+);
+
+/// Every cut's wire path and program; a program outside the machine's travel is an error
+/// naming the cut and the axis.
+fn wire_programs(
+    cut: &ruled::PreCut,
+    params: &PreCutParams,
+    w: &ruled::wire::WireParams,
+    m: &ruled::wire::Machine,
+    job: &Context,
+) -> Result<WirePrograms> {
+    let b = &params.block;
+    let fail = |e: ruled::PreCutError| {
+        match e {
+        ruled::PreCutError::OutOfTravel { .. } => job.fail(format!(
+            "{e}: move the block on the machine (`wire.origin`), shorten `wire.clearance`, or give the machine's real `wire.travel`"
+        )),
+        e => job.fail(e.to_string()),
+    }
+    };
+    let mut wires = Vec::new();
+    let mut programs = Vec::new();
+    for (i, d) in cut.directions.iter().enumerate() {
+        let paths = ruled::wire::paths(d, i, b.min[2], w).map_err(fail)?;
+        let progs = paths
+            .iter()
+            .map(|p| ruled::wire::program(p, w, m, b.max[2], b.min[2], &job.name))
+            .collect::<std::result::Result<Vec<_>, _>>()
+            .map_err(fail)?;
+        wires.push(paths);
+        programs.push(progs);
+    }
+    Ok((wires, programs))
 }
 
 impl PreCut {

@@ -12,7 +12,8 @@ use geom::mesh::TriMesh;
 use nalgebra::Vector3;
 use serde::Serialize;
 
-use super::{PreCut, PreCutRun};
+use super::preview::preview;
+use super::{program_file, PreCut, PreCutRun};
 use crate::output::Files;
 use crate::spec::{OutputKind, OutputSpec};
 use crate::task::Finished;
@@ -103,26 +104,41 @@ fn model(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> export::Re
     write_gltf("hotcut PreCut", &meshes, &materials, buf)
 }
 
-/// One file per cut: `wire_d{direction}_c{cut}.gcode` (`GCode`) or `.csv` (`Csv`), 1-based.
+/// One file per cut: `wire_dD_cC.gcode` with its preview `wire_dD_cC.svg` (`GCode`), or
+/// `wire_dD_cC.csv` (`Csv`), 1-based.
 pub(super) fn wire(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    let Some(w) = done.params.wire else {
+    let (Some(w), Some(m)) = (&done.params.wire, &done.params.machine) else {
         return Ok(());
     };
-    let gcode = o.kind() == OutputKind::GCode;
     let block = done.params.block;
-    for (i, paths) in done.run.wires.iter().enumerate() {
-        for path in paths {
-            let ext = if gcode { "gcode" } else { "csv" };
-            let text = if gcode {
-                let g = ruled::wire::gcode(path, &w, block.max[2], block.min[2], &done.job.name);
-                // read back: what the machine would do stays within bounds
-                ruled::wire::check_gcode(&g)
-                    .map_err(|e| export::ExportError::Data(e.to_string()))?;
-                g
-            } else {
-                ruled::wire::csv(path)
-            };
-            files.text(format!("wire_d{}_c{}.{ext}", i + 1, path.leg + 1), text)?;
+    let paths = done.run.wires.iter().flatten();
+    for (path, program) in paths.zip(done.run.programs.iter().flatten()) {
+        let s = &program.summary;
+        if o.kind() == OutputKind::GCode {
+            // read back: what the machine would do stays within bounds
+            ruled::wire::check_program(&program.text, m)
+                .map_err(|e| export::ExportError::Data(e.to_string()))?;
+            files.text(program_file(s, "gcode"), program.text.clone())?;
+            let title = format!(
+                "{} · {} · direction {} cut {}",
+                done.job.name,
+                program_file(s, "gcode"),
+                s.direction + 1,
+                s.cut + 1
+            );
+            files.add(program_file(s, "svg"), |buf| {
+                preview(
+                    path,
+                    program,
+                    w,
+                    m,
+                    (block.min[2], block.max[2]),
+                    &title,
+                    buf,
+                )
+            })?;
+        } else {
+            files.text(program_file(s, "csv"), ruled::wire::csv(path, w))?;
         }
     }
     Ok(())

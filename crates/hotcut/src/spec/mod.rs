@@ -9,6 +9,11 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+/// The hot-wire machine: `Wire(..)` and its controller profile.
+mod wire;
+
+pub use wire::{FluidNcAxes, MachineSpec, TravelSpec, WireSpec};
+
 /// Length unit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 pub enum Units {
@@ -90,27 +95,6 @@ pub struct BlockSpec {
     /// block. Default: not placed (only the size is checked).
     #[serde(default)]
     pub origin: Option<(f64, f64, f64)>,
-}
-
-/// A 4-axis hot-wire machine: two towers `tower_distance` apart across the block.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, rename = "Wire")]
-pub struct WireSpec {
-    /// Distance between the tower planes (> the block's width across the cut).
-    #[schemars(extend("exclusiveMinimum" = 0))]
-    pub tower_distance: f64,
-    /// Kerf width (≥ 0): the wire's cut is offset by half of it into the removed material.
-    #[schemars(range(min = 0))]
-    pub kerf: f64,
-    /// Wire speed through the foam, job units per minute (> 0). Default: 300 mm/min.
-    #[serde(default)]
-    pub speed: Option<f64>,
-    /// Lead-in and lead-out along the cut outside the block (≥ 0). Default: 20 mm.
-    #[serde(default)]
-    pub lead: Option<f64>,
-    /// Clearance above the block for rapid moves (> 0). Default: 50 mm.
-    #[serde(default)]
-    pub clearance: Option<f64>,
 }
 
 /// The hot blade.
@@ -438,6 +422,10 @@ pub mod defaults {
     pub const WIRE_LEAD_MM: f64 = 20.0;
     /// `wire.clearance`, mm.
     pub const WIRE_CLEARANCE_MM: f64 = 50.0;
+    /// `wire.power`, the `S` word of the heat-on command (no unit: the controller's).
+    pub const WIRE_POWER: f64 = 1000.0;
+    /// `wire.preheat_s`, seconds.
+    pub const WIRE_PREHEAT_S: f64 = 2.0;
     /// `LongestElastica(precision)`, mm.
     pub const PRECISION_MM: f64 = 1.0;
 }

@@ -1,0 +1,394 @@
+//! What a foam cutter's controller reads: the axis letters of the two towers, the setup
+//! lines, the heat commands, the feed mode, the number format and the travel of each axis
+//! ([`Machine`]), and the built-in profiles. The conventions and their sources are in
+//! `docs/wire-controllers.md`.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::error::{PreCutError, Result};
+
+/// How a cutting move's `F` is read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+pub enum FeedMode {
+    /// `G93`: `F` is 1 / minutes for the whole move, whatever axes move. Both towers start
+    /// and finish together on every controller.
+    #[default]
+    InverseTime,
+    /// `G94`: `F` is the speed along the Euclidean length over all four axes (GRBL,
+    /// grbl-Mega-5X, FluidNC). hotcut writes `F = v · √(a² + b²) / max(a, b)` per move
+    /// (`a`, `b` the towers' travels), so the faster tower runs at the set speed.
+    UnitsPerMinute,
+}
+
+/// The unit of the dwell word `G4 P`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+pub enum DwellUnit {
+    /// `G4 P2` waits 2 s (LinuxCNC, GRBL, FluidNC, Mach3 by default).
+    #[default]
+    Seconds,
+    /// `G4 P2000` waits 2 s (Mach3 with "G04 dwell param in ms" ticked, Fanuc-style).
+    Milliseconds,
+}
+
+/// Least and most number of decimals of a coordinate.
+pub const DECIMALS: (usize, usize) = (2, 6);
+
+/// A controller dialect and the machine's travel, everything a program needs beyond the
+/// wire's path. Lengths in millimetres.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct Machine {
+    /// The profile's name, written in the program's header.
+    pub profile: String,
+    /// Axis letters: tower A along the cut, tower A up, tower B along, tower B up.
+    pub axes: [char; 4],
+    /// Wrap the program in `%` lines (LinuxCNC: the end of the program is then certain).
+    pub percent: bool,
+    /// Setup lines after the header comments (units, distance mode, plane, exact path).
+    pub header: Vec<String>,
+    /// Lines after the last move, before `end`.
+    pub footer: Vec<String>,
+    /// The program end: `M2` or `M30`.
+    pub end: String,
+    /// Heat on, `{power}` replaced by `power`.
+    pub heat_on: String,
+    /// Heat off.
+    pub heat_off: String,
+    /// The value of `{power}` in `heat_on`.
+    pub power: f64,
+    /// Wait after heat on, before the first cutting move, seconds (≥ 0; 0 writes no dwell).
+    pub preheat_s: f64,
+    /// The unit of `G4 P`.
+    pub dwell: DwellUnit,
+    /// How `F` is written.
+    pub feed: FeedMode,
+    /// Decimals of coordinates (2–6).
+    pub decimals: usize,
+    /// `(min, max)` travel of each axis in the order of `axes`, mm; `None`: not checked.
+    pub travel: Option<[(f64, f64); 4]>,
+    /// Fastest feed the machine takes on one axis, mm/min.
+    pub max_speed: f64,
+    /// Comment lines for the operator: what the controller must be set to.
+    pub notes: Vec<String>,
+}
+
+/// Setup lines shared by the profiles: XY plane, millimetres, absolute, units-per-minute
+/// feed until the cut, exact path.
+const SETUP: &str = "G17 G21 G90 G94 G61";
+
+impl Machine {
+    /// LinuxCNC 2.9 configured like its `sim/axis/foam` sample: `trivkins
+    /// coordinates=xyuv`, tower A on X/Y and tower B on U/V. `%` wrappers, `G17 G21 G90
+    /// G61`, inverse-time feed, heat by the spindle output (`M3 S{power}` / `M5`).
+    pub fn linuxcnc_xyuv() -> Self {
+        Self {
+            profile: "LinuxCncXyuv".into(),
+            axes: ['X', 'Y', 'U', 'V'],
+            percent: true,
+            header: vec![format!("{SETUP} G54")],
+            footer: Vec::new(),
+            end: "M2".into(),
+            heat_on: "M3 S{power}".into(),
+            heat_off: "M5".into(),
+            power: 1000.0,
+            preheat_s: 2.0,
+            dwell: DwellUnit::Seconds,
+            feed: FeedMode::InverseTime,
+            decimals: 4,
+            travel: None,
+            max_speed: super::MAX_SPEED_MM_PER_MIN,
+            notes: vec![
+                "LinuxCNC XYUV: trivkins coordinates=xyuv, all axes linear in mm".into(),
+                "heat: the spindle output M3/M5 switches the wire's supply".into(),
+            ],
+        }
+    }
+
+    /// A 4-axis GRBL 1.1 fork (grbl-Mega-5X, as in rcKeith's foam cutter): tower A on X/Y,
+    /// tower B on Z/A. No `%` (GRBL answers `error:1`), inverse-time feed (GRBL 1.1 has
+    /// `G93`), heat `M3 S{power}` / `M5` with laser mode off (`$32=0`).
+    pub fn grbl_4axis() -> Self {
+        Self {
+            profile: "Grbl4Axis".into(),
+            axes: ['X', 'Y', 'Z', 'A'],
+            percent: false,
+            header: vec![SETUP.into()],
+            notes: vec![
+                "GRBL 4-axis: tower B is Z along, A up; set A linear in mm".into(),
+                "set $32=0: in laser mode M3 is off during the preheat dwell".into(),
+            ],
+            ..Self::linuxcnc_xyuv()
+        }
+    }
+
+    /// FluidNC with four linear axes: tower B on Z/A (`xyza: true`) or A/B.
+    pub fn fluidnc(xyza: bool) -> Self {
+        let axes = if xyza {
+            ['X', 'Y', 'Z', 'A']
+        } else {
+            ['X', 'Y', 'A', 'B']
+        };
+        Self {
+            profile: "FluidNc".into(),
+            axes,
+            notes: vec![
+                format!(
+                    "FluidNC: tower B is {} along, {} up; set both linear in mm",
+                    axes[2], axes[3]
+                ),
+                "heat: the spindle output M3/M5 switches the wire's supply".into(),
+            ],
+            ..Self::grbl_4axis()
+        }
+    }
+
+    /// Mach3 with a fourth linear axis: tower A on X/Y, tower B on Z/A. `M3` / `M5` on the
+    /// spindle relay, `G4 P` in seconds (General Config: "G04 dwell param in ms" off),
+    /// `M30` at the end.
+    pub fn mach3() -> Self {
+        Self {
+            profile: "Mach3".into(),
+            axes: ['X', 'Y', 'Z', 'A'],
+            percent: false,
+            header: vec![SETUP.into()],
+            end: "M30".into(),
+            heat_on: "M3".into(),
+            notes: vec![
+                "Mach3: tower B is Z along, A up; set A linear in mm".into(),
+                "G4 P in seconds: untick G04 dwell param in ms".into(),
+                "heat: the spindle relay M3/M5 switches the wire's supply".into(),
+            ],
+            ..Self::linuxcnc_xyuv()
+        }
+    }
+
+    /// `heat_on` with `{power}` filled in.
+    pub fn heat_on_line(&self) -> String {
+        self.heat_on.replace("{power}", &trim_number(self.power))
+    }
+
+    /// The dwell line for the preheat (`None` for no preheat).
+    pub fn preheat_line(&self) -> Option<String> {
+        (self.preheat_s > 0.0).then(|| {
+            let p = match self.dwell {
+                DwellUnit::Seconds => self.preheat_s,
+                DwellUnit::Milliseconds => self.preheat_s * 1000.0,
+            };
+            format!("G4 P{}", trim_number(p))
+        })
+    }
+
+    /// Checks the dialect: four distinct axis letters, lines of printable ASCII without
+    /// comments' parentheses problems, `{power}` the only placeholder, decimals and times
+    /// in range, travel ordered.
+    ///
+    /// # Errors
+    /// [`PreCutError::InvalidParameter`] naming the field.
+    pub fn check(&self) -> Result<()> {
+        let bad = |name, reason: String| Err(PreCutError::InvalidParameter { name, reason });
+        let letters = "XYZABCUVW";
+        for (i, c) in self.axes.iter().enumerate() {
+            if !letters.contains(*c) || self.axes[..i].contains(c) {
+                return bad(
+                    "axes",
+                    format!(
+                        "{:?} must be four different letters of {letters}",
+                        self.axes.iter().collect::<String>()
+                    ),
+                );
+            }
+        }
+        let lines = self.header.iter().chain(&self.footer).chain([
+            &self.heat_on,
+            &self.heat_off,
+            &self.end,
+        ]);
+        for line in lines {
+            if let Some(reason) = line_problem(line) {
+                return bad("header", format!("line {line:?}: {reason}"));
+            }
+        }
+        if self.end.trim().is_empty() {
+            return bad("end", "the program end must not be empty".into());
+        }
+        if !(DECIMALS.0..=DECIMALS.1).contains(&self.decimals) {
+            return bad(
+                "decimals",
+                format!(
+                    "{} must be within {}–{}",
+                    self.decimals, DECIMALS.0, DECIMALS.1
+                ),
+            );
+        }
+        if !(self.preheat_s.is_finite() && (0.0..=600.0).contains(&self.preheat_s)) {
+            return bad(
+                "preheat_s",
+                format!("{} must be within 0–600 s", self.preheat_s),
+            );
+        }
+        if !(self.power.is_finite() && self.power >= 0.0 && self.power <= 1e6) {
+            return bad("power", format!("{} must be within 0–1e6", self.power));
+        }
+        if !(self.max_speed.is_finite() && self.max_speed > 0.0) {
+            return bad("max_speed", format!("{} must be positive", self.max_speed));
+        }
+        if let Some(t) = &self.travel {
+            for ((lo, hi), axis) in t.iter().zip(self.axes) {
+                let ok = lo.is_finite()
+                    && hi.is_finite()
+                    && lo < hi
+                    && lo.abs().max(hi.abs()) <= super::MAX_TRAVEL_MM;
+                if !ok {
+                    return bad(
+                        "travel",
+                        format!(
+                            "axis {axis}: ({lo}, {hi}) must be finite, min < max, within ±{} mm",
+                            super::MAX_TRAVEL_MM
+                        ),
+                    );
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Why a setup line cannot go into a program (`None`: it can).
+fn line_problem(line: &str) -> Option<String> {
+    if line.len() > 70 {
+        return Some("longer than 70 characters".into());
+    }
+    if let Some(c) = line.chars().find(|c| !(' '..='~').contains(c)) {
+        return Some(format!("{c:?} is not printable ASCII"));
+    }
+    if line.contains('%') {
+        return Some("`%` is the program's wrapper, not a line's".into());
+    }
+    let rest = line.replace("{power}", "");
+    if rest.contains('{') || rest.contains('}') {
+        return Some("`{power}` is the only placeholder".into());
+    }
+    // comments must close and not nest (rs274ngc and GRBL reject both)
+    let mut open = false;
+    for c in line.chars() {
+        match c {
+            '(' if open => return Some("a comment inside a comment".into()),
+            '(' => open = true,
+            ')' if !open => return Some("`)` without `(`".into()),
+            ')' => open = false,
+            _ => {}
+        }
+    }
+    open.then(|| "a comment without `)`".into())
+}
+
+/// A number as short as it reads exactly to 3 decimals: `1000`, `2.5`.
+fn trim_number(v: f64) -> String {
+    let s = format!("{v:.3}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.into()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn built_in_profiles_are_valid() {
+        for m in [
+            Machine::linuxcnc_xyuv(),
+            Machine::grbl_4axis(),
+            Machine::fluidnc(true),
+            Machine::fluidnc(false),
+            Machine::mach3(),
+        ] {
+            m.check().unwrap();
+            assert!(m.notes.iter().all(|n| line_problem(n).is_none()));
+        }
+        assert_eq!(Machine::linuxcnc_xyuv().heat_on_line(), "M3 S1000");
+        assert_eq!(
+            Machine::linuxcnc_xyuv().preheat_line().as_deref(),
+            Some("G4 P2")
+        );
+    }
+
+    #[test]
+    fn bad_dialects_are_named() {
+        let m = Machine::linuxcnc_xyuv;
+        let cases = [
+            (
+                "axes",
+                Machine {
+                    axes: ['X', 'Y', 'X', 'V'],
+                    ..m()
+                },
+            ),
+            (
+                "axes",
+                Machine {
+                    axes: ['X', 'Y', 'Q', 'V'],
+                    ..m()
+                },
+            ),
+            (
+                "header",
+                Machine {
+                    heat_on: "M3 S{speed}".into(),
+                    ..m()
+                },
+            ),
+            (
+                "header",
+                Machine {
+                    header: vec!["(a (b))".into()],
+                    ..m()
+                },
+            ),
+            (
+                "header",
+                Machine {
+                    footer: vec!["%".into()],
+                    ..m()
+                },
+            ),
+            (
+                "header",
+                Machine {
+                    header: vec!["G0\nX1".into()],
+                    ..m()
+                },
+            ),
+            ("decimals", Machine { decimals: 9, ..m() }),
+            (
+                "preheat_s",
+                Machine {
+                    preheat_s: f64::NAN,
+                    ..m()
+                },
+            ),
+            (
+                "travel",
+                Machine {
+                    travel: Some([(0.0, 1.0), (1.0, 0.0), (0.0, 1.0), (0.0, 1.0)]),
+                    ..m()
+                },
+            ),
+        ];
+        for (field, machine) in cases {
+            match machine.check() {
+                Err(PreCutError::InvalidParameter { name, .. }) => assert_eq!(name, field),
+                other => panic!("{field}: {other:?}"),
+            }
+        }
+        let ms = Machine {
+            dwell: DwellUnit::Milliseconds,
+            preheat_s: 2.5,
+            ..m()
+        };
+        assert_eq!(ms.preheat_line().as_deref(), Some("G4 P2500"));
+    }
+}

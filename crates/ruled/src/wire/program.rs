@@ -1,0 +1,503 @@
+//! One cut's G-code in a controller's dialect ([`Machine`]), checked before it exists:
+//! every position within the machine's travel, every cutting move's speed within bounds.
+//!
+//! A program: `%` (if the dialect wraps), comment lines stating the cut, the profile, which
+//! tower stands on which side of the block, the frame of the axes and the travel; the
+//! setup lines; a rapid to safe height above the lead-in point and down to it; heat on and
+//! the preheat dwell; the cut (`G1`, inverse-time or per-move units-per-minute feed); heat
+//! off after the lead-out; back to `G94`; a rapid up; the footer, the end, `%`.
+
+use std::fmt::Write as _;
+
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use super::machine::{FeedMode, Machine};
+use super::{WireParams, WirePath, MAX_SPEED_MM_PER_MIN, MIN_SPEED_MM_PER_MIN};
+use crate::error::{PreCutError, Result};
+
+/// A written program and what it makes the machine do.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Program {
+    /// The G-code.
+    pub text: String,
+    /// Its extents and times.
+    pub summary: ProgramSummary,
+}
+
+/// What one program makes the machine do (for the report).
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct ProgramSummary {
+    /// Direction index (0-based).
+    pub direction: usize,
+    /// Cut (leg) index (0-based).
+    pub cut: usize,
+    /// Range of each axis over the whole program, rapids included, mm (before the
+    /// program's rounding to its decimals).
+    pub extents: Vec<AxisExtent>,
+    /// Cutting moves (`G1`).
+    pub cutting_moves: usize,
+    /// The faster tower's path while cutting, mm (before rounding).
+    pub cut_length_mm: f64,
+    /// Time of the cutting moves at the set speed, minutes (before rounding).
+    pub cut_minutes: f64,
+    /// Preheat dwell, seconds.
+    pub preheat_s: f64,
+}
+
+/// The range of one axis in a program.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct AxisExtent {
+    /// The axis letter.
+    pub axis: char,
+    /// Least coordinate, mm.
+    pub min: f64,
+    /// Greatest coordinate, mm.
+    pub max: f64,
+}
+
+/// Formats `v` with `decimals` decimals, `-0` as `0`.
+pub fn num(v: f64, decimals: usize) -> String {
+    let s = format!("{v:.decimals$}");
+    if s.trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.')
+    {
+        s.trim_start_matches('-').into()
+    } else {
+        s
+    }
+}
+
+/// Formats a feed with 8 significant digits (at least 4 decimals): a slow cut's
+/// inverse-time feed is far below 1, and a fixed 4 decimals would round its speed by
+/// percents. Always a plain decimal (controllers read no exponents).
+pub fn feed(v: f64) -> String {
+    if !(v > 0.0) || !v.is_finite() {
+        num(v, 4)
+    } else {
+        let decimals = (7.0 - v.log10().floor()).clamp(4.0, 15.0) as usize;
+        format!("{v:.decimals$}")
+    }
+}
+
+/// Shortest cutting move a program holds at `decimals`, mm: 0.05 mm, or 50 steps of the
+/// last digit. A shorter move is left to the next one: its inverse-time feed would be huge,
+/// and its length, rounded in the program, too uncertain.
+pub fn min_move_mm(decimals: usize) -> f64 {
+    (50.0 * 10f64.powi(-(decimals as i32))).max(0.05)
+}
+
+/// A comment in parentheses: printable ASCII, parentheses replaced, at most 70 characters
+/// inside (GRBL's line buffer holds 80).
+fn comment(text: &str) -> String {
+    let t: String = text
+        .chars()
+        .map(|c| match c {
+            '(' => '[',
+            ')' => ']',
+            c if (' '..='~').contains(&c) => c,
+            _ => '_',
+        })
+        .take(70)
+        .collect();
+    format!("({})", t.trim_end())
+}
+
+/// The program of one cut. `top` and `floor` are the block's top and floor (job units),
+/// `name` the job's name for the header.
+///
+/// # Errors
+/// - [`PreCutError::OutOfTravel`] when a position leaves the machine's travel (naming the
+///   cut and the axis);
+/// - [`PreCutError::InvalidParameter`] when the dialect is invalid or a move's speed is out
+///   of bounds.
+pub fn program(
+    path: &WirePath,
+    p: &WireParams,
+    m: &Machine,
+    top: f64,
+    floor: f64,
+    name: &str,
+) -> Result<Program> {
+    m.check()?;
+    let mm = p.mm_per_unit;
+    let dec = m.decimals;
+    let written = |v: f64| num(v, dec).parse::<f64>().unwrap_or(v);
+    let w4 = |a: [f64; 2], b: [f64; 2]| [a[0], a[1], b[0], b[1]].map(written);
+    let safe = (p.origin[1] + top - floor + p.clearance) * mm;
+    let Some(first) = path.steps.first() else {
+        return Err(PreCutError::InvalidParameter {
+            name: "steps",
+            reason: "a cut without steps".into(),
+        });
+    };
+    let speed = p.speed * mm;
+    let slowest = MIN_SPEED_MM_PER_MIN;
+    let fastest = m.max_speed.min(MAX_SPEED_MM_PER_MIN);
+    if !(speed >= slowest && speed <= fastest) {
+        return Err(PreCutError::InvalidParameter {
+            name: "speed",
+            reason: format!("{speed} mm/min is outside the machine's {slowest}–{fastest} mm/min"),
+        });
+    }
+    // positions as the program holds them
+    let start = w4([first.a[0], safe], [first.b[0], safe]);
+    let lead_in = w4(first.a, first.b);
+    let mut cuts: Vec<([f64; 4], f64)> = Vec::new();
+    let mut at = lead_in;
+    // the same positions before rounding, for the report: its numbers then scale with the
+    // job, free of the program's last digit
+    let raw = |a: [f64; 2], b: [f64; 2]| [a[0], a[1], b[0], b[1]];
+    let mut exact = vec![
+        raw([first.a[0], safe], [first.b[0], safe]),
+        raw(first.a, first.b),
+    ];
+    let (mut length, mut minutes) = (0.0, 0.0);
+    for s in &path.steps[1..] {
+        let next = w4(s.a, s.b);
+        let da = (next[0] - at[0]).hypot(next[1] - at[1]);
+        let db = (next[2] - at[2]).hypot(next[3] - at[3]);
+        let travel = da.max(db);
+        if travel < min_move_mm(dec) {
+            continue;
+        }
+        let t = travel / speed;
+        let f = match m.feed {
+            FeedMode::InverseTime => 1.0 / t,
+            FeedMode::UnitsPerMinute => da.hypot(db) / t,
+        };
+        cuts.push((next, f));
+        let (e, from) = (raw(s.a, s.b), exact[exact.len() - 1]);
+        let ea = (e[0] - from[0]).hypot(e[1] - from[1]);
+        let eb = (e[2] - from[2]).hypot(e[3] - from[3]);
+        length += ea.max(eb);
+        minutes += ea.max(eb) / speed;
+        exact.push(e);
+        at = next;
+    }
+    if cuts.is_empty() {
+        return Err(PreCutError::InvalidParameter {
+            name: "steps",
+            reason: format!(
+                "direction {} cut {}: no move of {} mm or more",
+                path.direction + 1,
+                path.leg + 1,
+                min_move_mm(dec)
+            ),
+        });
+    }
+    let end = [at[0], written(safe), at[2], written(safe)];
+    let all: Vec<[f64; 4]> = [start, lead_in]
+        .into_iter()
+        .chain(cuts.iter().map(|c| c.0))
+        .chain([end])
+        .collect();
+    let last = exact[exact.len() - 1];
+    exact.push([last[0], safe, last[2], safe]);
+    let extents = |pts: &[[f64; 4]]| -> Vec<AxisExtent> {
+        (0..4)
+            .map(|k| AxisExtent {
+                axis: m.axes[k],
+                min: pts.iter().map(|q| q[k]).fold(f64::INFINITY, f64::min),
+                max: pts.iter().map(|q| q[k]).fold(f64::NEG_INFINITY, f64::max),
+            })
+            .collect()
+    };
+    check_travel(path, m, &extents(&all))?;
+    let mut g = String::new();
+    let line = |g: &mut String, s: &str| {
+        g.push_str(s);
+        g.push('\n');
+    };
+    if m.percent {
+        line(&mut g, "%");
+    }
+    for c in header_comments(path, p, m, name) {
+        line(&mut g, &comment(&c));
+    }
+    for h in &m.header {
+        line(&mut g, h);
+    }
+    let n = |v: f64| num(v, dec);
+    let mv = |g: &mut String, code: &str, q: [f64; 4], f: Option<f64>| {
+        let _ = write!(g, "{code}");
+        for (letter, v) in m.axes.iter().zip(q) {
+            let _ = write!(g, " {letter}{}", n(v));
+        }
+        if let Some(f) = f {
+            let _ = write!(g, " F{}", feed(f));
+        }
+        g.push('\n');
+    };
+    mv(&mut g, "G0", start, None);
+    mv(&mut g, "G0", lead_in, None);
+    line(&mut g, &m.heat_on_line());
+    if let Some(d) = m.preheat_line() {
+        line(&mut g, &d);
+    }
+    if m.feed == FeedMode::InverseTime {
+        line(&mut g, "G93");
+    }
+    for (q, f) in &cuts {
+        mv(&mut g, "G1", *q, Some(*f));
+    }
+    line(&mut g, &m.heat_off);
+    if m.feed == FeedMode::InverseTime {
+        line(&mut g, "G94");
+    }
+    mv(&mut g, "G0", end, None);
+    for f in &m.footer {
+        line(&mut g, f);
+    }
+    line(&mut g, &m.end);
+    if m.percent {
+        line(&mut g, "%");
+    }
+    Ok(Program {
+        text: g,
+        summary: ProgramSummary {
+            direction: path.direction,
+            cut: path.leg,
+            extents: extents(&exact),
+            cutting_moves: cuts.len(),
+            cut_length_mm: length,
+            cut_minutes: minutes,
+            preheat_s: m.preheat_s,
+        },
+    })
+}
+
+/// Every axis's range within the machine's travel (to half the last digit).
+fn check_travel(path: &WirePath, m: &Machine, extents: &[AxisExtent]) -> Result<()> {
+    let Some(travel) = &m.travel else {
+        return Ok(());
+    };
+    let half = 0.5 * 10f64.powi(-(m.decimals as i32));
+    for (e, &(lo, hi)) in extents.iter().zip(travel) {
+        let out = if e.min < lo - half {
+            Some(e.min)
+        } else if e.max > hi + half {
+            Some(e.max)
+        } else {
+            None
+        };
+        if let Some(value) = out {
+            return Err(PreCutError::OutOfTravel {
+                program: format!("direction {} cut {}", path.direction + 1, path.leg + 1),
+                axis: e.axis,
+                value,
+                min: lo,
+                max: hi,
+                extent: (e.min, e.max),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The header's comment texts: the cut, the profile and its axes, the towers' sides, the
+/// frame, the travel, the heat, the operator's notes.
+fn header_comments(path: &WirePath, p: &WireParams, m: &Machine, name: &str) -> Vec<String> {
+    let mm = p.mm_per_unit;
+    let [a0, a1, b0, b1] = m.axes;
+    let n = |v: f64| num(v, 3);
+    let (cx, cy) = (path.across[0], path.across[1]);
+    let mut c = vec![
+        format!(
+            "hotcut pre-cut {}: direction {} cut {}",
+            name.chars().take(30).collect::<String>(),
+            path.direction + 1,
+            path.leg + 1
+        ),
+        format!(
+            "profile {}: tower A {a0} along {a1} up, tower B {b0} along {b1} up",
+            m.profile
+        ),
+        format!(
+            "cut along ({}, {}); tower A on the side of ({}, {})",
+            n(path.along[0]),
+            n(path.along[1]),
+            n(-cx),
+            n(-cy)
+        ),
+        format!(
+            "tower B on the side of ({}, {}), {} mm apart",
+            n(cx),
+            n(cy),
+            n(p.tower_distance * mm)
+        ),
+        format!(
+            "{a0} {b0} = {} at the block's start, {a1} {b1} = {} at its floor",
+            n(p.origin[0] * mm),
+            n(p.origin[1] * mm)
+        ),
+        format!(
+            "kerf {} mm{}, speed {} mm/min, mm, absolute",
+            n(p.kerf_at(p.speed) * mm),
+            if p.kerf_table.is_empty() {
+                ""
+            } else {
+                " by speed"
+            },
+            n(p.speed * mm)
+        ),
+    ];
+    match &m.travel {
+        Some(t) => c.push(format!(
+            "travel {a0} {}..{} {a1} {}..{} {b0} {}..{} {b1} {}..{}",
+            n(t[0].0),
+            n(t[0].1),
+            n(t[1].0),
+            n(t[1].1),
+            n(t[2].0),
+            n(t[2].1),
+            n(t[3].0),
+            n(t[3].1)
+        )),
+        None => c.push("travel not given: not checked".into()),
+    }
+    c.push(format!(
+        "heat on {} before the lead-in, off {} after the lead-out",
+        m.heat_on_line(),
+        m.heat_off
+    ));
+    c.extend(m.notes.iter().cloned());
+    c
+}
+
+/// Largest coordinate a program may hold, mm.
+const MAX_COORDINATE_MM: f64 = 1e6;
+
+/// Reads back a program [`program`] wrote for `m` and checks what it would make the
+/// machine do: every number finite, every coordinate within ±10⁶ mm, every cutting move
+/// with a feed, and its faster tower's speed within
+/// [`MIN_SPEED_MM_PER_MIN`]–[`MAX_SPEED_MM_PER_MIN`] (within 1 %: the program's rounding).
+///
+/// # Errors
+/// [`PreCutError::InvalidParameter`] naming the first offending line.
+pub fn check_program(text: &str, m: &Machine) -> Result<()> {
+    let bad = |line: usize, reason: String| {
+        Err(PreCutError::InvalidParameter {
+            name: "G-code",
+            reason: format!("line {}: {reason}", line + 1),
+        })
+    };
+    let mut pos = [0.0f64; 4];
+    let mut inverse_time = false;
+    for (i, line) in text.lines().enumerate() {
+        let code = strip_comments(line);
+        if code.trim() == "%" {
+            continue;
+        }
+        let mut next = pos;
+        let mut f = None;
+        let mut cut = false;
+        for word in code.split_whitespace() {
+            let (letter, value) = word.split_at(1);
+            let Ok(v) = value.parse::<f64>() else {
+                return bad(i, format!("unreadable word {word}"));
+            };
+            // a feed is not a coordinate: only finite
+            let bounded = letter == "F" || v.abs() <= MAX_COORDINATE_MM;
+            if !(v.is_finite() && bounded) {
+                return bad(
+                    i,
+                    format!("{word} is not a finite number within ±{MAX_COORDINATE_MM} mm"),
+                );
+            }
+            let axis = m.axes.iter().position(|a| letter.starts_with(*a));
+            match (letter, axis) {
+                (_, Some(k)) => next[k] = v,
+                ("G", _) if v == 93.0 => inverse_time = true,
+                ("G", _) if v == 94.0 => inverse_time = false,
+                ("G", _) if v == 1.0 => cut = true,
+                ("F", _) => f = Some(v),
+                _ => {}
+            }
+        }
+        if cut {
+            let da = (next[0] - pos[0]).hypot(next[1] - pos[1]);
+            let db = (next[2] - pos[2]).hypot(next[3] - pos[3]);
+            let Some(f) = f else {
+                return bad(i, "a cutting move without a feed".into());
+            };
+            // the faster tower's speed
+            let speed = if inverse_time {
+                da.max(db) * f
+            } else {
+                f * da.max(db) / da.hypot(db).max(f64::MIN_POSITIVE)
+            };
+            let slack = 1.0 + 1e-2;
+            if !(speed >= MIN_SPEED_MM_PER_MIN / slack && speed <= MAX_SPEED_MM_PER_MIN * slack) {
+                return bad(
+                    i,
+                    format!("the wire would move at {speed:.4} mm/min, outside {MIN_SPEED_MM_PER_MIN}–{MAX_SPEED_MM_PER_MIN}"),
+                );
+            }
+        }
+        pos = next;
+    }
+    Ok(())
+}
+
+/// A line without its `( )` and `;` comments.
+fn strip_comments(line: &str) -> String {
+    let mut out = String::new();
+    let mut open = false;
+    for c in line.chars() {
+        match c {
+            ';' if !open => break,
+            '(' => open = true,
+            ')' => open = false,
+            c if !open => out.push(c),
+            _ => {}
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn linuxcnc() -> Machine {
+        Machine::linuxcnc_xyuv()
+    }
+
+    #[test]
+    fn programs_are_read_back() {
+        let m = linuxcnc();
+        let ok = "%\n(c)\nG17 G21 G90 G94 G61\nG0 X0 Y50 U0 V50\nG0 X0 Y10 U0 V10\nG93\nG1 X100 Y10 U100 V10 F3\nG94\nM2\n%\n";
+        assert!(check_program(ok, &m).is_ok());
+        // 100 mm at F3 (1/3 min) is 300 mm/min; at F1000, 100 m/min
+        assert!(check_program(&ok.replace("F3", "F1000"), &m).is_err());
+        assert!(check_program(&ok.replace("F3", "F0.0000"), &m).is_err());
+        assert!(check_program(&ok.replace("X100", "Xinf"), &m).is_err());
+        assert!(check_program(&ok.replace("X100", "XNaN"), &m).is_err());
+        assert!(check_program(&ok.replace(" F3", ""), &m).is_err());
+        // a slow cut: 100 mm at 1.5 mm/min, its feed below 1 with its digits
+        let slow = |v: f64| ok.replace("F3", &format!("F{}", feed(v / 100.0)));
+        assert!(check_program(&slow(1.5), &m).is_ok());
+        assert!(check_program(&slow(0.5), &m).is_err());
+        // units per minute over four axes: both towers 100 mm, F = 300 √2
+        let upm = ok
+            .replace("G93\n", "")
+            .replace("F3", &format!("F{}", feed(300.0 * 2f64.sqrt())));
+        assert!(check_program(&upm, &m).is_ok());
+        // read as inverse time, the same F asks for 42 m/min; 100 m/min is too fast
+        let f = feed(300.0 * 2f64.sqrt());
+        assert!(check_program(&upm.replace(&f, "100000"), &m).is_err());
+    }
+
+    #[test]
+    fn numbers_are_plain_and_signless_at_zero() {
+        assert_eq!(num(-0.00001, 4), "0.0000");
+        assert_eq!(num(-0.00001, 2), "0.00");
+        assert_eq!(num(-1.5, 2), "-1.50");
+        assert_eq!(feed(0.015), "0.015000000");
+        assert_eq!(comment("a (b) é"), "(a [b] _)");
+        assert_eq!(min_move_mm(4), 0.05);
+        assert_eq!(min_move_mm(2), 0.5);
+    }
+}
