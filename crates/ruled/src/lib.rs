@@ -27,7 +27,7 @@
 //! - [`solve`]: the alternating convex-QP optimization with constraint exchange.
 //! - [`unit`](mod@unit): the block's unit frame the optimization runs in.
 //! - [`volume`]: the volumes of Table 2.1.
-//! - [`wire`]: wire paths to the tower planes, G-code and CSV.
+//! - [`wire`]: wire paths to the tower planes, machine profiles, G-code and CSV.
 
 pub mod error;
 pub mod frame;

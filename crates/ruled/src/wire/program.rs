@@ -344,17 +344,19 @@ fn header_comments(path: &WirePath, p: &WireParams, m: &Machine, name: &str) -> 
         ),
     ];
     match &m.travel {
-        Some(t) => c.push(format!(
-            "travel {a0} {}..{} {a1} {}..{} {b0} {}..{} {b1} {}..{}",
-            n(t[0].0),
-            n(t[0].1),
-            n(t[1].0),
-            n(t[1].1),
-            n(t[2].0),
-            n(t[2].1),
-            n(t[3].0),
-            n(t[3].1)
-        )),
+        Some(t) => {
+            for (tower, k) in [("A", 0), ("B", 2)] {
+                c.push(format!(
+                    "travel tower {tower}: {} {}..{}, {} {}..{} mm",
+                    m.axes[k],
+                    n(t[k].0),
+                    n(t[k].1),
+                    m.axes[k + 1],
+                    n(t[k + 1].0),
+                    n(t[k + 1].1)
+                ));
+            }
+        }
         None => c.push("travel not given: not checked".into()),
     }
     c.push(format!(
