@@ -31,6 +31,9 @@ pub enum DwellUnit {
     Milliseconds,
 }
 
+/// Most header and footer lines of a dialect together.
+pub const MAX_LINES: usize = 64;
+
 /// Least and most number of decimals of a coordinate.
 pub const DECIMALS: (usize, usize) = (2, 6);
 
@@ -198,6 +201,13 @@ impl Machine {
                 );
             }
         }
+        let count = self.header.len() + self.footer.len();
+        if count > MAX_LINES {
+            return bad(
+                "header",
+                format!("{count} header and footer lines, at most {MAX_LINES}"),
+            );
+        }
         let lines = self.header.iter().chain(&self.footer).chain([
             &self.heat_on,
             &self.heat_off,
@@ -363,6 +373,13 @@ mod tests {
                 },
             ),
             ("decimals", Machine { decimals: 9, ..m() }),
+            (
+                "header",
+                Machine {
+                    footer: vec!["M9".into(); 65],
+                    ..m()
+                },
+            ),
             (
                 "preheat_s",
                 Machine {

@@ -470,6 +470,39 @@ mod tests {
         }
     }
 
+    proptest::proptest! {
+        /// The kerf table is read as a piecewise-linear function held at its ends: its
+        /// rows are on it, it stays within the rows' kerfs, and it is continuous (a step of
+        /// `h` in speed moves it by at most the steepest row-to-row slope times `h`).
+        #[test]
+        fn kerf_tables_interpolate(
+            rows in proptest::collection::vec((1.0f64..50.0, 0.0f64..5.0), 1..8),
+            v in 0.0f64..500.0,
+        ) {
+            let mut speed = 0.0;
+            let table: Vec<(f64, f64)> = rows
+                .iter()
+                .map(|&(dv, k)| {
+                    speed += dv;
+                    (speed, k)
+                })
+                .collect();
+            let p = WireParams { kerf_table: table.clone(), ..params() };
+            for &(s, k) in &table {
+                proptest::prop_assert!((p.kerf_at(s) - k).abs() <= 1e-12 * (1.0 + k));
+            }
+            let (lo, hi) = table.iter().fold((f64::MAX, f64::MIN), |(a, b), r| (a.min(r.1), b.max(r.1)));
+            let k = p.kerf_at(v);
+            proptest::prop_assert!(k >= lo - 1e-12 && k <= hi + 1e-12);
+            let slope = table
+                .windows(2)
+                .map(|w| (w[1].1 - w[0].1).abs() / (w[1].0 - w[0].0))
+                .fold(0.0, f64::max);
+            let h = 1e-6;
+            proptest::prop_assert!((p.kerf_at(v + h) - k).abs() <= slope * h * (1.0 + 1e-6) + 1e-12);
+        }
+    }
+
     #[test]
     fn settings_are_bounded_in_millimetres() {
         assert!(check(600.0, &params()).is_ok());
