@@ -91,6 +91,13 @@ fn profiles() -> Vec<Profile> {
             },
             table: true,
         },
+        // LinuxCNC with the heat on a digital output and units-per-minute feed as
+        // rs274ngc reads it (F along X/Y while they move), 3 decimals, % wrappers
+        Profile {
+            machine: r#"Custom(axes: "XYUV", header: ["G17 G21 G90 G94 G61"], heat_on: "M64 P0", heat_off: "M65 P0", feed_mode: UnitsPerMinuteXyz, decimals: 3, percent: true)"#,
+            rules: rules("XYUV", false, true, &["M64", "P0"], &["M65", "P0"]),
+            table: false,
+        },
     ]
 }
 

@@ -101,12 +101,20 @@ pub(super) fn preview(
         ),
     );
     if let Some(t) = &m.travel {
-        for (x, y) in [(t[0], t[1]), (t[2], t[3])] {
+        // once when both towers travel alike
+        let boxes = if (t[0], t[1]) == (t[2], t[3]) { 1 } else { 2 };
+        for (x, y) in [(t[0], t[1]), (t[2], t[3])].into_iter().take(boxes) {
             let rect = [(x.0, y.0), (x.1, y.0), (x.1, y.1), (x.0, y.1)];
             doc.polygon(&map(&rect), "none", "#9a9a9a", 1.0, Some("machine travel"));
         }
     }
     doc.polygon(&map(&block_pts), "#f4f0e6", "#000", 1.0, Some("block"));
+    doc.text(
+        (MARGIN.0, MARGIN.1 - 2.0),
+        10.0,
+        "#555",
+        "the paths are the wire's ends at the tower planes: the wire extended beyond the block",
+    );
     for (pts, colour, name) in [
         (&rapid_a0, "#9db8e8", "tower A rapid"),
         (&rapid_a1, "#9db8e8", "tower A rapid"),

@@ -107,8 +107,10 @@ pub enum MachineSpec {
         /// Preheat dwell, seconds (0–600). Default: `wire.preheat_s`, else 2 s.
         #[serde(default)]
         preheat_s: Option<f64>,
-        /// `InverseTime` (`G93`) or `UnitsPerMinute` (`F` over all four axes, per move).
-        /// Default: `InverseTime`.
+        /// `InverseTime` (`G93`); `UnitsPerMinute` (`G94`, `F` along all four axes, as
+        /// GRBL and FluidNC read it); or `UnitsPerMinuteXyz` (`G94`, `F` along X/Y/Z when
+        /// they move, else U/V/W, else A/B/C, as LinuxCNC reads it). `F` is computed per
+        /// move. Default: `InverseTime`.
         #[serde(default)]
         feed_mode: FeedMode,
         /// Decimals of coordinates, 2–6. Default: 4.

@@ -231,13 +231,21 @@ pub fn replay(text: &str, rules: &Rules) -> Result<Replay, String> {
             } else if rules.grbl {
                 d.iter().map(|v| v * v).sum::<f64>().sqrt() / f
             } else {
-                // rs274ngc, G94: F along X Y when they move, else along U V
-                let xy = d[0].hypot(d[1]);
-                if xy > 0.0 {
-                    xy / f
-                } else {
-                    d[2].hypot(d[3]) / f
-                }
+                // rs274ngc, G94: F along X Y Z when any of them moves, else along U V W,
+                // else along A B C
+                let group = |letters: &str| {
+                    (0..4)
+                        .filter(|&k| letters.contains(rules.axes[k]))
+                        .map(|k| d[k] * d[k])
+                        .sum::<f64>()
+                        .sqrt()
+                };
+                let l = ["XYZ", "UVW", "ABC"]
+                    .map(group)
+                    .into_iter()
+                    .find(|&l| l > 0.0)
+                    .unwrap_or(0.0);
+                l / f
             };
         }
         r.motions.push(Motion {

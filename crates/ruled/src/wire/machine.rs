@@ -19,6 +19,34 @@ pub enum FeedMode {
     /// grbl-Mega-5X, FluidNC). hotcut writes `F = v · √(a² + b²) / max(a, b)` per move
     /// (`a`, `b` the towers' travels), so the faster tower runs at the set speed.
     UnitsPerMinute,
+    /// `G94` as rs274ngc (LinuxCNC) reads it: `F` is the speed along the X/Y/Z axes when
+    /// any of them moves, else along U/V/W, else along A/B/C. hotcut writes `F` = that
+    /// length / the move's time, so the faster tower runs at the set speed.
+    UnitsPerMinuteXyz,
+}
+
+impl FeedMode {
+    /// The length `F` is the speed along, for a move of `d` on the axes `axes`.
+    pub fn feed_length(self, axes: &[char; 4], d: [f64; 4]) -> f64 {
+        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        match self {
+            Self::InverseTime => 1.0,
+            Self::UnitsPerMinute => norm(&d),
+            Self::UnitsPerMinuteXyz => {
+                for group in ["XYZ", "UVW", "ABC"] {
+                    let part: Vec<f64> = (0..4)
+                        .filter(|&k| group.contains(axes[k]))
+                        .map(|k| d[k])
+                        .collect();
+                    let l = norm(&part);
+                    if l > 0.0 {
+                        return l;
+                    }
+                }
+                0.0
+            }
+        }
+    }
 }
 
 /// The unit of the dwell word `G4 P`.
@@ -117,8 +145,10 @@ impl Machine {
             percent: false,
             header: vec![SETUP.into()],
             notes: vec![
-                "GRBL 4-axis: tower B is Z along, A up; set A linear in mm".into(),
+                "GRBL 4-axis fork such as grbl-Mega-5X: stock GRBL has no A".into(),
+                "tower B is Z along, A up; set A linear in mm".into(),
                 "set $32=0: in laser mode M3 is off during the preheat dwell".into(),
+                "coordinates are work coordinates: set the work zero first".into(),
             ],
             ..Self::linuxcnc_xyuv()
         }
@@ -139,6 +169,11 @@ impl Machine {
                     "FluidNC: tower B is {} along, {} up; set both linear in mm",
                     axes[2], axes[3]
                 ),
+                if xyza {
+                    "the config defines axes X Y Z A".into()
+                } else {
+                    "B needs five axes in the config: define Z too, unused".into()
+                },
                 "heat: the spindle output M3/M5 switches the wire's supply".into(),
             ],
             ..Self::grbl_4axis()

@@ -163,9 +163,10 @@ pub fn program(
             continue;
         }
         let t = travel / speed;
+        let d = [0, 1, 2, 3].map(|k| next[k] - at[k]);
         let f = match m.feed {
             FeedMode::InverseTime => 1.0 / t,
-            FeedMode::UnitsPerMinute => da.hypot(db) / t,
+            upm => upm.feed_length(&m.axes, d) / t,
         };
         cuts.push((next, f));
         let (e, from) = (raw(s.a, s.b), exact[exact.len() - 1]);
@@ -424,11 +425,18 @@ pub fn check_program(text: &str, m: &Machine) -> Result<()> {
             let Some(f) = f else {
                 return bad(i, "a cutting move without a feed".into());
             };
-            // the faster tower's speed
+            // the faster tower's speed, F read as the dialect reads it
+            let d = [0, 1, 2, 3].map(|k| next[k] - pos[k]);
             let speed = if inverse_time {
                 da.max(db) * f
             } else {
-                f * da.max(db) / da.hypot(db).max(f64::MIN_POSITIVE)
+                let l = m.feed.feed_length(&m.axes, d);
+                let l = if m.feed == FeedMode::InverseTime {
+                    da.hypot(db)
+                } else {
+                    l
+                };
+                f * da.max(db) / l.max(f64::MIN_POSITIVE)
             };
             let slack = 1.0 + 1e-2;
             if !(speed >= MIN_SPEED_MM_PER_MIN / slack && speed <= MAX_SPEED_MM_PER_MIN * slack) {
