@@ -164,8 +164,14 @@ fn two_direction_programs_replay_on_every_controller() {
 
 /// Runs the job and replays every program against the plan, the travel and the heat.
 fn check(p: &Profile, directions: &str) {
+    check_lead(p, directions, LEAD);
+}
+
+/// [`check`] with a lead of `lead` mm.
+fn check_lead(p: &Profile, directions: &str, lead: f64) {
     let dir = tempfile::tempdir().unwrap();
-    write(dir.path(), "job.ron", &job(p, directions));
+    let text = job(p, directions).replace(&format!("lead: {LEAD}"), &format!("lead: {lead}"));
+    write(dir.path(), "job.ron", &text);
     let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
     assert_eq!(o.status.code(), Some(0), "{}: {}", p.machine, stderr(&o));
     let out = dir.path().join("out/g");
@@ -244,15 +250,42 @@ fn check(p: &Profile, directions: &str) {
             }
             // geometry: the wire at every step, against the plan at the CSV's u
             let csv = read(&format!("{name}.csv"));
-            let steps_u: Vec<f64> = csv
+            let rows: Vec<Vec<f64>> = csv
                 .lines()
                 .skip(1)
-                .map(|l| l.split(',').nth(2).unwrap().parse().unwrap())
+                .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
                 .collect();
             let positions: Vec<[f64; 4]> = std::iter::once(cuts[0].from)
                 .chain(cuts.iter().map(|m| m.to))
                 .collect();
-            assert_eq!(positions.len(), steps_u.len(), "{what}: steps");
+            // each position is a step of the CSV (`u`, then both towers): in order, the
+            // steps of moves too short to write left out
+            let mut next_row = 0;
+            let steps_u: Vec<f64> = positions
+                .iter()
+                .map(|q| {
+                    let found = rows[next_row..]
+                        .iter()
+                        .position(|r| (0..4).all(|k| (r[3 + k] - q[k]).abs() <= 1e-3))
+                        .unwrap_or_else(|| panic!("{what}: {q:?} is no planned step"));
+                    next_row += found + 1;
+                    rows[next_row - 1][2]
+                })
+                .collect();
+            assert!(positions.len() + 2 >= rows.len(), "{what}: steps left out");
+            // the wire heats outside the block: the lead-in and lead-out at `lead` from
+            // its faces, both towers (the kerf does not move the wire along the cut there)
+            let (first, last) = (positions[0], positions[positions.len() - 1]);
+            let length = u1 - u0;
+            for (q, along) in [(first, ORIGIN.0 - lead), (last, ORIGIN.0 + length + lead)] {
+                for k in [0, 2] {
+                    assert!(
+                        (q[k] - along).abs() <= 1e-3,
+                        "{what}: a lead end at {} along, not {along}",
+                        q[k]
+                    );
+                }
+            }
             // the wire in the frame (u, w, z), tower A to tower B
             let wire = |q: &[f64; 4]| {
                 let a = Vector3::new(q[0] - ORIGIN.0 + u0, towers.0, q[1] - ORIGIN.1 + floor);
@@ -304,6 +337,13 @@ fn check(p: &Profile, directions: &str) {
 }
 
 #[test]
+fn without_a_lead_the_wire_heats_at_the_faces() {
+    for p in &profiles()[..2] {
+        check_lead(p, "Degrees(30)", 0.0);
+    }
+}
+
+#[test]
 fn a_block_that_does_not_fit_the_machine_is_refused_at_validation() {
     let p = &profiles()[1];
     // 600 mm of block, 2 × 30 mm of lead, placed 40 mm in: 700 mm of travel along
@@ -322,6 +362,26 @@ fn a_block_that_does_not_fit_the_machine_is_refused_at_validation() {
     let o = hotcut(&["validate", "job.ron"], dir.path());
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("axis Y"), "{}", stderr(&o));
+}
+
+#[test]
+fn every_direction_a_search_may_keep_must_fit_the_machine() {
+    // 950 mm between the towers clear the 600 mm block along x and y, not its 849 mm
+    // diagonal at 45°
+    let p = &profiles()[0];
+    let text = job(p, "X")
+        .replace("directions: [X]", "directions: Auto(4)")
+        .replace("tower_distance: 950", "tower_distance: 800");
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "job.ron", &text);
+    let o = hotcut(&["validate", "job.ron"], dir.path());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("/wire/tower_distance") && e.contains("45.0°"),
+        "{e}"
+    );
+    assert!(!e.contains("0.0°:"), "{e}");
 }
 
 #[test]

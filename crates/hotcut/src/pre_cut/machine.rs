@@ -29,7 +29,7 @@ pub fn wire_params(job: &Context) -> Option<WireParams> {
 
 /// The controller of a job's wire, lengths converted to millimetres (`None` without
 /// `wire`). A `Custom` profile with other than four axis letters gets `?` for the missing
-/// ones, which [`Machine::check`] rejects ([`check`] names the field first).
+/// ones, which [`Machine::check`] rejects (validation names the field first).
 pub fn machine(job: &Context) -> Option<Machine> {
     let w = job.wire.as_ref()?;
     let mm = 1.0 / job.per_mm();
@@ -92,14 +92,17 @@ pub fn machine(job: &Context) -> Option<Machine> {
 /// The JSON pointer of a [`ruled::wire`] setting's name.
 pub fn pointer(name: &str) -> String {
     match name {
-        "axes" | "header" | "decimals" | "end" => "/wire/machine".into(),
+        "axes" | "header" | "footer" | "heat_on" | "heat_off" | "decimals" | "end" => {
+            "/wire/machine".into()
+        }
         "mm_per_unit" => "/units".into(),
         other => format!("/wire/{other}"),
     }
 }
 
 /// The checks of `wire` that need neither the block nor the units: signs, the kerf given
-/// once, a `Custom` profile's axes and setup.
+/// once, a `Custom` profile's axes. The dialect's own checks ([`Machine::check`]) and the
+/// machine's fit come with the block, in the task's estimate.
 pub(super) fn check(job: &JobFields<'_>, w: &WireSpec, errors: &mut Vec<JobError>) {
     let positive = |v: Option<f64>| v.is_none_or(|v| v.is_finite() && v > 0.0);
     let mut bad = |field: &str, message: String| {
@@ -139,10 +142,7 @@ pub(super) fn check(job: &JobFields<'_>, w: &WireSpec, errors: &mut Vec<JobError
         bad("max_speed", "max_speed must be positive".into());
     }
     if let MachineSpec::Custom {
-        axes,
-        header,
-        preheat_s,
-        ..
+        axes, preheat_s, ..
     } = &w.machine
     {
         if axes.chars().count() != 4 {
@@ -150,19 +150,6 @@ pub(super) fn check(job: &JobFields<'_>, w: &WireSpec, errors: &mut Vec<JobError
                 "machine",
                 format!("Custom axes {axes:?} must be four letters: tower A along, A up, tower B along, B up, e.g. \"XYUV\""),
             );
-        }
-        let words: Vec<String> = header
-            .iter()
-            .flat_map(|l| l.split_whitespace())
-            .map(|w| w.to_ascii_uppercase())
-            .collect();
-        for needed in ["G21", "G90"] {
-            if !words.iter().any(|w| w == needed) {
-                bad(
-                    "machine",
-                    format!("the Custom header must set {needed} (programs are absolute millimetres), e.g. header: [\"G17 G21 G90 G94\"]"),
-                );
-            }
         }
         if preheat_s.is_some() && w.preheat_s.is_some() {
             bad(

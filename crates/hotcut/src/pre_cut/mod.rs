@@ -308,18 +308,33 @@ impl Task for PreCut {
 
     fn estimate(p: &PreCutParams, _job: &Context) -> Estimate {
         let mut checks = Vec::new();
-        // the wire's checks against the block, per direction, as the run makes them
-        for (i, d) in p.cut.directions.iter().enumerate() {
+        // the wire's checks against the block, per direction, as the run makes them; with
+        // `Auto(n)`, for every candidate the search may keep
+        let candidates: Vec<[f64; 2]> = match p.search {
+            Some(n) => ruled::search::candidates(n).iter().map(|c| c.1).collect(),
+            None => p.cut.directions.clone(),
+        };
+        for (i, d) in candidates.iter().enumerate() {
             match ruled::CutFrame::new(*d, &p.block) {
                 Err(e) => checks.push((format!("{PTR}/directions/{i}"), e.to_string())),
                 Ok(frame) => {
                     if let (Some(w), Some(m)) = (&p.wire, &p.machine) {
-                        checks.extend(wire_checks(&frame, &p.block, w, m));
+                        let which = |(at, message): (String, String)| {
+                            match p.search {
+                            Some(_) => (
+                                at,
+                                format!("{message} (along the Auto candidate at {:.1}°: every candidate must fit)", d[1].atan2(d[0]).to_degrees()),
+                            ),
+                            None => (at, message),
+                        }
+                        };
+                        checks.extend(wire_checks(&frame, &p.block, w, m).into_iter().map(which));
                     }
                 }
             }
         }
-        checks.dedup();
+        let mut seen = std::collections::HashSet::new();
+        checks.retain(|c| seen.insert(c.clone()));
         let c = &p.cut;
         let dirs = p.search.unwrap_or(c.directions.len()) as f64;
         // the constraint points of one direction's program, each touching `degree + 1`
@@ -473,11 +488,13 @@ fn wire_checks(
     let width = frame.w.1 - frame.w.0;
     let length = frame.u.1 - frame.u.0;
     let height = block.max[2] - block.min[2];
-    let results = [
-        ruled::wire::check(width, w),
-        m.check(),
-        ruled::wire::check_fit(length, height, w, m),
-    ];
+    let dialect = m.check();
+    // the fit only with a valid dialect (its travel ordered)
+    let fit = match dialect {
+        Ok(()) => ruled::wire::check_fit(length, height, w, m),
+        Err(_) => Ok(()),
+    };
+    let results = [ruled::wire::check(width, w), dialect, fit];
     results
         .into_iter()
         .filter_map(|r| match r {

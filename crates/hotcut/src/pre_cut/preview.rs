@@ -110,7 +110,7 @@ pub(super) fn preview(
     }
     doc.polygon(&map(&block_pts), "#f4f0e6", "#000", 1.0, Some("block"));
     doc.text(
-        (MARGIN.0, MARGIN.1 - 2.0),
+        (MARGIN.0, PAGE.1 - 10.0),
         10.0,
         "#555",
         "the paths are the wire's ends at the tower planes: the wire extended beyond the block",

@@ -30,8 +30,8 @@ pub struct WireSpec {
     /// side burns wider). Default: none (`kerf` everywhere).
     #[serde(default)]
     pub kerf_table: Option<Vec<(f64, f64)>>,
-    /// Wire speed through the foam (the faster tower's), job units per minute (> 0).
-    /// Default: 300 mm/min.
+    /// Cutting speed: the speed of the faster tower's wire end, job units per minute
+    /// (> 0). Default: 300 mm/min.
     #[serde(default)]
     pub speed: Option<f64>,
     /// Lead-in and lead-out along the cut outside the block (≥ 0). Default: 20 mm.
@@ -91,8 +91,10 @@ pub enum MachineSpec {
         /// along, tower B up.
         #[schemars(length(min = 4, max = 4))]
         axes: String,
-        /// Setup lines after the header comments; they must hold `G21` and `G90` (the
-        /// program is in absolute millimetres). Default: `["G17 G21 G90 G94"]`.
+        /// Setup lines after the header comments: plain words (no parameters or
+        /// expressions), at most 70 characters each; they must set `G21` and `G90` (the
+        /// program is in absolute millimetres) and may not set `G20`, `G91` or stop the
+        /// program. Default: `["G17 G21 G90 G94 G61"]`.
         #[serde(default = "default_header")]
         header: Vec<String>,
         /// Lines after the last move, before `end`. Default: none.
@@ -155,7 +157,7 @@ pub struct TravelSpec {
 }
 
 fn default_header() -> Vec<String> {
-    vec!["G17 G21 G90 G94".into()]
+    vec!["G17 G21 G90 G94 G61".into()]
 }
 fn default_heat_on() -> String {
     "M3 S{power}".into()

@@ -67,6 +67,16 @@ pub const DECIMALS: (usize, usize) = (2, 6);
 
 /// A controller dialect and the machine's travel, everything a program needs beyond the
 /// wire's path. Lengths in millimetres.
+///
+/// ```
+/// use ruled::wire::Machine;
+/// let mut m = Machine::grbl_4axis();
+/// m.travel = Some([(0.0, 900.0), (0.0, 800.0), (0.0, 900.0), (0.0, 800.0)]);
+/// assert!(m.check().is_ok());
+/// assert_eq!(m.axes, ['X', 'Y', 'Z', 'A']);
+/// assert_eq!(m.heat_on_line(), "M3 S1000");
+/// assert_eq!(m.preheat_line().as_deref(), Some("G4 P2"));
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct Machine {
     /// The profile's name, written in the program's header.
@@ -243,19 +253,7 @@ impl Machine {
                 format!("{count} header and footer lines, at most {MAX_LINES}"),
             );
         }
-        let lines = self.header.iter().chain(&self.footer).chain([
-            &self.heat_on,
-            &self.heat_off,
-            &self.end,
-        ]);
-        for line in lines {
-            if let Some(reason) = line_problem(line) {
-                return bad("header", format!("line {line:?}: {reason}"));
-            }
-        }
-        if self.end.trim().is_empty() {
-            return bad("end", "the program end must not be empty".into());
-        }
+        self.check_lines()?;
         if !(DECIMALS.0..=DECIMALS.1).contains(&self.decimals) {
             return bad(
                 "decimals",
@@ -265,14 +263,26 @@ impl Machine {
                 ),
             );
         }
-        if !(self.preheat_s.is_finite() && (0.0..=600.0).contains(&self.preheat_s)) {
+        // the dwell is written to 3 decimals of its unit: 0, or at least 10 ms
+        let p = self.preheat_s;
+        if !(p.is_finite() && (p == 0.0 || (0.01..=600.0).contains(&p))) {
             return bad(
                 "preheat_s",
-                format!("{} must be within 0–600 s", self.preheat_s),
+                format!("{p} must be 0 (no dwell) or within 0.01–600 s"),
             );
         }
-        if !(self.power.is_finite() && self.power >= 0.0 && self.power <= 1e6) {
-            return bad("power", format!("{} must be within 0–1e6", self.power));
+        // `{power}` is written to 3 decimals: S0 would leave the wire cold
+        if self.heat_on.contains("{power}")
+            && !(self.power.is_finite() && (0.001..=1e6).contains(&self.power))
+        {
+            return bad(
+                "power",
+                format!(
+                    "{} must be within 0.001–1e6: heat on would write S{}, a cold wire",
+                    self.power,
+                    trim_number(self.power)
+                ),
+            );
         }
         if !(self.max_speed.is_finite() && self.max_speed > 0.0) {
             return bad("max_speed", format!("{} must be positive", self.max_speed));
@@ -298,8 +308,81 @@ impl Machine {
     }
 }
 
-/// Why a setup line cannot go into a program (`None`: it can).
-fn line_problem(line: &str) -> Option<String> {
+impl Machine {
+    /// Checks the dialect's own lines: every line plain words a controller reads (no
+    /// parameters or expressions), `{power}` only in `heat_on`; heat on and off given and
+    /// different; the header setting `G21` and `G90`; no line switching to inches or
+    /// relative moves or stopping the program, but `end`, which must stop it.
+    fn check_lines(&self) -> Result<()> {
+        let bad = |name, reason: String| Err(PreCutError::InvalidParameter { name, reason });
+        let lines = self
+            .header
+            .iter()
+            .map(|l| ("header", l))
+            .chain(self.footer.iter().map(|l| ("footer", l)))
+            .chain([
+                ("heat_on", &self.heat_on),
+                ("heat_off", &self.heat_off),
+                ("end", &self.end),
+            ]);
+        let mut header = Vec::new();
+        for (name, line) in lines {
+            if let Some(reason) = line_problem(line, name == "heat_on") {
+                return bad(name, format!("{line:?}: {reason}"));
+            }
+            let ws = match super::program::words(&line.replace("{power}", "1")) {
+                Ok(ws) => ws,
+                Err(e) => return bad(name, format!("{line:?}: {e}")),
+            };
+            let has = |l: char, v: f64| ws.contains(&(l, v));
+            let stops = [0.0, 1.0, 2.0, 30.0, 60.0].iter().any(|&v| has('M', v));
+            if has('G', 20.0) || has('G', 91.0) {
+                return bad(
+                    name,
+                    format!("{line:?}: programs are absolute millimetres: no G20 or G91"),
+                );
+            }
+            if stops != (name == "end") {
+                let why = if stops {
+                    "stops the program before it ends"
+                } else {
+                    "must stop the program: M2 or M30"
+                };
+                return bad(name, format!("{line:?} {why}"));
+            }
+            if matches!(name, "heat_on" | "heat_off") && ws.is_empty() {
+                return bad(name, format!("{line:?}: the heat needs a command"));
+            }
+            if name == "header" {
+                header.extend(ws);
+            }
+        }
+        if words_of(&self.heat_on) == words_of(&self.heat_off) {
+            return bad(
+                "heat_off",
+                format!("{:?} must differ from heat_on", self.heat_off),
+            );
+        }
+        for needed in [21.0, 90.0] {
+            if !header.contains(&('G', needed)) {
+                return bad(
+                    "header",
+                    format!("the setup lines must set G{needed} (programs are absolute millimetres), e.g. \"G17 G21 G90 G94 G61\""),
+                );
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The words of a dialect's line (none when unreadable).
+fn words_of(line: &str) -> Vec<(char, f64)> {
+    super::program::words(&line.replace("{power}", "1")).unwrap_or_default()
+}
+
+/// Why a setup line cannot go into a program (`None`: it can); `{power}` is allowed where
+/// `power` says.
+fn line_problem(line: &str, power: bool) -> Option<String> {
     if line.len() > 70 {
         return Some("longer than 70 characters".into());
     }
@@ -309,9 +392,17 @@ fn line_problem(line: &str) -> Option<String> {
     if line.contains('%') {
         return Some("`%` is the program's wrapper, not a line's".into());
     }
-    let rest = line.replace("{power}", "");
+    let rest = if power {
+        line.replace("{power}", "")
+    } else {
+        line.to_string()
+    };
     if rest.contains('{') || rest.contains('}') {
-        return Some("`{power}` is the only placeholder".into());
+        return Some(if power {
+            "`{power}` is the only placeholder".into()
+        } else {
+            "placeholders belong in heat_on only".into()
+        });
     }
     // comments must close and not nest (rs274ngc and GRBL reject both)
     let mut open = false;
@@ -352,7 +443,7 @@ mod tests {
             Machine::mach3(),
         ] {
             m.check().unwrap();
-            assert!(m.notes.iter().all(|n| line_problem(n).is_none()));
+            assert!(m.notes.iter().all(|n| line_problem(n, false).is_none()));
         }
         assert_eq!(Machine::linuxcnc_xyuv().heat_on_line(), "M3 S1000");
         assert_eq!(
@@ -380,7 +471,7 @@ mod tests {
                 },
             ),
             (
-                "header",
+                "heat_on",
                 Machine {
                     heat_on: "M3 S{speed}".into(),
                     ..m()
@@ -394,7 +485,7 @@ mod tests {
                 },
             ),
             (
-                "header",
+                "footer",
                 Machine {
                     footer: vec!["%".into()],
                     ..m()
@@ -430,6 +521,65 @@ mod tests {
                 },
             ),
         ];
+        let lines = |header: &[&str], footer: &[&str], on: &str, off: &str, end: &str| Machine {
+            header: header.iter().map(|s| s.to_string()).collect(),
+            footer: footer.iter().map(|s| s.to_string()).collect(),
+            heat_on: on.into(),
+            heat_off: off.into(),
+            end: end.into(),
+            ..m()
+        };
+        let g = ["G17 G21 G90"];
+        let more = [
+            ("heat_on", lines(&g, &[], "", "M5", "M2")),
+            ("heat_on", lines(&g, &[], "(on)", "M5", "M2")),
+            ("heat_off", lines(&g, &[], "M3", "M3", "M2")),
+            ("header", lines(&["G17"], &[], "M3", "M5", "M2")),
+            ("header", lines(&["( G21 G90 )"], &[], "M3", "M5", "M2")),
+            // after `;` is a comment: the header passes, the footer does not
+            (
+                "footer",
+                lines(&["G21 G90 ; G91"], &["G91"], "M3", "M5", "M2"),
+            ),
+            ("footer", lines(&g, &["G91"], "M3", "M5", "M2")),
+            ("header", lines(&["G21 G90 M2"], &[], "M3", "M5", "M2")),
+            (
+                "header",
+                lines(&["G21 G90 S{power}"], &[], "M3", "M5", "M2"),
+            ),
+            (
+                "header",
+                lines(&["G21 G90 G64P[0.01]"], &[], "M3", "M5", "M2"),
+            ),
+            ("footer", lines(&g, &["#<_park> = 1"], "M3", "M5", "M2")),
+            ("end", lines(&g, &[], "M3", "M5", "M5")),
+            ("end", lines(&g, &[], "M3", "M5", " ")),
+            (
+                "power",
+                Machine {
+                    power: 0.0004,
+                    ..m()
+                },
+            ),
+            (
+                "preheat_s",
+                Machine {
+                    preheat_s: 0.0004,
+                    ..m()
+                },
+            ),
+        ];
+        let cases: Vec<_> = cases.into_iter().chain(more).collect();
+        // spaces are optional between words; a heat without {power} needs no power
+        assert!(lines(&["G21G90"], &[], "M64 P0", "M65 P0", "M30")
+            .check()
+            .is_ok());
+        assert!(Machine {
+            power: 0.0,
+            ..lines(&g, &[], "M8", "M9", "M2")
+        }
+        .check()
+        .is_ok());
         for (field, machine) in cases {
             match machine.check() {
                 Err(PreCutError::InvalidParameter { name, .. }) => assert_eq!(name, field),

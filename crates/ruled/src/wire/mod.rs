@@ -12,7 +12,7 @@
 //! material), and the wire is the line through them, extended to both tower planes. With a
 //! kerf table, each side's kerf follows the wire's speed at that side.
 //!
-//! [`program`] writes a cut's G-code in a controller's dialect ([`Machine`]).
+//! [`program()`] writes a cut's G-code in a controller's dialect ([`Machine`]).
 
 /// Controller dialects and the built-in profiles.
 pub mod machine;
@@ -149,8 +149,9 @@ pub fn check(width: f64, p: &WireParams) -> Result<()> {
         return bad(
             "tower_distance",
             format!(
-                "{} is beyond any cutter ({MAX_TRAVEL_MM} mm at most)",
-                p.tower_distance
+                "{} ({} mm) is beyond any cutter ({MAX_TRAVEL_MM} mm at most)",
+                p.tower_distance,
+                mm(p.tower_distance)
             ),
         );
     }
@@ -192,15 +193,20 @@ pub fn check(width: f64, p: &WireParams) -> Result<()> {
         return bad(
             "speed",
             format!(
-                "{} must be within {MIN_SPEED_MM_PER_MIN}–{MAX_SPEED_MM_PER_MIN} mm/min",
-                p.speed
+                "{} ({} mm/min) must be within {MIN_SPEED_MM_PER_MIN}–{MAX_SPEED_MM_PER_MIN} mm/min",
+                p.speed,
+                mm(p.speed)
             ),
         );
     }
     if !(p.lead.is_finite() && p.lead >= 0.0 && mm(p.lead) <= MAX_TRAVEL_MM) {
         return bad(
             "lead",
-            format!("{} must be within 0–{MAX_TRAVEL_MM} mm", p.lead),
+            format!(
+                "{} ({} mm) must be within 0–{MAX_TRAVEL_MM} mm",
+                p.lead,
+                mm(p.lead)
+            ),
         );
     }
     if !(p.clearance.is_finite() && p.clearance > 0.0 && mm(p.clearance) <= MAX_TRAVEL_MM) {
@@ -249,9 +255,13 @@ pub fn check_fit(length: f64, height: f64, p: &WireParams, m: &Machine) -> Resul
         return Ok(());
     };
     let mm = p.mm_per_unit;
+    // the kerf's offset along the surface's normal moves the wire along the cut by up to
+    // half the kerf at the block's ends: beyond the lead when the lead is shorter
+    let kerf = p.kerf_table.iter().map(|r| r.1).fold(p.kerf, f64::max);
+    let reach = p.lead.max(kerf / 2.0);
     let along = (
-        (p.origin[0] - p.lead) * mm,
-        (p.origin[0] + length + p.lead) * mm,
+        (p.origin[0] - reach) * mm,
+        (p.origin[0] + length + reach) * mm,
     );
     let up = (p.origin[1] * mm, (p.origin[1] + height + p.clearance) * mm);
     for (k, need) in [along, up, along, up].into_iter().enumerate() {
@@ -297,18 +307,24 @@ pub fn paths(d: &DirectionCut, index: usize, floor: f64, p: &WireParams) -> Resu
     us.push(d.u.1 + p.lead);
     let mut out = Vec::new();
     for (leg, curve) in curves.iter().enumerate() {
-        let at = |u: f64, kerf: [f64; 2]| wire_step(d, curve, towers, floor, p, u, kerf);
+        // the lead-in and lead-out steps, first and last, are outside the block even at
+        // lead 0: there the cut surface continues as a cylinder, so the kerf's offset does
+        // not move the wire along the cut (into the foam, before the heat is on)
+        let lead = |i: usize| i == 0 || i + 1 == us.len();
+        let at = |i: usize, kerf: [f64; 2]| {
+            wire_step(d, curve, (towers, floor), p, (us[i], lead(i)), kerf)
+        };
         let k = p.kerf_at(p.speed);
-        let mut steps: Vec<WireStep> = us.iter().map(|&u| at(u, [k, k])).collect();
+        let mut steps: Vec<WireStep> = (0..us.len()).map(|i| at(i, [k, k])).collect();
         if !p.kerf_table.is_empty() {
             // each side's kerf at its own speed along the path at the set kerf (the
             // kerf's change moves the sides by a kerf's fraction of a step: its effect
             // on the speeds is of second order)
             let speeds = side_speeds(&steps, p.speed, p.mm_per_unit);
-            steps = us
-                .iter()
-                .zip(speeds)
-                .map(|(&u, v)| at(u, v.map(|v| p.kerf_at(v))))
+            steps = speeds
+                .into_iter()
+                .enumerate()
+                .map(|(i, v)| at(i, v.map(|v| p.kerf_at(v))))
                 .collect();
         }
         out.push(WirePath {
@@ -349,14 +365,14 @@ fn side_speeds(steps: &[WireStep], speed: f64, mm_per_unit: f64) -> Vec<[f64; 2]
         .collect()
 }
 
-/// The wire at `u` with kerfs `kerf` at the low- and high-`w` sides.
+/// The wire at `u` (`lead`: a lead-in or lead-out step, outside the block) with kerfs
+/// `kerf` at the low- and high-`w` sides; `towers` the towers' `w`, `floor` the block's.
 fn wire_step(
     d: &DirectionCut,
     curve: &geom::bspline::BSplineCurve<2>,
-    towers: (f64, f64),
-    floor: f64,
+    (towers, floor): ((f64, f64), f64),
     p: &WireParams,
-    u: f64,
+    (u, lead): (f64, bool),
     kerf: [f64; 2],
 ) -> WireStep {
     // z of the leg at (u, w)
@@ -369,7 +385,7 @@ fn wire_step(
     let point = |u: f64, w: f64, kerf: f64| -> Vector3<f64> {
         let uc = u.clamp(d.u.0, d.u.1);
         let (u0, u1) = ((uc - h).max(d.u.0), (uc + h).min(d.u.1));
-        let dz_du = if u < d.u.0 || u > d.u.1 {
+        let dz_du = if lead || u < d.u.0 || u > d.u.1 {
             0.0
         } else {
             (z(u1, w) - z(u0, w)) / (u1 - u0)

@@ -389,33 +389,32 @@ pub fn check_program(text: &str, m: &Machine) -> Result<()> {
     let mut pos = [0.0f64; 4];
     let mut inverse_time = false;
     for (i, line) in text.lines().enumerate() {
-        let code = strip_comments(line);
-        if code.trim() == "%" {
+        if line.trim() == "%" {
             continue;
         }
+        let ws = match words(line) {
+            Ok(ws) => ws,
+            Err(e) => return bad(i, e),
+        };
         let mut next = pos;
         let mut f = None;
         let mut cut = false;
-        for word in code.split_whitespace() {
-            let (letter, value) = word.split_at(1);
-            let Ok(v) = value.parse::<f64>() else {
-                return bad(i, format!("unreadable word {word}"));
-            };
+        for (letter, v) in ws {
             // a feed is not a coordinate: only finite
-            let bounded = letter == "F" || v.abs() <= MAX_COORDINATE_MM;
+            let bounded = letter == 'F' || v.abs() <= MAX_COORDINATE_MM;
             if !(v.is_finite() && bounded) {
                 return bad(
                     i,
-                    format!("{word} is not a finite number within ±{MAX_COORDINATE_MM} mm"),
+                    format!("{letter}{v} is not a finite number within ±{MAX_COORDINATE_MM} mm"),
                 );
             }
-            let axis = m.axes.iter().position(|a| letter.starts_with(*a));
+            let axis = m.axes.iter().position(|&a| a == letter);
             match (letter, axis) {
                 (_, Some(k)) => next[k] = v,
-                ("G", _) if v == 93.0 => inverse_time = true,
-                ("G", _) if v == 94.0 => inverse_time = false,
-                ("G", _) if v == 1.0 => cut = true,
-                ("F", _) => f = Some(v),
+                ('G', _) if v == 93.0 => inverse_time = true,
+                ('G', _) if v == 94.0 => inverse_time = false,
+                ('G', _) if v == 1.0 => cut = true,
+                ('F', _) => f = Some(v),
                 _ => {}
             }
         }
@@ -451,20 +450,48 @@ pub fn check_program(text: &str, m: &Machine) -> Result<()> {
     Ok(())
 }
 
-/// A line without its `( )` and `;` comments.
-fn strip_comments(line: &str) -> String {
-    let mut out = String::new();
+/// The words of a line: comments `( )` (closed, not nested) and `;` dropped, then letters
+/// each followed by a plain decimal number, spaces anywhere (`G21G90` and `G21 G90` read
+/// alike). Letters come back upper case.
+///
+/// # Errors
+/// What cannot be read: a comment left open or nested, a character that is not a letter
+/// where a word begins (`#`, `[`, `<`: parameters and expressions), a letter without its
+/// number.
+pub fn words(line: &str) -> std::result::Result<Vec<(char, f64)>, String> {
+    let mut code = String::new();
     let mut open = false;
     for c in line.chars() {
         match c {
-            ';' if !open => break,
+            '(' if open => return Err("a comment inside a comment".into()),
             '(' => open = true,
+            ')' if !open => return Err("`)` without `(`".into()),
             ')' => open = false,
-            c if !open => out.push(c),
+            ';' if !open => break,
+            c if !open && !c.is_whitespace() => code.push(c),
             _ => {}
         }
     }
-    out
+    if open {
+        return Err("a comment without `)`".into());
+    }
+    let mut out = Vec::new();
+    let mut rest = code.as_str();
+    while let Some(letter) = rest.chars().next() {
+        if !letter.is_ascii_alphabetic() {
+            return Err(format!("{letter:?} where a word's letter belongs"));
+        }
+        let body = &rest[1..];
+        let end = body
+            .find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+')))
+            .unwrap_or(body.len());
+        let value: f64 = body[..end]
+            .parse()
+            .map_err(|_| format!("{letter} without a number"))?;
+        out.push((letter.to_ascii_uppercase(), value));
+        rest = &body[end..];
+    }
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -509,5 +536,12 @@ mod tests {
         assert_eq!(comment("a (b) é"), "(a [b] _)");
         assert_eq!(min_move_mm(4), 0.05);
         assert_eq!(min_move_mm(2), 0.5);
+        assert_eq!(
+            words("g21G90 (c) X-1.5;rest").unwrap(),
+            vec![('G', 21.0), ('G', 90.0), ('X', -1.5)]
+        );
+        for bad in ["#<_a> = 1", "G64 P[1]", "(a (b))", "X", "(open"] {
+            assert!(words(bad).is_err(), "{bad}");
+        }
     }
 }
