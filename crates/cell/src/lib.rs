@@ -1,0 +1,39 @@
+//! # cell — the robot cell of the hot blade
+//!
+//! The robots that hold the blade's ends (and, in a three-robot cell, the one that carries
+//! the block) are 6-axis arms with an ortho-parallel base and a spherical wrist. This crate
+//! gives their kinematics in the closed form of Brandstötter, Angerer and Hofbaur (2014),
+//! "OPW":
+//!
+//! - [`model`]: OPW parameters and joint limits; built-in ABB IRB 1600-6/1.45,
+//!   IRB 2600-12/1.65 and IRB 4600-60/2.05.
+//! - [`kinematics`]: forward kinematics; every inverse solution within the limits, verified
+//!   by forward kinematics; the solution nearest a previous one; margins to the limits.
+//! - [`conf`]: ABB configuration data (`cf1`, `cf4`, `cf6`, `cfx`) of a solution.
+//!
+//! Like the other algorithm crates it does no I/O. Lengths are millimetres, angles radians.
+//!
+//! ```
+//! use cell::model::RobotModel;
+//! use cell::kinematics::{forward, inverse, nearest};
+//! use cell::conf::conf;
+//!
+//! let robot = RobotModel::irb1600_6_145();
+//! let joints = [0.3, 0.2, -0.4, 0.5, 0.6, -0.7];
+//! let flange = forward(&robot, &joints).unwrap();
+//! let solutions = inverse(&robot, &flange, None).unwrap();
+//! let back = nearest(&solutions, &joints).unwrap();
+//! assert!(back.iter().zip(&joints).all(|(a, b)| (a - b).abs() < 1e-9));
+//! assert_eq!(conf(&robot, &back).cfx, 0);
+//! ```
+
+/// ABB configuration data of a joint solution.
+pub mod conf;
+/// Errors of the robot cell.
+pub mod error;
+/// Forward and inverse kinematics, joint choice, limit margins.
+pub mod kinematics;
+/// Robot models: OPW parameters, joint limits, built-in ABB arms.
+pub mod model;
+
+pub use error::{CellError, Result};
