@@ -10,6 +10,8 @@
 //! - [`kinematics`]: forward kinematics; every inverse solution within the limits, verified
 //!   by forward kinematics; the solution nearest a previous one; margins to the limits.
 //! - [`conf`]: ABB configuration data (`cf1`, `cf4`, `cf6`, `cfx`) of a solution.
+//! - [`plan`]: a robot's sweep of tool poses solved in order, continuous from a start
+//!   posture, with every pose out of reach, configuration change and joint jump flagged.
 //!
 //! Like the other algorithm crates it does no I/O. Lengths are millimetres, angles radians.
 //!
@@ -35,5 +37,7 @@ pub mod error;
 pub mod kinematics;
 /// Robot models: OPW parameters, joint limits, built-in ABB arms.
 pub mod model;
+/// Joint solutions along a robot's sweep of tool poses, with flags.
+pub mod plan;
 
 pub use error::{CellError, Result};

@@ -357,7 +357,21 @@ impl Machine {
                 header.extend(ws);
             }
         }
-        if words_of(&self.heat_on) == words_of(&self.heat_off) {
+        // the usual outputs' on and off codes the wrong way round: spindle M3/M4 and M5,
+        // coolant M7/M8 and M9, digital output M62/M64 and M63/M65
+        let (on, off) = (words_of(&self.heat_on), words_of(&self.heat_off));
+        let has = |ws: &[(char, f64)], codes: &[f64]| codes.iter().any(|&c| ws.contains(&('M', c)));
+        let (on_codes, off_codes) = (&[3.0, 4.0, 7.0, 8.0, 62.0, 64.0], &[5.0, 9.0, 63.0, 65.0]);
+        if has(&on, off_codes) || has(&off, on_codes) {
+            return bad(
+                "heat_on",
+                format!(
+                    "heat_on {:?} and heat_off {:?} look swapped: M3/M4/M7/M8/M62/M64 switch on, M5/M9/M63/M65 off",
+                    self.heat_on, self.heat_off
+                ),
+            );
+        }
+        if on == off {
             return bad(
                 "heat_off",
                 format!("{:?} must differ from heat_on", self.heat_off),
@@ -533,7 +547,9 @@ mod tests {
         let more = [
             ("heat_on", lines(&g, &[], "", "M5", "M2")),
             ("heat_on", lines(&g, &[], "(on)", "M5", "M2")),
-            ("heat_off", lines(&g, &[], "M3", "M3", "M2")),
+            ("heat_off", lines(&g, &[], "M100 P1", "M100 P1", "M2")),
+            ("heat_on", lines(&g, &[], "M5", "M3 S1000", "M2")),
+            ("heat_on", lines(&g, &[], "M64 P0", "M64 P1", "M2")),
             ("header", lines(&["G17"], &[], "M3", "M5", "M2")),
             ("header", lines(&["( G21 G90 )"], &[], "M3", "M5", "M2")),
             // after `;` is a comment: the header passes, the footer does not
