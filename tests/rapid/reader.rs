@@ -1,0 +1,210 @@
+//! An independent reader of the RAPID modules of a hot-blade cell: it knows RAPID's data
+//! formats and MultiMove's rules, not hotcut's writer. It reads the work objects, tools and
+//! robtargets, follows `main` through its procedure calls, and lists every move of the
+//! task with its TCP pose in the cell's world frame (mm), its `\ID` and whether it runs
+//! between `SyncMoveOn` and `SyncMoveOff`.
+
+use std::collections::HashMap;
+
+use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
+
+/// One move of a task.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Move {
+    /// `MoveL` (true) or `MoveJ`.
+    pub linear: bool,
+    /// The target's name.
+    pub target: String,
+    /// The TCP pose in the world frame: work object × target.
+    pub pose: Isometry3<f64>,
+    /// `\ID`, when given.
+    pub id: Option<u32>,
+    /// Between `SyncMoveOn` and `SyncMoveOff`.
+    pub synced: bool,
+    /// The robtarget's `[cf1, cf4, cf6, cfx]`.
+    pub conf: [i32; 4],
+}
+
+/// A task's program.
+#[derive(Debug, Clone, Default)]
+pub struct Task {
+    /// Every move, in execution order.
+    pub moves: Vec<Move>,
+    /// `SyncMoveOn` blocks, in order: the `\ID`s of their moves.
+    pub segments: Vec<Vec<u32>>,
+}
+
+/// The numbers of a RAPID aggregate `[[1,2,3],[4,5,6,7]]`, flattened.
+fn numbers(s: &str) -> Result<Vec<f64>, String> {
+    s.split(['[', ']', ','])
+        .map(str::trim)
+        .filter(|t| !t.is_empty() && !t.starts_with('"'))
+        .filter(|t| !matches!(*t, "TRUE" | "FALSE"))
+        .map(|t| t.parse::<f64>().map_err(|_| format!("not a number: {t}")))
+        .collect()
+}
+
+/// A pose from 7 numbers `x y z q1 q2 q3 q4` (`q1` the scalar), checking that the
+/// quaternion is a unit one to RAPID's precision.
+fn pose(v: &[f64]) -> Result<Isometry3<f64>, String> {
+    let q = Quaternion::new(v[3], v[4], v[5], v[6]);
+    if (q.norm() - 1.0).abs() > 1e-5 {
+        return Err(format!("quaternion {v:?} is not a unit one"));
+    }
+    Ok(Isometry3::from_parts(
+        Translation3::new(v[0], v[1], v[2]),
+        UnitQuaternion::from_quaternion(q),
+    ))
+}
+
+/// `NAME := value;` of a declaration line.
+fn declaration<'a>(line: &'a str, kind: &str) -> Option<(&'a str, &'a str)> {
+    let rest = line
+        .trim()
+        .strip_prefix("CONST ")
+        .or_else(|| line.trim().strip_prefix("PERS "))
+        .or_else(|| line.trim().strip_prefix("VAR "))?;
+    let rest = rest.strip_prefix(kind)?.trim_start();
+    let (name, value) = rest.split_once(":=")?;
+    Some((name.trim(), value.trim().trim_end_matches(';')))
+}
+
+/// Reads one module.
+///
+/// # Errors
+/// What does not read as the data and instructions of a blade program.
+pub fn read(text: &str) -> Result<Task, String> {
+    let mut wobj: HashMap<String, Isometry3<f64>> = HashMap::new();
+    let mut targets: HashMap<String, (Isometry3<f64>, [i32; 4])> = HashMap::new();
+    let mut procs: HashMap<String, Vec<String>> = HashMap::new();
+    let mut current: Option<(String, Vec<String>)> = None;
+    for raw in text.lines() {
+        let line = raw.split('!').next().unwrap_or("").trim();
+        if let Some((name, value)) = declaration(line, "wobjdata") {
+            // [robhold, ufprog, ufmec, uframe, oframe]: the object frame in the user frame
+            let v = numbers(value)?;
+            if v.len() != 14 {
+                return Err(format!("wobjdata {name}: {} numbers", v.len()));
+            }
+            wobj.insert(name.into(), pose(&v[..7])? * pose(&v[7..])?);
+        } else if let Some((name, value)) = declaration(line, "robtarget") {
+            let v = numbers(value)?;
+            if v.len() != 17 {
+                return Err(format!("robtarget {name}: {} numbers", v.len()));
+            }
+            let conf = [v[7] as i32, v[8] as i32, v[9] as i32, v[10] as i32];
+            targets.insert(name.into(), (pose(&v[..7])?, conf));
+        } else if let Some(name) = line.strip_prefix("PROC ") {
+            let name = name.split('(').next().unwrap_or("").trim().to_string();
+            current = Some((name, Vec::new()));
+        } else if line == "ENDPROC" {
+            if let Some((name, body)) = current.take() {
+                procs.insert(name, body);
+            }
+        } else if let Some((_, body)) = current.as_mut() {
+            if !line.is_empty() {
+                body.push(line.trim_end_matches(';').to_string());
+            }
+        }
+    }
+    let mut task = Task::default();
+    let mut synced = false;
+    let mut depth = 0;
+    run(
+        "main",
+        &procs,
+        &mut |line| step(line, &wobj, &targets, &mut synced, &mut task),
+        &mut depth,
+    )?;
+    if synced {
+        return Err("the program ends in synchronized motion".into());
+    }
+    Ok(task)
+}
+
+/// Runs procedure `name`, calling `each` on every instruction and following calls.
+fn run(
+    name: &str,
+    procs: &HashMap<String, Vec<String>>,
+    each: &mut dyn FnMut(&str) -> Result<(), String>,
+    depth: &mut usize,
+) -> Result<(), String> {
+    *depth += 1;
+    if *depth > 16 {
+        return Err("procedure calls nested too deep".into());
+    }
+    let body = procs.get(name).ok_or(format!("no PROC {name}"))?;
+    for line in body {
+        let word = line.split_whitespace().next().unwrap_or("");
+        if procs.contains_key(word) && !line.contains(' ') {
+            run(word, procs, each, depth)?;
+        } else {
+            each(line)?;
+        }
+    }
+    *depth -= 1;
+    Ok(())
+}
+
+/// One instruction.
+fn step(
+    line: &str,
+    wobj: &HashMap<String, Isometry3<f64>>,
+    targets: &HashMap<String, (Isometry3<f64>, [i32; 4])>,
+    synced: &mut bool,
+    task: &mut Task,
+) -> Result<(), String> {
+    let word = line.split_whitespace().next().unwrap_or("");
+    match word {
+        "SyncMoveOn" => {
+            if *synced {
+                return Err("SyncMoveOn inside synchronized motion".into());
+            }
+            *synced = true;
+            task.segments.push(Vec::new());
+        }
+        "SyncMoveOff" => {
+            if !*synced {
+                return Err("SyncMoveOff outside synchronized motion".into());
+            }
+            *synced = false;
+        }
+        "MoveL" | "MoveJ" => {
+            let args: Vec<&str> = line[word.len()..].split(',').map(str::trim).collect();
+            let (target, id) = match args[0].split_once("\\ID:=") {
+                Some((t, id)) => (
+                    t.trim(),
+                    Some(id.trim().parse::<u32>().map_err(|e| e.to_string())?),
+                ),
+                None => (args[0], None),
+            };
+            // MultiMove: every move in synchronized motion has an \ID, no other move has one
+            if id.is_some() != *synced {
+                return Err(format!(
+                    "{line}: \\ID must be given exactly in synchronized motion"
+                ));
+            }
+            let frame = args
+                .iter()
+                .find_map(|a| a.split_once("\\WObj:=").map(|(_, w)| w.trim()))
+                .ok_or(format!("{line}: no work object"))?;
+            let w = wobj.get(frame).ok_or(format!("no wobjdata {frame}"))?;
+            let (t, conf) = targets
+                .get(target)
+                .ok_or(format!("no robtarget {target}"))?;
+            if let (Some(id), Some(seg)) = (id, task.segments.last_mut()) {
+                seg.push(id);
+            }
+            task.moves.push(Move {
+                linear: word == "MoveL",
+                target: target.into(),
+                pose: w * t,
+                id,
+                synced: *synced,
+                conf: *conf,
+            });
+        }
+        _ => {}
+    }
+    Ok(())
+}
