@@ -1,18 +1,14 @@
-//! Forward and inverse kinematics of a [`RobotModel`](crate::model::RobotModel), flange poses in the robot's base
-//! frame, millimetres. The closed-form OPW solution comes from `rs-opw-kinematics` (default
-//! features off); this module adds what a cell needs around it: every solution within the
-//! joint limits, the other turns of axes that rotate more than a full turn, each solution
-//! verified by forward kinematics, the choice nearest the previous pose, and the margins
-//! to the limits.
+//! Forward and inverse kinematics of a [`RobotModel`](crate::model::RobotModel), flange
+//! poses in the robot's base frame, millimetres. Around the closed form of [`crate::opw`]
+//! it gives what a cell needs: every solution within the joint limits, the other turns of
+//! axes that rotate more than a full turn, each solution verified by forward kinematics,
+//! the choice nearest the previous pose, and the margins to the limits.
 
-use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
-use rs_opw_kinematics::glam::{DQuat, DVec3};
-use rs_opw_kinematics::kinematic_traits::{Kinematics, Pose};
-use rs_opw_kinematics::kinematics_impl::OPWKinematics;
-use rs_opw_kinematics::parameters::opw_kinematics::Parameters;
+use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 
 use crate::error::{CellError, Result};
 use crate::model::RobotModel;
+use crate::opw;
 
 /// Joint values of a 6-axis arm, radians.
 pub type Joints = [f64; 6];
@@ -22,38 +18,25 @@ pub const POSITION_TOLERANCE_MM: f64 = 1e-6;
 /// The same for the orientation, radians.
 pub const ANGLE_TOLERANCE_RAD: f64 = 1e-9;
 
-fn solver(model: &RobotModel) -> OPWKinematics {
+/// The paper's angles of maker joints.
+fn paper(model: &RobotModel, joints: &Joints) -> opw::Angles {
     let o = &model.opw;
-    OPWKinematics::new(Parameters {
-        a1: o.a1,
-        a2: o.a2,
-        b: o.b,
-        c1: o.c1,
-        c2: o.c2,
-        c3: o.c3,
-        c4: o.c4,
-        offsets: o.offsets,
-        sign_corrections: o.signs,
-        dof: 6,
+    std::array::from_fn(|i| joints[i] * f64::from(o.signs[i]) - o.offsets[i])
+}
+
+/// Maker joints of the paper's angles, each in (−π, π].
+fn maker(model: &RobotModel, q: &opw::Angles) -> Joints {
+    let o = &model.opw;
+    let tau = std::f64::consts::TAU;
+    std::array::from_fn(|i| {
+        let j = (q[i] + o.offsets[i]) * f64::from(o.signs[i]);
+        let r = j.rem_euclid(tau);
+        if r > std::f64::consts::PI {
+            r - tau
+        } else {
+            r
+        }
     })
-}
-
-fn to_pose(p: &Isometry3<f64>) -> Option<Pose> {
-    let t = p.translation.vector;
-    let q = p.rotation.quaternion();
-    Pose::try_from_parts(
-        DVec3::new(t.x, t.y, t.z),
-        DQuat::from_xyzw(q.i, q.j, q.k, q.w),
-    )
-    .ok()
-}
-
-fn from_pose(p: &Pose) -> Isometry3<f64> {
-    let (t, q) = (p.translation, p.rotation);
-    Isometry3::from_parts(
-        Translation3::new(t.x, t.y, t.z),
-        UnitQuaternion::from_quaternion(Quaternion::new(q.w, q.x, q.y, q.z)),
-    )
 }
 
 /// The flange pose of `joints` in the robot's base frame (mm).
@@ -64,10 +47,11 @@ pub fn forward(model: &RobotModel, joints: &Joints) -> Result<Isometry3<f64>> {
     if !joints.iter().all(|q| q.is_finite()) {
         return Err(CellError::NotFinite("joints"));
     }
-    solver(model)
-        .try_forward(joints)
-        .map(|p| from_pose(&p))
-        .map_err(|_| CellError::NotFinite("pose"))
+    let (r, p) = opw::forward(&model.opw, &paper(model, joints));
+    Ok(Isometry3::from_parts(
+        Translation3::from(p),
+        UnitQuaternion::from_rotation_matrix(&r),
+    ))
 }
 
 /// The distance of two poses: position (mm) and rotation angle (radians).
@@ -80,7 +64,8 @@ pub fn pose_distance(a: &Isometry3<f64>, b: &Isometry3<f64>) -> (f64, f64) {
 /// limits: each closed-form solution, with the other turns of axes whose range spans them,
 /// kept only when its forward kinematics lands on the pose (within
 /// [`POSITION_TOLERANCE_MM`] and [`ANGLE_TOLERANCE_RAD`]). With
-/// `previous`, a wrist singularity is resolved near it. Empty when out of reach.
+/// `previous`, a singularity (axis 5 at 0, the wrist centre on axis 1) is resolved at its
+/// values. Empty when out of reach.
 ///
 /// # Errors
 /// [`CellError::NotFinite`] for a pose or previous joints that are not finite.
@@ -91,17 +76,23 @@ pub fn inverse(
 ) -> Result<Vec<Joints>> {
     let finite = pose.translation.vector.iter().all(|v| v.is_finite())
         && pose.rotation.coords.iter().all(|v| v.is_finite());
-    let target = to_pose(pose)
-        .filter(|_| finite)
-        .ok_or(CellError::NotFinite("pose"))?;
+    if !finite {
+        return Err(CellError::NotFinite("pose"));
+    }
     if previous.is_some_and(|p| !p.iter().all(|q| q.is_finite())) {
         return Err(CellError::NotFinite("previous joints"));
     }
-    let kin = solver(model);
-    let raw = match previous {
-        Some(p) => kin.inverse_continuing(&target, p),
-        None => kin.inverse(&target),
-    };
+    let hint = previous.map_or([0.0; 6], |p| paper(model, p));
+    let raw: Vec<Joints> = opw::inverse(
+        &model.opw,
+        &pose.rotation.to_rotation_matrix(),
+        &pose.translation.vector,
+        &hint,
+    )
+    .iter()
+    .filter(|q| q.iter().all(|v| v.is_finite()))
+    .map(|q| maker(model, q))
+    .collect();
     let mut out: Vec<Joints> = Vec::new();
     for s in raw {
         for q in turns(model, &s) {

@@ -7,6 +7,7 @@
 //!
 //! - [`model`]: OPW parameters and joint limits; built-in ABB IRB 1600-6/1.45,
 //!   IRB 2600-12/1.65 and IRB 4600-60/2.05.
+//! - [`opw`]: the closed form, in the paper's angles (our own; see the module for why).
 //! - [`kinematics`]: forward kinematics; every inverse solution within the limits, verified
 //!   by forward kinematics; the solution nearest a previous one; margins to the limits.
 //! - [`conf`]: ABB configuration data (`cf1`, `cf4`, `cf6`, `cfx`) of a solution.
@@ -37,6 +38,8 @@ pub mod error;
 pub mod kinematics;
 /// Robot models: OPW parameters, joint limits, built-in ABB arms.
 pub mod model;
+/// The closed-form OPW kinematics in the paper's angles.
+pub mod opw;
 /// Joint solutions along a robot's sweep of tool poses, with flags.
 pub mod plan;
 

@@ -9,11 +9,18 @@ use cell::model::RobotModel;
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 
-fn models() -> [RobotModel; 3] {
+fn models() -> [RobotModel; 4] {
+    // and an arm with a lateral offset, axes turning the other way and another zero
+    let mut custom = RobotModel::irb2600_12_165();
+    custom.name = "custom".into();
+    custom.opw.b = 40.0;
+    custom.opw.signs = [-1, 1, 1, -1, 1, -1];
+    custom.opw.offsets[1] = 0.2;
     [
         RobotModel::irb1600_6_145(),
         RobotModel::irb2600_12_165(),
         RobotModel::irb4600_60_205(),
+        custom,
     ]
 }
 
@@ -60,7 +67,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
 
     #[test]
-    fn inverse_solutions_land_on_the_pose_and_hold_the_joints(u in unit(), which in 0usize..3) {
+    fn inverse_solutions_land_on_the_pose_and_hold_the_joints(u in unit(), which in 0usize..4) {
         let m = &models()[which];
         let q: Joints = std::array::from_fn(|i| {
             let (lo, hi) = m.limits[i];
@@ -108,7 +115,7 @@ fn the_zero_pose_is_the_datasheets() {
 
 #[test]
 fn poses_out_of_reach_have_no_solution() {
-    for m in models() {
+    for m in models().into_iter().take(3) {
         let far = Isometry3::translation(m.reach() + 200.0, 0.0, 800.0);
         assert!(inverse(&m, &far, None).unwrap().is_empty(), "{}", m.name);
     }
