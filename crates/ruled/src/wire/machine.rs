@@ -418,18 +418,8 @@ fn line_problem(line: &str, power: bool) -> Option<String> {
             "placeholders belong in heat_on only".into()
         });
     }
-    // comments must close and not nest (rs274ngc and GRBL reject both)
-    let mut open = false;
-    for c in line.chars() {
-        match c {
-            '(' if open => return Some("a comment inside a comment".into()),
-            '(' => open = true,
-            ')' if !open => return Some("`)` without `(`".into()),
-            ')' => open = false,
-            _ => {}
-        }
-    }
-    open.then(|| "a comment without `)`".into())
+    // comments and words: `program::words`, which the caller applies next
+    None
 }
 
 /// A number as short as it reads exactly to 3 decimals: `1000`, `2.5`.
