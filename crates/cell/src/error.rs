@@ -15,6 +15,9 @@ pub enum CellError {
         /// Why it is invalid.
         reason: String,
     },
+    /// A blade pose or motion that cannot be held or planned.
+    #[error("{0}")]
+    Blade(String),
     /// Joint values or a pose that are not finite.
     #[error("{0} is not finite")]
     NotFinite(&'static str),

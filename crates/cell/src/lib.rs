@@ -11,6 +11,9 @@
 //! - [`kinematics`]: forward kinematics; every inverse solution within the limits, verified
 //!   by forward kinematics; the solution nearest a previous one; margins to the limits.
 //! - [`conf`]: ABB configuration data (`cf1`, `cf4`, `cf6`, `cfx`) of a solution.
+//! - [`blade`]: the blade between its two held ends, in its plane, interpolated, rebuilt.
+//! - [`fixture`]: the synchronized program of a cell that cuts blocks one at a time at a
+//!   fixture — descend, cut, retreat, rise, travel — with both robots' joints.
 //! - [`plan`]: a robot's sweep of tool poses solved in order, continuous from a start
 //!   posture, with every pose out of reach, configuration change and joint jump flagged.
 //!
@@ -30,10 +33,14 @@
 //! assert_eq!(conf(&robot, &back).cfx, 0);
 //! ```
 
+/// The hot blade between its held ends: poses, interpolation, shape.
+pub mod blade;
 /// ABB configuration data of a joint solution.
 pub mod conf;
 /// Errors of the robot cell.
 pub mod error;
+/// The whole program of a two-robot cell cutting blocks one at a time at a fixture.
+pub mod fixture;
 /// Forward and inverse kinematics, joint choice, limit margins.
 pub mod kinematics;
 /// Robot models: OPW parameters, joint limits, built-in ABB arms.

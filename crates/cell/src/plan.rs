@@ -1,7 +1,10 @@
-//! Joint solutions along one robot's sweep of tool poses: every pose solved, the solution
-//! at each pose the nearest to the previous one (the first: the nearest to a start
-//! posture), and what a program must not contain flagged — a pose out of reach or past a
-//! joint limit, a change of arm or wrist configuration, a joint jump.
+//! Joint solutions along one robot's sweep of tool poses: every pose solved, and the
+//! straight move from each pose to the next followed in short pieces the way the
+//! controller moves (the tool linearly, the orientation by spherical interpolation,
+//! every joint continuous), so the solution at each pose is the one the robot arrives
+//! in. The first pose takes the solution nearest a start posture. What a program must not
+//! contain is flagged: a pose or a piece of a move out of reach or past a joint limit, a
+//! change of the arm configuration, a joint jump (a flip through a singularity).
 
 use nalgebra::Isometry3;
 use schemars::JsonSchema;
@@ -23,10 +26,14 @@ pub struct Holder {
     pub tool: Isometry3<f64>,
 }
 
-/// Largest change of one joint between two poses of a sweep that still counts as
-/// continuous, radians (30°): the targets of a sweep are close, so a larger step is a flip
-/// of the wrist or the arm.
-pub const MAX_STEP_RAD: f64 = std::f64::consts::FRAC_PI_6;
+/// Largest change of one joint over one short piece of a straight move (at most
+/// [`PIECE_MM`] and [`PIECE_RAD`]) that still counts as continuous, radians (10°): a
+/// larger one is a flip of the wrist or the arm through a singularity.
+pub const MAX_STEP_RAD: f64 = 10.0 * std::f64::consts::PI / 180.0;
+/// Longest piece a straight move is followed in, mm.
+pub const PIECE_MM: f64 = 10.0;
+/// Largest turn of a piece, radians (1°).
+pub const PIECE_RAD: f64 = std::f64::consts::PI / 180.0;
 
 /// The solution at one pose.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
@@ -80,9 +87,57 @@ impl Sweep {
     }
 }
 
+/// The solution a sweep starts with: among those with the wrist centre in front of axis 1
+/// and of the lower arm (`cfx` 0 or 1, the arm's working posture) if any, the nearest
+/// `start`.
+fn first(model: &RobotModel, solutions: &[Joints], start: &Joints) -> Option<Joints> {
+    let front: Vec<Joints> = solutions
+        .iter()
+        .filter(|q| conf(model, q).cfx < 2)
+        .copied()
+        .collect();
+    nearest(if front.is_empty() { solutions } else { &front }, start)
+}
+
+/// How a straight move from `a` to `b` (tool poses, cell frame) goes from joints `q`:
+/// the joints it arrives with, and its largest joint change over one piece (`None`: a
+/// piece is out of reach).
+fn follow(
+    holder: &Holder,
+    a: &Isometry3<f64>,
+    b: &Isometry3<f64>,
+    q: &Joints,
+) -> Result<Option<(Joints, usize, f64)>> {
+    let (d, turn) = crate::kinematics::pose_distance(a, b);
+    let n = (d / PIECE_MM).max(turn / PIECE_RAD).ceil().clamp(1.0, 100_000.0) as usize;
+    let to_base = holder.base.inverse();
+    let tool_inverse = holder.tool.inverse();
+    let (mut q, mut worst) = (*q, (0, 0.0));
+    for k in 1..=n {
+        let w = k as f64 / n as f64;
+        let p = Isometry3::from_parts(
+            a.translation.vector.lerp(&b.translation.vector, w).into(),
+            a.rotation.slerp(&b.rotation, w),
+        );
+        let solutions = inverse(&holder.model, &(to_base * p * tool_inverse), Some(&q))?;
+        let Some(next) = nearest(&solutions, &q) else {
+            return Ok(None);
+        };
+        for axis in 0..6 {
+            let step = (next[axis] - q[axis]).abs();
+            if step > worst.1 {
+                worst = (axis, step);
+            }
+        }
+        q = next;
+    }
+    Ok(Some((q, worst.0, worst.1)))
+}
+
 /// Solves the tool poses `tcp` (cell frame, mm) of one robot in order, starting from the
-/// solution nearest `start`. A pose out of reach is flagged and the next pose starts again
-/// from `start`.
+/// working-posture solution nearest `start` and following each straight move to the next pose. A pose
+/// out of reach is flagged and the next pose starts again from `start`; so is a move
+/// with a piece out of reach.
 ///
 /// # Errors
 /// [`CellError::InvalidModel`] for a bad robot model, [`CellError::NotFinite`] for a pose
@@ -99,9 +154,30 @@ pub fn sweep(holder: &Holder, tcp: &[Isometry3<f64>], start: &Joints) -> Result<
     let mut previous: Option<Joints> = None;
     for (i, t) in tcp.iter().enumerate() {
         let flange = to_flange * t * tool_inverse;
-        let hint = previous.unwrap_or(*start);
         let solutions = inverse(&holder.model, &flange, previous.as_ref())?;
-        let Some(q) = nearest(&solutions, &hint) else {
+        let followed = match previous {
+            Some(p) if !solutions.is_empty() => follow(holder, &tcp[i - 1], t, &p)?,
+            _ => None,
+        };
+        let chosen = match (previous, followed) {
+            (Some(_), Some((q, axis, step))) => {
+                if step > MAX_STEP_RAD {
+                    flags.push(SweepFlag::JointJump {
+                        pose: i,
+                        axis: axis + 1,
+                        degrees: step.to_degrees(),
+                    });
+                }
+                // the end of the followed move is one of the pose's solutions
+                nearest(&solutions, &q)
+            }
+            (Some(_), None) if !solutions.is_empty() => {
+                flags.push(SweepFlag::OutOfReach(i));
+                first(&holder.model, &solutions, start)
+            }
+            _ => first(&holder.model, &solutions, start),
+        };
+        let Some(q) = chosen else {
             flags.push(SweepFlag::OutOfReach(i));
             poses.push(PoseSolution {
                 solutions: 0,
@@ -116,16 +192,6 @@ pub fn sweep(holder: &Holder, tcp: &[Isometry3<f64>], start: &Joints) -> Result<
         if let Some(p) = previous {
             if conf(&holder.model, &p).cfx != c.cfx {
                 flags.push(SweepFlag::ConfigurationChange(i));
-            }
-            for axis in 0..6 {
-                let step = (q[axis] - p[axis]).abs();
-                if step > MAX_STEP_RAD {
-                    flags.push(SweepFlag::JointJump {
-                        pose: i,
-                        axis: axis + 1,
-                        degrees: step.to_degrees(),
-                    });
-                }
             }
         }
         let margin = margins(&holder.model, &q)

@@ -1,17 +1,21 @@
-//! ABB RAPID for a MultiMove cell in which two robots hold the ends of a hot blade
-//! ("Robotic Hot-Blade Cutting" §4): one module per robot task, synchronized moves through
-//! every block's targets, a work object per block.
+//! ABB RAPID for a MultiMove cell in which robots hold the ends of a hot blade ("Robotic
+//! Hot-Blade Cutting" §4): one module per robot task. The whole program runs in one
+//! synchronized block (`SyncMoveOn` … `SyncMoveOff`), so every move of every task carries
+//! the same `\ID` sequence and the blade's ends always move in step — through the cuts
+//! and through the moves between blocks.
 //!
-//! Both modules have the same structure, the same `\ID` numbers and the same sequence of
-//! `SyncMoveOn`/`SyncMoveOff`, which MultiMove requires. Positions are written in mm with
-//! 3 decimals, orientations as `[q1, q2, q3, q4] = [w, x, y, z]` with 7 decimals
-//! (renormalised first, as RAPID demands unit quaternions).
+//! The first task (the "master") also switches the blade's heat (`SetDO`, then a preheat
+//! `WaitTime`) and asks the operator to change blocks (`TPReadFK`); the other tasks wait
+//! for it at their next synchronized move. Positions are written in mm with 3 decimals,
+//! orientations as `[q1, q2, q3, q4] = [w, x, y, z]` with 7 decimals (renormalised, as
+//! RAPID demands unit quaternions), and each robtarget carries the configuration data of
+//! the joint solution it was planned with; the joints themselves follow in a comment.
 
 use std::io::Write;
 
 use crate::{fmt_float, Result};
 
-/// One robot target in a work object's frame.
+/// A frame: position (mm) and orientation `[w, x, y, z]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RapidTarget {
     /// Position in mm.
@@ -20,39 +24,68 @@ pub struct RapidTarget {
     pub rotation: [f64; 4],
 }
 
-/// One block's cut for one robot.
+/// A tool held by the robot (`tooldata` with `robhold = TRUE`).
 #[derive(Debug, Clone, PartialEq)]
-pub struct RapidBlock {
-    /// Block number (names `wBlock<n>`, `pB<n>_<k>`).
-    pub number: usize,
-    /// Work object user frame: origin (mm) and orientation `[w, x, y, z]` in the cell's
-    /// world frame.
+pub struct RapidTool {
+    /// Its name.
+    pub name: String,
+    /// The TCP in the flange's frame.
     pub frame: RapidTarget,
-    /// Where the blade waits before entering the block.
-    pub approach: RapidTarget,
-    /// The cutting targets, in order.
-    pub targets: Vec<RapidTarget>,
-    /// Where the blade goes after leaving the block.
-    pub retreat: RapidTarget,
+    /// Mass, kg.
+    pub mass: f64,
+    /// Centre of gravity in the flange's frame, mm.
+    pub cog: [f64; 3],
+}
+
+/// One move of the program.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RapidMove {
+    /// The robtarget's name (a RAPID identifier, unique in the module).
+    pub name: String,
+    /// Where the TCP goes, in the work object.
+    pub target: RapidTarget,
+    /// `[cf1, cf4, cf6, cfx]` of the planned joints.
+    pub conf: [i32; 4],
+    /// The planned joints, degrees (`None`: out of reach, written as a warning comment).
+    pub joints: Option<[f64; 6]>,
+    /// Cutting speed (else air speed).
+    pub cut: bool,
+    /// Stop exactly at the target (`fine`), else pass it within 1 mm (`z1`).
+    pub fine: bool,
+    /// The blade is heated during the move.
+    pub heat: bool,
+    /// Before the move, the operator removes a block (if any) and places one.
+    pub change: Option<(Option<usize>, usize)>,
 }
 
 /// What a module needs to know.
 #[derive(Debug, Clone, PartialEq)]
-pub struct RapidModule<'a> {
-    /// Module name, e.g. `HotBlade_T_ROB1`.
+pub struct RapidProgram<'a> {
+    /// Module name (also the program's identity on the controller).
     pub name: &'a str,
     /// Lines of the header comment.
     pub comment: &'a [String],
-    /// Names of the two robot tasks of the cell.
-    pub tasks: [&'a str; 2],
-    /// Tool name of this robot's blade holder.
-    pub tool: &'a str,
+    /// The tasks that move in synchronization, this one among them.
+    pub tasks: &'a [String],
+    /// Whether this task switches the heat and talks to the operator.
+    pub master: bool,
+    /// This robot's tool.
+    pub tool: &'a RapidTool,
+    /// The work object's name and user frame in the world frame.
+    pub wobj: (&'a str, RapidTarget),
+    /// The blocks that stand in the work object in turn, `(number, size)`, mm along its
+    /// axes from its origin (documentation for the operator and the replay).
+    pub blocks: &'a [(usize, [f64; 3])],
     /// Cutting speed, mm/s.
-    pub speed: f64,
-    /// Speed through the air (approach and retreat), mm/s.
+    pub cut_speed: f64,
+    /// Air speed, mm/s.
     pub air_speed: f64,
-    /// The blocks, in cutting order.
-    pub blocks: &'a [RapidBlock],
+    /// The heat's digital output.
+    pub heat_signal: &'a str,
+    /// Preheat wait, s.
+    pub preheat_s: f64,
+    /// The moves, in order.
+    pub moves: &'a [RapidMove],
 }
 
 fn num(x: f64, decimals: usize) -> String {
@@ -71,135 +104,213 @@ fn pose(t: &RapidTarget) -> String {
     )
 }
 
-fn robtarget(t: &RapidTarget) -> String {
-    let p = pose(t);
-    // drop the outer brackets of the pose: a robtarget is [trans, rot, robconf, extax]
+fn robtarget(m: &RapidMove) -> String {
+    let p = pose(&m.target);
+    let c = m.conf;
+    // a robtarget is [trans, rot, robconf, extax]: the pose without its outer brackets
     format!(
-        "[{},[0,0,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]]",
-        &p[1..p.len() - 1]
+        "[{},[{},{},{},{}],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]]",
+        &p[1..p.len() - 1],
+        c[0],
+        c[1],
+        c[2],
+        c[3]
     )
 }
 
-/// Writes the module of one robot.
+fn joints_comment(m: &RapidMove) -> String {
+    match m.joints {
+        Some(j) => {
+            let v: Vec<String> = j.iter().map(|a| num(*a, 6)).collect();
+            format!("! joints [{}]", v.join(","))
+        }
+        None => "! OUT OF REACH: no joint solution within the limits".into(),
+    }
+}
+
+fn declarations(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
+    let tasks: Vec<String> = p.tasks.iter().map(|t| format!("[\"{t}\"]")).collect();
+    line(format!(
+        "    PERS tasks tlBlade{{{}}} := [{}];",
+        p.tasks.len(),
+        tasks.join(",")
+    ));
+    for id in ["idStart", "idSyncOn", "idSyncOff", "idEnd"] {
+        line(format!("    VAR syncident {id};"));
+    }
+    if p.master {
+        line("    VAR num nAnswer;".into());
+    }
+    let t = p.tool;
+    line(format!(
+        "    PERS tooldata {} := [TRUE,{},[{},[{},{},{}],[1,0,0,0],0,0,0]];",
+        t.name,
+        pose(&t.frame),
+        num(t.mass, 3),
+        num(t.cog[0], 3),
+        num(t.cog[1], 3),
+        num(t.cog[2], 3)
+    ));
+    line(format!(
+        "    PERS wobjdata {} := [FALSE,TRUE,\"\",{},[[0,0,0],[1,0,0,0]]];",
+        p.wobj.0,
+        pose(&p.wobj.1)
+    ));
+    line(format!(
+        "    CONST speeddata vCut := [{},30,200,15];",
+        num(p.cut_speed, 3)
+    ));
+    line(format!(
+        "    CONST speeddata vAir := [{},60,200,15];",
+        num(p.air_speed, 3)
+    ));
+    for (b, size) in p.blocks {
+        line(format!(
+            "    CONST pos posBlock{b} := [{},{},{}]; ! block {b}'s size in {}",
+            num(size[0], 3),
+            num(size[1], 3),
+            num(size[2], 3),
+            p.wobj.0
+        ));
+    }
+    line(String::new());
+    for m in p.moves {
+        line(format!(
+            "    CONST robtarget {} := {}; {}",
+            m.name,
+            robtarget(m),
+            joints_comment(m)
+        ));
+    }
+}
+
+fn body(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
+    let wobj = format!("{} \\WObj:={}", p.tool.name, p.wobj.0);
+    line("    PROC main()".into());
+    line("        ConfJ \\On;".into());
+    line("        ConfL \\On;".into());
+    if p.master {
+        line(format!("        SetDO {}, 0;", p.heat_signal));
+    }
+    line("        WaitSyncTask idStart, tlBlade;".into());
+    line("        SyncMoveOn idSyncOn, tlBlade;".into());
+    let mut heat = false;
+    for (k, m) in p.moves.iter().enumerate() {
+        if p.master {
+            if m.heat != heat && !m.heat {
+                line(format!("        SetDO {}, 0;", p.heat_signal));
+            }
+            if let Some((remove, place)) = m.change {
+                line(format!(
+                    "        change_block {}, {place};",
+                    remove.unwrap_or(0)
+                ));
+            }
+            if m.heat != heat && m.heat {
+                line(format!("        SetDO {}, 1;", p.heat_signal));
+                line(format!("        WaitTime {};", num(p.preheat_s, 3)));
+            }
+        }
+        heat = m.heat;
+        line(format!(
+            "        MoveL {} \\ID:={}, {}, {}, {wobj};",
+            m.name,
+            10 * (k + 1),
+            if m.cut { "vCut" } else { "vAir" },
+            if m.fine { "fine" } else { "z1" }
+        ));
+    }
+    if p.master && heat {
+        line(format!("        SetDO {}, 0;", p.heat_signal));
+    }
+    line("        SyncMoveOff idSyncOff;".into());
+    line("        WaitSyncTask idEnd, tlBlade;".into());
+    line("    ENDPROC".into());
+    if p.master {
+        line(String::new());
+        line("    PROC change_block(num remove, num place)".into());
+        line("        ! the blade is cold and above the fixture: the operator changes blocks".into());
+        line("        TPErase;".into());
+        line("        IF remove > 0 TPWrite \"Remove block \" \\Num:=remove;".into());
+        line("        TPWrite \"Place block \" \\Num:=place;".into());
+        line(format!(
+            "        TPReadFK nAnswer, \"Block at the fixture ({}), blade clear?\", stEmpty, stEmpty, stEmpty, stEmpty, \"Go\";",
+            p.wobj.0
+        ));
+        line("    ENDPROC".into());
+    }
+}
+
+/// Writes the module of one robot task.
 ///
 /// ```
-/// use export::rapid::{write_module, RapidBlock, RapidModule, RapidTarget};
+/// use export::rapid::{write_module, RapidMove, RapidProgram, RapidTarget, RapidTool};
 /// let t = RapidTarget { position: [0.0, 100.0, 50.0], rotation: [1.0, 0.0, 0.0, 0.0] };
-/// let block = RapidBlock { number: 1, frame: t, approach: t, targets: vec![t, t], retreat: t };
-/// let m = RapidModule { name: "HotBlade_T_ROB1", comment: &[], tasks: ["T_ROB1", "T_ROB2"],
-///     tool: "tBladeEnd1", speed: 7.0, air_speed: 50.0, blocks: &[block] };
+/// let tool = RapidTool { name: "tBlade1".into(), frame: t, mass: 2.0, cog: [0.0, 0.0, 75.0] };
+/// let mv = |name: &str, heat| RapidMove { name: name.into(), target: t, conf: [0, 0, 0, 1],
+///     joints: Some([0.0; 6]), cut: heat, fine: true, heat, change: None };
+/// let moves = [mv("pB1_D", false), mv("pB1_C1", true)];
+/// let tasks = ["T_ROB1".to_string(), "T_ROB2".to_string()];
+/// let p = RapidProgram { name: "facade_T_ROB1", comment: &[], tasks: &tasks, master: true,
+///     tool: &tool, wobj: ("wFixture", t), blocks: &[(1, [600.0; 3])], cut_speed: 7.0,
+///     air_speed: 100.0, heat_signal: "doBladeHeat", preheat_s: 2.0, moves: &moves };
 /// let mut out = Vec::new();
-/// write_module(&m, &mut out).unwrap();
+/// write_module(&p, &mut out).unwrap();
 /// let text = String::from_utf8(out).unwrap();
-/// assert!(text.contains("SyncMoveOn idOn1, tlBlade;"));
-/// assert!(text.contains("MoveL pB1_2 \\ID:=30, vCut, fine, tBladeEnd1 \\WObj:=wBlock1;"));
+/// assert!(text.contains("SyncMoveOn idSyncOn, tlBlade;"));
+/// assert!(text.contains("SetDO doBladeHeat, 1;"));
+/// assert!(text.contains("MoveL pB1_C1 \\ID:=20, vCut, fine, tBlade1 \\WObj:=wFixture;"));
 /// ```
 ///
 /// # Errors
 /// I/O errors of `w`.
-pub fn write_module(m: &RapidModule<'_>, mut w: impl Write) -> Result<()> {
+pub fn write_module(p: &RapidProgram<'_>, mut w: impl Write) -> Result<()> {
     let mut s = String::new();
-    let mut line = |t: &str| {
-        s.push_str(t);
+    let mut line = |t: String| {
+        s.push_str(&t);
         s.push('\n');
     };
-    line(&format!("MODULE {}", m.name));
-    for c in m.comment {
-        line(&format!("    ! {c}"));
+    line(format!("MODULE {}", p.name));
+    for c in p.comment {
+        line(format!("    ! {c}"));
     }
-    line("");
-    line(&format!(
-        "    PERS tasks tlBlade{{2}} := [[\"{}\"],[\"{}\"]];",
-        m.tasks[0], m.tasks[1]
-    ));
-    line("    VAR syncident idStart;");
-    line("    VAR syncident idEnd;");
-    for b in m.blocks {
-        line(&format!("    VAR syncident idOn{};", b.number));
-        line(&format!("    VAR syncident idOff{};", b.number));
-    }
-    line(&format!(
-        "    PERS tooldata {} := [TRUE,[[0,0,0],[1,0,0,0]],[1,[0,0,1],[1,0,0,0],0,0,0]];",
-        m.tool
-    ));
-    line(&format!(
-        "    CONST speeddata vCut := [{},30,200,15];",
-        num(m.speed, 3)
-    ));
-    line(&format!(
-        "    CONST speeddata vAir := [{},60,200,15];",
-        num(m.air_speed, 3)
-    ));
-    for b in m.blocks {
-        line("");
-        line(&format!(
-            "    PERS wobjdata wBlock{} := [FALSE,TRUE,\"\",{},[[0,0,0],[1,0,0,0]]];",
-            b.number,
-            pose(&b.frame)
-        ));
-        line(&format!(
-            "    CONST robtarget pB{}_A := {};",
-            b.number,
-            robtarget(&b.approach)
-        ));
-        for (k, t) in b.targets.iter().enumerate() {
-            line(&format!(
-                "    CONST robtarget pB{}_{} := {};",
-                b.number,
-                k + 1,
-                robtarget(t)
-            ));
-        }
-        line(&format!(
-            "    CONST robtarget pB{}_R := {};",
-            b.number,
-            robtarget(&b.retreat)
-        ));
-    }
-    line("");
-    line("    PROC main()");
-    line("        ConfL \\Off;");
-    line("        WaitSyncTask idStart, tlBlade;");
-    for b in m.blocks {
-        line(&format!("        cut_block{};", b.number));
-    }
-    line("        WaitSyncTask idEnd, tlBlade;");
-    line("    ENDPROC");
-    for b in m.blocks {
-        let wobj = format!("{} \\WObj:=wBlock{}", m.tool, b.number);
-        line("");
-        line(&format!("    PROC cut_block{}()", b.number));
-        line(&format!(
-            "        MoveJ pB{}_A, vAir, fine, {wobj};",
-            b.number
-        ));
-        line(&format!("        SyncMoveOn idOn{}, tlBlade;", b.number));
-        let mut id = 10;
-        line(&format!(
-            "        MoveL pB{}_A \\ID:={id}, vAir, fine, {wobj};",
-            b.number
-        ));
-        let n = b.targets.len();
-        for k in 0..n {
-            id += 10;
-            let zone = if k + 1 == n || k == 0 { "fine" } else { "z1" };
-            line(&format!(
-                "        MoveL pB{}_{} \\ID:={id}, vCut, {zone}, {wobj};",
-                b.number,
-                k + 1
-            ));
-        }
-        id += 10;
-        line(&format!(
-            "        MoveL pB{}_R \\ID:={id}, vCut, fine, {wobj};",
-            b.number
-        ));
-        line(&format!("        SyncMoveOff idOff{};", b.number));
-        line("    ENDPROC");
-    }
-    line("ENDMODULE");
+    line(String::new());
+    declarations(p, &mut line);
+    line(String::new());
+    body(p, &mut line);
+    line("ENDMODULE".into());
     w.write_all(s.as_bytes())?;
     Ok(())
+}
+
+/// A RAPID identifier made of `text`: letters, digits and `_` (others become `_`), a
+/// letter first (`J` is put before anything else), at most `max` characters (a long name
+/// keeps its start and ends in a 6-digit hash of the whole, so two long names stay
+/// apart).
+///
+/// ```
+/// use export::rapid::identifier;
+/// assert_eq!(identifier("hot-blade-facade", 25), "hot_blade_facade");
+/// assert_eq!(identifier("3 blocks", 25), "J3_blocks");
+/// assert_eq!(identifier("a-very-long-job-name-that-goes-on", 25).len(), 25);
+/// ```
+pub fn identifier(text: &str, max: usize) -> String {
+    let mut id: String = text
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    if !id.starts_with(|c: char| c.is_ascii_alphabetic()) {
+        id.insert(0, 'J');
+    }
+    if id.len() > max {
+        // FNV-1a: stable across runs and platforms
+        let hash = text.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
+            (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+        });
+        id.truncate(max.saturating_sub(7));
+        id.push_str(&format!("_{:06}", hash % 1_000_000));
+    }
+    id
 }
 
 /// Writes the program file (`.pgf`) that loads one module.

@@ -1,17 +1,10 @@
-//! The robot files of a two-robot hot-blade cell from blade poses: `targets.json` (the
-//! [`Targets`](crate::robot::Targets) serialized), `targets.csv` (one row per pose and held
-//! end) and, per blade robot, an ABB RAPID module (MultiMove, a work object per block,
-//! targets in mm in the block's frame; see [`crate::rapid`]).
+//! The blade poses as robot data: `targets.json` (the [`Targets`](crate::robot::Targets)
+//! serialized) and `targets.csv` (one row per pose and held end). The RAPID programs are
+//! written by [`crate::rapid`] from the cell's plan.
 
-use std::io::Write;
-
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use serde::Serialize;
 
 use crate::csv::Table;
-use crate::fmt_float;
-use crate::rapid::{write_module, RapidBlock, RapidModule, RapidTarget};
-use crate::Result;
 
 /// Significant digits of `targets.json` (finer than a report: robot data).
 pub const TARGET_DIGITS: usize = 12;
@@ -98,94 +91,4 @@ pub fn targets_csv(targets: &Targets) -> String {
         }
     }
     t.finish()
-}
-
-fn uq(q: &[f64; 4]) -> UnitQuaternion<f64> {
-    UnitQuaternion::from_quaternion(Quaternion::new(q[0], q[1], q[2], q[3]))
-}
-
-fn wxyz(q: &UnitQuaternion<f64>) -> [f64; 4] {
-    let c = q.as_ref().coords;
-    let s = if c.w < 0.0 { -1.0 } else { 1.0 };
-    [s * c.w, s * c.x, s * c.y, s * c.z]
-}
-
-/// Writes the RAPID module `module` of blade robot `robot` (0: the blade's start, task
-/// `T_ROB1`; 1: its end, `T_ROB2`) for job `job`.
-///
-/// # Errors
-/// [`ExportError::Data`](crate::ExportError::Data) for a robot other than 0 or 1 or a unit
-/// that is not a positive number of millimetres; I/O errors of `w`.
-pub fn rapid(
-    t: &Targets,
-    motion: Motion,
-    job: &str,
-    robot: usize,
-    module: &str,
-    w: impl Write,
-) -> Result<()> {
-    if robot > 1 {
-        return Err(crate::ExportError::Data(format!(
-            "the cell has blade robots 0 and 1, not {robot}"
-        )));
-    }
-    if !(t.per_mm.is_finite() && t.per_mm > 0.0) {
-        return Err(crate::ExportError::Data(format!(
-            "units per millimetre must be positive, got {:?}",
-            t.per_mm
-        )));
-    }
-    let mm = 1.0 / t.per_mm;
-    let approach = motion.approach;
-    let blocks: Vec<RapidBlock> = t
-        .blocks
-        .iter()
-        .filter(|b| !b.poses.is_empty())
-        .map(|b| {
-            let frame_q = uq(&b.rotation);
-            let origin = Vector3::from(b.origin);
-            let local = |p: Vector3<f64>, q: &[f64; 4]| RapidTarget {
-                position: (frame_q.inverse() * (p - origin) * mm).into(),
-                rotation: wxyz(&(frame_q.inverse() * uq(q))),
-            };
-            let at = |k: usize, shift: f64| {
-                let pose = &b.poses[k];
-                let e = &pose.ends[robot];
-                local(
-                    Vector3::from(e.position) + Vector3::from(pose.plane_normal) * shift,
-                    &e.rotation,
-                )
-            };
-            let n = b.poses.len();
-            RapidBlock {
-                number: b.block,
-                frame: RapidTarget {
-                    position: (origin * mm).into(),
-                    rotation: b.rotation,
-                },
-                approach: at(0, -approach),
-                targets: (0..n).map(|k| at(k, 0.0)).collect(),
-                retreat: at(n - 1, approach),
-            }
-        })
-        .collect();
-    let comment = vec![
-        format!("hotcut job \"{job}\": hot-blade cut, robot task T_ROB{} holds blade end {} ({}).", robot + 1, robot + 1, if robot == 0 { "the blade's start" } else { "the blade's end" }),
-        "The cell's world frame is the job frame. Each block has a work object wBlock<n> whose user".into(),
-        "frame is the block's min corner with the block axes (along the cut, across it, up).".into(),
-        "Targets are in that frame, in mm; orientation [q1,q2,q3,q4] = [w,x,y,z]: tool x along the".into(),
-        "blade's tangent at the held end (from the blade's start to its end), tool z normal to the".into(),
-        "cutting plane. Calibrate the tool (the blade holder's TCP at the blade end) before running.".into(),
-        format!("Blade length {} {}; {} block(s); both tasks must run this program's twin.", fmt_float(t.blade_length, 6), t.unit_symbol, blocks.len()),
-    ];
-    let m = RapidModule {
-        name: module,
-        comment: &comment,
-        tasks: ["T_ROB1", "T_ROB2"],
-        tool: &format!("tBladeEnd{}", robot + 1),
-        speed: motion.speed * mm,
-        air_speed: (motion.speed * mm * 5.0).max(20.0),
-        blocks: &blocks,
-    };
-    write_module(&m, w)
 }

@@ -14,7 +14,7 @@ use nalgebra::Vector3;
 
 use crate::error::{HotcutError, JobError};
 use crate::spec::{defaults, BladeSpec, BlockSpec, CuttingSpec, OutputSpec, SurfaceSpec};
-use crate::spec::{Tolerance, Units, WireSpec};
+use crate::spec::{CellSpec, Tolerance, Units, WireSpec};
 
 /// The job's blade, or the default blade (1000 mm, 0.011 /mm, 2 inflections) converted to
 /// `units`.
@@ -55,6 +55,10 @@ pub struct Context {
     pub blade: BladeLimits,
     /// The hot-wire machine, as written.
     pub wire: Option<WireSpec>,
+    /// The robot cell, as written.
+    pub cell: Option<CellSpec>,
+    /// Whether the job writes robot files (`RobotTargets` or `Rapid`).
+    pub robot_files: bool,
     /// Cutting direction, sections and curve, as written.
     pub cutting: CuttingSpec,
     /// Unit cutting direction (the curve's chord when the job gives a curve).
@@ -147,6 +151,8 @@ pub struct JobFields<'a> {
     pub blade: Option<&'a BladeSpec>,
     /// The hot-wire machine.
     pub wire: Option<&'a WireSpec>,
+    /// The robot cell.
+    pub cell: Option<&'a CellSpec>,
     /// Cutting direction, sections and curve.
     pub cutting: &'a CuttingSpec,
     /// Files to write.

@@ -18,7 +18,7 @@ use crate::fit_curves::FitCurves;
 use crate::hot_blade::HotBlade;
 use crate::pre_cut::PreCut;
 use crate::spec::{BladeSpec, BlockSpec, CuttingSpec, OutputSpec, SurfaceSpec, ToleranceSpec};
-use crate::spec::{Units, WireSpec};
+use crate::spec::{CellSpec, Units, WireSpec};
 use crate::task::{Name, Visit, VisitType};
 
 /// A hotcut job: what to cut, with which tool and constraints, which task to run and which
@@ -50,6 +50,10 @@ pub struct Job {
     /// The hot-wire machine (PreCut's `GCode` and `Csv` outputs need it).
     #[serde(default)]
     pub wire: Option<WireSpec>,
+    /// The robot cell of the hot blade (`HotBlade` and `FacadeSegmentation` robot files).
+    /// Default: the default cell (README, "The robot cell").
+    #[serde(default)]
+    pub cell: Option<CellSpec>,
     /// Cutting direction and number of sections. Default: `Cutting(direction: (1, 0, 0), sections: 26)`.
     #[serde(default)]
     pub cutting: CuttingSpec,

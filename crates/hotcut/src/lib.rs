@@ -50,6 +50,8 @@ pub mod pre_cut;
 pub mod progress;
 /// What reports share.
 pub mod report;
+/// The robot cell of the blade-posing tasks: `cell:` checked and resolved, the program planned.
+pub mod robot_cell;
 /// Running a job and writing its outputs as a whole.
 pub mod run;
 /// Job-file types shared by every task (units, surface, block, blade, outputs, ...).

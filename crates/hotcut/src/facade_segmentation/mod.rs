@@ -44,6 +44,7 @@ use crate::error::{JobError, Result};
 use crate::limits::{blocks_spanned, section_cost, Estimate};
 use crate::progress::Progress;
 use crate::report::SurfaceInfo;
+use crate::robot_cell::{self, CellPlan};
 use crate::spec::defaults::{APPROACH_MM, BLADE_SPEED_MM_PER_S};
 use crate::spec::{keep_length, FitConstraintSpec, OutputKind, OutputSpec};
 use crate::task::{Output, Task};
@@ -186,6 +187,8 @@ pub struct SegmentationRun {
     pub posed: Vec<PosedPiece>,
     /// The surface as loaded.
     pub surface: SurfaceInfo,
+    /// The robot cell's plan (when the job writes robot files and a piece has poses).
+    pub cell: Option<CellPlan>,
 }
 
 const PTR: &str = "/task/FacadeSegmentation";
@@ -211,6 +214,7 @@ impl Task for FacadeSegmentation {
             errors.push(job.error(&format!("{PTR}/constraint"), "a piece's fits keep its parts' end points so that neighbouring pieces meet: use EndPoints or EndPointsAndLength"));
         }
         job.check_motion(PTR, self.speed, self.approach, errors);
+        robot_cell::check(job, errors);
         if job.blade.is_some_and(|b| b.max_inflections == 0) {
             errors.push(job.error("/blade/max_inflections", "FacadeSegmentation needs max_inflections ≥ 1: parts meet between inflections, never exactly on one, so a section with an inflection cannot be split into parts without any"));
         }
@@ -306,12 +310,20 @@ impl Task for FacadeSegmentation {
         } else {
             Vec::new()
         };
-        Ok(SegmentationRun {
+        let mut run = SegmentationRun {
             facade,
             segmentation,
             posed,
             surface: SurfaceInfo::of(job, surface),
-        })
+            cell: None,
+        };
+        if job.robot_files && run.posed.iter().any(|p| !p.parts.is_empty()) {
+            let (t, sizes) = outputs::targets(&run, params.blade.length, job.units)
+                .map_err(|e| job.fail(e.to_string()))?;
+            let m = &params.motion;
+            run.cell = Some(robot_cell::plan(job, &t, &sizes, m.speed, m.approach)?);
+        }
+        Ok(run)
     }
 
     fn nothing_to_cut(run: &SegmentationRun) -> Option<String> {
@@ -368,6 +380,7 @@ impl Task for FacadeSegmentation {
                 .iter()
                 .map(|s| s.points.clone())
                 .collect(),
+            cell: run.cell.as_ref().map(|c| c.report.clone()),
         }
     }
 

@@ -14,7 +14,7 @@ use super::report::SegmentationReport;
 use super::{FacadeSegmentation, SegmentationRun};
 use crate::output::robot;
 use crate::output::{block_material, Files};
-use crate::spec::OutputSpec;
+use crate::spec::{OutputSpec, Units};
 use crate::task::Finished;
 use export::robot::{Targets, TargetsBlock};
 
@@ -46,10 +46,15 @@ fn hex(c: [f32; 3]) -> String {
 
 type Done<'a> = Finished<'a, FacadeSegmentation>;
 
-/// The robot targets: one "block" per posed piece, its poses in cutting order.
-fn targets(done: &Done<'_>) -> export::Result<Targets> {
-    let run = done.run;
+/// The robot targets: one "block" per posed piece, its poses in cutting order; and the
+/// pieces' block sizes.
+pub(super) fn targets(
+    run: &SegmentationRun,
+    blade_length: f64,
+    units: Units,
+) -> export::Result<(Targets, Vec<[f64; 3]>)> {
     let mut blocks = Vec::new();
+    let mut sizes = Vec::new();
     for p in run.posed.iter().filter(|p| !p.parts.is_empty()) {
         let Some(piece) = run.segmentation.pieces.iter().find(|q| q.id == p.id) else {
             return Err(export::ExportError::Data(format!(
@@ -57,6 +62,7 @@ fn targets(done: &Done<'_>) -> export::Result<Targets> {
                 p.id
             )));
         };
+        sizes.push(piece.block.size);
         blocks.push(TargetsBlock {
             block: p.id,
             origin: piece.block.origin,
@@ -64,24 +70,13 @@ fn targets(done: &Done<'_>) -> export::Result<Targets> {
             poses: p.parts.iter().map(|q| robot::pose(&q.pose)).collect(),
         });
     }
-    Ok(robot::targets(
-        done.job.units,
-        done.params.blade.length,
-        blocks,
-    ))
+    Ok((robot::targets(units, blade_length, blocks), sizes))
 }
 
-/// `targets.json` and `targets.csv`, or the RAPID modules `FacadeSeg_T_ROB<n>.mod/.pgf`.
+/// `targets.json` and `targets.csv`, or the RAPID modules `<job>_T_ROB<n>.mod/.pgf`.
 pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    let t = targets(done)?;
-    robot::write(
-        files,
-        &t,
-        done.params.motion,
-        &done.job.name,
-        "FacadeSeg",
-        o.kind(),
-    )
+    let (t, _) = targets(done.run, done.params.blade.length, done.job.units)?;
+    robot::write(files, &t, done.run.cell.as_ref(), &done.job.name, o.kind())
 }
 
 /// `segmentation.svg`.

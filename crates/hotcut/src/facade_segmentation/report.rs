@@ -8,6 +8,7 @@ use serde::Serialize;
 
 use super::SegAlgorithmSpec;
 use crate::report::SurfaceInfo;
+use crate::robot_cell::report::CellReport;
 use crate::spec::{FitConstraintSpec, Units};
 
 /// The result of the `FacadeSegmentation` task.
@@ -29,6 +30,9 @@ pub struct SegmentationReport {
     pub pieces: Vec<PieceReport>,
     /// Seams between bands, as 3D polylines (one point per section).
     pub seams: Vec<Vec<[f64; 3]>>,
+    /// The robot cell: robots, holders, fixture, and per piece what the robots reach
+    /// (present when the job writes robot files).
+    pub cell: Option<CellReport>,
 }
 
 /// Settings of the run.

@@ -17,6 +17,7 @@ use crate::error::{HotcutError, JobError, Result};
 use crate::limits::{section_cost, Estimate};
 use crate::progress::Progress;
 use crate::report::SurfaceInfo;
+use crate::robot_cell::{self, CellPlan};
 use crate::spec::defaults::{APPROACH_MM, BLADE_SPEED_MM_PER_S};
 use crate::spec::{keep_length, Continuity, FitConstraintSpec, OutputKind, OutputSpec};
 use crate::task::{Output, Task};
@@ -110,6 +111,8 @@ pub struct HotBladeRun {
     pub cut: Rationalization,
     /// The surface as loaded.
     pub surface: SurfaceInfo,
+    /// The robot cell's plan (when the job writes robot files and a block has poses).
+    pub cell: Option<CellPlan>,
 }
 
 const PTR: &str = "/task/HotBlade";
@@ -154,6 +157,7 @@ impl Task for HotBlade {
             errors.push(job.error(&format!("{PTR}/constraint"), "HotBlade fits keep the sections' end points so that neighbouring blocks meet: use EndPoints or EndPointsAndLength"));
         }
         job.check_motion(PTR, self.speed, self.approach, errors);
+        robot_cell::check(job, errors);
         // the pipeline's own checks of these fields and of the cutting curve
         let pipeline = hotblade::Params {
             curve: job.cutting.curve.clone(),
@@ -274,9 +278,18 @@ impl Task for HotBlade {
                 },
                 other => job.fail(other.to_string()),
             })?;
+        let posed = cut.blocks.iter().any(|b| !b.sections.is_empty());
+        let cell = if job.robot_files && posed {
+            let (t, sizes) = outputs::targets(&cut, params.pipeline.blade.length, job.units);
+            let m = &params.motion;
+            Some(robot_cell::plan(job, &t, &sizes, m.speed, m.approach)?)
+        } else {
+            None
+        };
         Ok(HotBladeRun {
             cut,
             surface: SurfaceInfo::of(job, surface),
+            cell,
         })
     }
 
@@ -326,6 +339,7 @@ impl Task for HotBlade {
             summary: cut.summary.clone(),
             splits: cut.splits.clone(),
             blocks: cut.blocks.iter().map(|b| b.report.clone()).collect(),
+            cell: run.cell.as_ref().map(|c| c.report.clone()),
         }
     }
 

@@ -13,17 +13,15 @@ use nalgebra::Vector3;
 use super::HotBlade;
 use crate::output::robot;
 use crate::output::{block_material, Files};
-use crate::spec::OutputSpec;
+use crate::spec::{OutputSpec, Units};
 use crate::task::Finished;
 use export::robot::{Targets, TargetsBlock};
 
 type Done<'a> = Finished<'a, HotBlade>;
 
-/// The targets of a run: every block's poses in cutting order.
-fn targets(done: &Done<'_>) -> Targets {
-    let blocks = done
-        .run
-        .cut
+/// The targets of a run: every block's poses in cutting order, and the blocks' sizes.
+pub(super) fn targets(cut: &Rationalization, blade_length: f64, units: Units) -> (Targets, Vec<[f64; 3]>) {
+    let blocks = cut
         .blocks
         .iter()
         .map(|b| TargetsBlock {
@@ -33,21 +31,14 @@ fn targets(done: &Done<'_>) -> Targets {
             poses: b.sections.iter().map(|s| robot::pose(&s.pose)).collect(),
         })
         .collect();
-    let length = done.params.pipeline.blade.length;
-    robot::targets(done.job.units, length, blocks)
+    let sizes = cut.blocks.iter().map(|b| b.report.size).collect();
+    (robot::targets(units, blade_length, blocks), sizes)
 }
 
-/// `targets.json` and `targets.csv`, or the RAPID modules `HotBlade_T_ROB<n>.mod/.pgf`.
+/// `targets.json` and `targets.csv`, or the RAPID modules `<job>_T_ROB<n>.mod/.pgf`.
 pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    let t = targets(done);
-    robot::write(
-        files,
-        &t,
-        done.params.motion,
-        &done.job.name,
-        "HotBlade",
-        o.kind(),
-    )
+    let (t, _) = targets(&done.run.cut, done.params.pipeline.blade.length, done.job.units);
+    robot::write(files, &t, done.run.cell.as_ref(), &done.job.name, o.kind())
 }
 
 /// `surface_block_NNN.obj`: each block's rationalized surface.

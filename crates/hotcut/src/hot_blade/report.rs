@@ -8,6 +8,7 @@ use schemars::JsonSchema;
 use serde::Serialize;
 
 use crate::report::SurfaceInfo;
+use crate::robot_cell::report::CellReport;
 use crate::spec::{Continuity, FitConstraintSpec, Units};
 
 /// The result of the `HotBlade` task.
@@ -31,6 +32,9 @@ pub struct HotBladeReport {
     pub splits: Vec<SplitInfo>,
     /// One entry per block, by row then by position across the cut.
     pub blocks: Vec<BlockReport>,
+    /// The robot cell: robots, holders, fixture, and per block what the robots reach
+    /// (present when the job writes robot files).
+    pub cell: Option<CellReport>,
 }
 
 /// Settings of the run.

@@ -118,6 +118,7 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
         block: job.block.as_ref(),
         blade: job.blade.as_ref(),
         wire: job.wire.as_ref(),
+        cell: job.cell.as_ref(),
         cutting: &job.cutting,
         outputs: &job.outputs,
     };
@@ -138,6 +139,11 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
         warnings,
         block: job.block,
         wire: job.wire,
+        cell: job.cell,
+        robot_files: job
+            .outputs
+            .iter()
+            .any(|o| matches!(o, OutputSpec::RobotTargets { .. } | OutputSpec::Rapid)),
         cutting: job.cutting,
         direction,
         tolerance: job.tolerance.resolve(job.units),

@@ -1,13 +1,19 @@
-//! The robot files of every task that poses the blade, written with [`export::robot`]:
-//! `targets.json` and `targets.csv` (every pose in job coordinates), and per blade robot an
-//! ABB RAPID module and `.pgf`.
+//! The robot files of every task that poses the blade: `targets.json` and `targets.csv`
+//! (every pose in job coordinates, [`export::robot`]), and from the cell's plan
+//! ([`crate::robot_cell`]) one ABB RAPID module and `.pgf` per blade robot
+//! ([`export::rapid`]) with `cell.csv`, every move's joints for both robots.
 
+use cell::fixture::{Phase, Step};
 use elastica::sweep::BladePose;
-use export::rapid::write_pgf;
+use export::csv::Table;
+use export::rapid::{identifier, write_module, write_pgf, RapidMove, RapidProgram, RapidTarget, RapidTool};
 use export::robot::TARGET_DIGITS;
-use export::robot::{rapid, targets_csv, EndPose, Motion, Pose, Targets, TargetsBlock};
+use export::robot::{targets_csv, EndPose, Pose, Targets, TargetsBlock};
+use nalgebra::Isometry3;
 
 use super::Files;
+use crate::robot_cell::report::FrameReport;
+use crate::robot_cell::CellPlan;
 use crate::spec::{OutputKind, Units};
 
 /// The targets of `blocks` (poses in job units `units`) for a blade of `blade_length`.
@@ -34,18 +40,99 @@ pub fn pose(p: &BladePose) -> Pose {
     }
 }
 
-/// Writes the robot files of output `kind` for the poses in `t`: `targets.json` and
-/// `targets.csv` (`RobotTargets`), or one RAPID module and `.pgf` per blade robot named
-/// `<prefix>_T_ROB<n>` (`Rapid`); nothing for other kinds.
+fn target(f: &Isometry3<f64>) -> RapidTarget {
+    let r = FrameReport::of(f);
+    RapidTarget {
+        position: r.origin_mm,
+        rotation: r.rotation,
+    }
+}
+
+fn letter(p: Phase) -> &'static str {
+    match p {
+        Phase::Start => "S",
+        Phase::Descend => "D",
+        Phase::Cut => "C",
+        Phase::Retreat => "R",
+        Phase::Rise => "U",
+        Phase::Travel => "T",
+    }
+}
+
+/// The robtarget names of the steps: `pB<block>_<phase letter><n>`.
+fn names(steps: &[Step]) -> Vec<String> {
+    let mut count = std::collections::HashMap::new();
+    steps
+        .iter()
+        .map(|s| {
+            let n = count.entry((s.block, letter(s.phase))).or_insert(0);
+            *n += 1;
+            format!("pB{}_{}{}", s.block, letter(s.phase), n)
+        })
+        .collect()
+}
+
+/// Robot `r`'s moves.
+fn moves(plan: &CellPlan, r: usize) -> Vec<RapidMove> {
+    let steps = &plan.program.steps;
+    let names = names(steps);
+    steps
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            let sol = &plan.program.solutions[r][k];
+            let c = sol.conf;
+            let next = steps.get(k + 1);
+            let fine = next.is_none_or(|n| n.phase != s.phase || n.heat != s.heat || n.change.is_some())
+                || !matches!(s.phase, Phase::Cut | Phase::Travel);
+            RapidMove {
+                name: names[k].clone(),
+                target: target(&s.ends[r]),
+                conf: c.map_or([0; 4], |c| [c.cf1, c.cf4, c.cf6, c.cfx]),
+                joints: sol.joints,
+                cut: matches!(s.phase, Phase::Cut | Phase::Retreat),
+                fine,
+                heat: s.heat,
+                change: s.change,
+            }
+        })
+        .collect()
+}
+
+/// The header comment of robot `r`'s module.
+fn comment(plan: &CellPlan, job: &str, r: usize) -> Vec<String> {
+    let cell = &plan.cell;
+    let h = &cell.holders[r];
+    let robot = &cell.robots[h.robot];
+    let base = FrameReport::of(&robot.base);
+    let f = |v: &[f64]| v.iter().map(|x| export::fmt_float(*x, 3)).collect::<Vec<_>>().join(", ");
+    let mut c = vec![
+        format!("hotcut job \"{job}\": hot-blade cut. Task T_ROB{} ({}) holds the blade's {} end.", r + 1, robot.model.name, if r == 0 { "first" } else { "second" }),
+        format!("Its base frame in the world (set it in the controller): [{}] mm, q [{}].", f(&base.origin_mm), f(&base.rotation)),
+        "wFixture: where each block stands while it is cut (min corner; axes along the cut, across, up).".into(),
+        "The whole program is one synchronized motion: both ends move in step, the blade never stretches.".into(),
+        format!("Between blocks the blade retreats, rises {} mm clear of the block and waits, cold, for the block change.", export::fmt_float(cell.clearance, 1)),
+        format!("Heat: {} on before each approach (preheat {} s), off after each retreat.", cell.heat.0, export::fmt_float(cell.heat.1, 3)),
+        "Start with the blade mounted and both robots where the first move pB*_S1 can be reached in a straight line.".into(),
+    ];
+    if cell.assumed {
+        c.push("WARNING: the robots' placement and tool data are hotcut's default cell, not yours: check the base".into());
+        c.push("frames, tooldata and confdata on the controller before running (README, \"The robot cell\").".into());
+    }
+    c
+}
+
+/// Writes the robot files of output `kind`: `targets.json` and `targets.csv`
+/// (`RobotTargets`), or one RAPID module and `.pgf` per blade robot, named after the job,
+/// and `cell.csv` (`Rapid`); nothing for other kinds.
 ///
 /// # Errors
-/// Serialisation, formatting or file-system failures.
+/// Serialisation, formatting or file-system failures; `Rapid` without a plan.
 pub fn write(
     files: &mut Files,
     t: &Targets,
-    motion: Motion,
+    plan: Option<&CellPlan>,
     job: &str,
-    prefix: &str,
     kind: OutputKind,
 ) -> export::Result<()> {
     match kind {
@@ -54,14 +141,70 @@ pub fn write(
             files.text("targets.csv", targets_csv(t))
         }
         OutputKind::Rapid => {
-            for robot in 0..2 {
-                let module = format!("{prefix}_T_ROB{}", robot + 1);
+            let plan = plan.ok_or_else(|| export::ExportError::Data("no robot cell was planned".into()))?;
+            let tasks = ["T_ROB1".to_string(), "T_ROB2".to_string()];
+            let stem = identifier(job, 25);
+            for r in 0..2 {
+                let module = format!("{stem}_T_ROB{}", r + 1);
+                let h = &plan.cell.holders[r];
+                let tool = RapidTool {
+                    name: format!("tBlade{}", r + 1),
+                    frame: target(&h.tcp),
+                    mass: h.mass,
+                    cog: h.cog,
+                };
+                let moves = moves(plan, r);
+                let comment = comment(plan, job, r);
+                let program = RapidProgram {
+                    name: &module,
+                    comment: &comment,
+                    tasks: &tasks,
+                    master: r == 0,
+                    tool: &tool,
+                    wobj: ("wFixture", target(&plan.cell.fixture)),
+                    blocks: &plan.blocks,
+                    cut_speed: plan.cut_speed,
+                    air_speed: plan.cell.air_speed,
+                    heat_signal: &plan.cell.heat.0,
+                    preheat_s: plan.cell.heat.1,
+                    moves: &moves,
+                };
                 let mod_file = format!("{module}.mod");
-                files.add(&mod_file, |buf| rapid(t, motion, job, robot, &module, buf))?;
+                files.add(&mod_file, |buf| write_module(&program, buf))?;
                 files.add(format!("{module}.pgf"), |buf| write_pgf(&mod_file, buf))?;
             }
-            Ok(())
+            files.text("cell.csv", cell_csv(plan))
         }
         _ => Ok(()),
     }
+}
+
+/// `cell.csv`: one row per move and robot.
+fn cell_csv(plan: &CellPlan) -> String {
+    let mut t = Table::new("move,block,phase,heat,robot,solutions,j1,j2,j3,j4,j5,j6,cf1,cf4,cf6,cfx,margin_deg");
+    let f = Table::num;
+    for (k, s) in plan.program.steps.iter().enumerate() {
+        for r in 0..2 {
+            let sol = &plan.program.solutions[r][k];
+            let mut row = vec![
+                (k + 1).to_string(),
+                s.block.to_string(),
+                format!("{:?}", s.phase),
+                u8::from(s.heat).to_string(),
+                (r + 1).to_string(),
+                sol.solutions.to_string(),
+            ];
+            match sol.joints {
+                Some(j) => row.extend(j.iter().map(|v| f(*v))),
+                None => row.extend((0..6).map(|_| String::new())),
+            }
+            match sol.conf {
+                Some(c) => row.extend([c.cf1, c.cf4, c.cf6, c.cfx].map(|v| v.to_string())),
+                None => row.extend((0..4).map(|_| String::new())),
+            }
+            row.push(sol.margin.map(f).unwrap_or_default());
+            t.row(&row);
+        }
+    }
+    t.finish()
 }

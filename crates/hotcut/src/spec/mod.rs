@@ -1,4 +1,4 @@
-//! The job-file types every task shares: units, surface, block, blade, wire, cutting,
+//! The job-file types every task shares: units, surface, block, blade, wire, cell, cutting,
 //! tolerances, fit constraints and the output files. Raw serde types with
 //! `deny_unknown_fields`; their doc comments become the descriptions in
 //! `schemas/job.schema.json`. Each task's own fields live in its module.
@@ -9,8 +9,12 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+/// The robot cell of the hot blade: `Cell(..)`, its robots, holders, fixture and heat.
+mod cell;
 /// The hot-wire machine: `Wire(..)` and its controller profile.
 mod wire;
+
+pub use cell::{CarrierSpec, CellSpec, CustomModel, FrameSpec, HeatSpec, HolderSpec, ModelSpec, RobotSpec};
 
 pub use wire::{FluidNcAxes, MachineSpec, TravelSpec, WireSpec};
 

@@ -1,0 +1,181 @@
+//! The hot blade between its two held ends: a pose as the two tool frames, the same pose
+//! in the blade's own plane (chord, end angles), interpolation between two poses that
+//! keeps every intermediate blade an elastica of the blade's length, and the blade's shape
+//! rebuilt from its ends (the discrete elastica of [`elastica::discrete`]).
+//!
+//! A held end's tool frame has its x-axis along the blade's tangent (from the blade's
+//! first end to its second) and its z-axis along the cutting plane's normal, the
+//! convention of [`elastica::sweep`].
+
+use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+use serde::Serialize;
+
+use elastica::discrete::{discrete_elastica, DiscreteParams};
+
+use crate::error::{CellError, Result};
+
+/// The tool frames of the blade's two held ends (first end, second end).
+pub type BladePose = [Isometry3<f64>; 2];
+
+/// A blade pose in the blade's own plane: where its chord lies and how the ends leave it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanarPose {
+    /// Midpoint of the chord.
+    pub mid: Vector3<f64>,
+    /// Frame of the plane: x along the chord (first end to second), z the plane's normal.
+    pub frame: UnitQuaternion<f64>,
+    /// Distance between the ends.
+    pub chord: f64,
+    /// Tangent angle of each end against the chord, in the plane (radians, (−π, π]).
+    pub angles: [f64; 2],
+}
+
+/// Segments of the discrete elastica a blade shape is rebuilt with.
+pub const SHAPE_SEGMENTS: usize = 48;
+
+/// A blade's shape rebuilt from its ends.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BladeShape {
+    /// Points along the blade, first end to second.
+    pub points: Vec<[f64; 3]>,
+    /// Largest curvature of the discrete blade (turning angle over segment length).
+    pub max_curvature: f64,
+}
+
+impl BladeShape {
+    /// The lowest `z` of the blade.
+    pub fn lowest(&self) -> f64 {
+        self.points.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// The pose in the blade's plane. The plane's normal is the first end's tool z-axis made
+/// perpendicular to the chord.
+///
+/// # Errors
+/// [`CellError::Blade`] when the two ends coincide or the normal lies along the chord.
+pub fn planar(p: &BladePose) -> Result<PlanarPose> {
+    let (a, b) = (p[0].translation.vector, p[1].translation.vector);
+    let d = b - a;
+    let chord = d.norm();
+    if !(chord > 0.0) || !chord.is_finite() {
+        return Err(CellError::Blade("the blade's two ends coincide".into()));
+    }
+    let x = d / chord;
+    let n = p[0].rotation * Vector3::z();
+    let z = n - x * n.dot(&x);
+    if !(z.norm() > 1e-9) {
+        return Err(CellError::Blade(
+            "the cutting plane's normal lies along the blade's chord".into(),
+        ));
+    }
+    let z = z.normalize();
+    let y = z.cross(&x);
+    let frame = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(
+        Matrix3::from_columns(&[x, y, z]),
+    ));
+    let angle = |e: usize| {
+        let t = p[e].rotation * Vector3::x();
+        t.dot(&y).atan2(t.dot(&x))
+    };
+    Ok(PlanarPose {
+        mid: (a + b) * 0.5,
+        frame,
+        chord,
+        angles: [angle(0), angle(1)],
+    })
+}
+
+/// The tool frames of a planar pose.
+pub fn from_planar(p: &PlanarPose) -> BladePose {
+    let x = p.frame * Vector3::x();
+    let y = p.frame * Vector3::y();
+    let z = p.frame * Vector3::z();
+    let end = |e: usize, sign: f64| {
+        let t = x * p.angles[e].cos() + y * p.angles[e].sin();
+        let r = Matrix3::from_columns(&[t, z.cross(&t), z]);
+        Isometry3::from_parts(
+            Translation3::from(p.mid + x * (sign * 0.5 * p.chord)),
+            UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(r)),
+        )
+    };
+    [end(0, -1.0), end(1, 1.0)]
+}
+
+/// The pose a fraction `w ∈ [0, 1]` of the way from `a` to `b`: midpoint, chord and end
+/// angles linear, plane frame by spherical interpolation. Each end then moves on a smooth
+/// path, and the chord never exceeds the longer of the two.
+pub fn interpolate(a: &PlanarPose, b: &PlanarPose, w: f64) -> PlanarPose {
+    let lerp = |u: f64, v: f64| u + (v - u) * w;
+    PlanarPose {
+        mid: a.mid + (b.mid - a.mid) * w,
+        frame: a.frame.slerp(&b.frame, w),
+        chord: lerp(a.chord, b.chord),
+        angles: [lerp(a.angles[0], b.angles[0]), lerp(a.angles[1], b.angles[1])],
+    }
+}
+
+/// The shape of a blade of `length` held at `p`: the discrete elastica of
+/// [`SHAPE_SEGMENTS`] segments between the two ends with their tangents.
+///
+/// ```
+/// use cell::blade::{from_planar, shape, PlanarPose};
+/// use nalgebra::{UnitQuaternion, Vector3};
+/// // a blade of 800 held 700 apart, both ends leaving the chord at 20° upwards and back
+/// let a = 20f64.to_radians();
+/// let pose = from_planar(&PlanarPose { mid: Vector3::zeros(),
+///     frame: UnitQuaternion::from_euler_angles(std::f64::consts::FRAC_PI_2, 0.0, 0.0),
+///     chord: 700.0, angles: [a, -a] });
+/// let s = shape(&pose, 800.0).unwrap();
+/// assert!(s.points.iter().all(|p| p[2] >= -1e-9)); // an arch above the chord
+/// ```
+///
+/// # Errors
+/// [`CellError::Blade`] when the chord is not shorter than the blade or no elastica joins
+/// the ends.
+pub fn shape(p: &BladePose, length: f64) -> Result<BladeShape> {
+    let q = planar(p)?;
+    if !(q.chord < length) {
+        return Err(CellError::Blade(format!(
+            "the ends are {:.3} mm apart, not less than the blade's length {length:.3} mm",
+            q.chord
+        )));
+    }
+    let d = discrete_elastica(&DiscreteParams {
+        segments: SHAPE_SEGMENTS,
+        start: [-0.5 * q.chord, 0.0],
+        start_angle: q.angles[0],
+        end: [0.5 * q.chord, 0.0],
+        end_angle: q.angles[1],
+        length,
+        max_iterations: 200,
+    })
+    .map_err(|e| CellError::Blade(e.to_string()))?;
+    let (x, y) = (q.frame * Vector3::x(), q.frame * Vector3::y());
+    let points = d
+        .points
+        .iter()
+        .map(|v| (q.mid + x * v[0] + y * v[1]).into())
+        .collect();
+    let h = length / SHAPE_SEGMENTS as f64;
+    let mut turns: Vec<f64> = d.angles.windows(2).map(|w| (w[1] - w[0]) / h).collect();
+    // the end turns happen over half a segment
+    turns.push((d.angles[0] - q.angles[0]) / (0.5 * h));
+    turns.push((q.angles[1] - d.angles[SHAPE_SEGMENTS - 1]) / (0.5 * h));
+    let max_curvature = turns.iter().map(|k| k.abs()).fold(0.0, f64::max);
+    Ok(BladeShape {
+        points,
+        max_curvature,
+    })
+}
+
+/// The pose moved by `v` (both ends, orientation kept).
+pub fn translated(p: &BladePose, v: &Vector3<f64>) -> BladePose {
+    let t = Translation3::from(*v);
+    [t * p[0], t * p[1]]
+}
+
+/// The cutting plane's normal of a pose (the first end's tool z-axis).
+pub fn normal(p: &BladePose) -> Vector3<f64> {
+    p[0].rotation * Vector3::z()
+}

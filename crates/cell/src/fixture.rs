@@ -1,0 +1,475 @@
+//! The whole program of a two-robot cell that cuts blocks one at a time at a fixture: every
+//! synchronized move of the blade, with the heat and the operator's block changes, and
+//! both robots' joint solutions along it.
+//!
+//! For each block, in order:
+//! 1. *descend* in the first cutting plane, shifted back by the approach distance, from
+//!    the clearance height to the approach point (air, cold);
+//! 2. heat on, then *cut*: into the block and through every pose, and *retreat* by the
+//!    approach distance along the cutting plane's normal;
+//! 3. heat off, *rise* in the cutting plane until the whole blade is `clearance` above the
+//!    block;
+//! 4. the operator removes the block and places the next one; the blade *travels* at the
+//!    clearance height to above the next block's approach point.
+//!
+//! The blade keeps its shape while it descends, approaches, retreats and rises (both ends
+//! move by the same vector). While it travels it changes from one block's last pose to
+//! the next block's first through poses interpolated in the blade's plane
+//! ([`crate::blade::interpolate`]); each one is checked to hold an elastica of the blade's
+//! length within its curvature limit, and the height is raised until every one clears the
+//! blocks. Every move is synchronized, so both ends move on straight lines in step and the
+//! distance between them never exceeds the longer of the move's two poses.
+
+use nalgebra::{Isometry3, Vector3};
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use crate::blade::{self, BladePose};
+use crate::error::{CellError, Result};
+use crate::kinematics::Joints;
+use crate::plan::{sweep, Holder, PoseSolution, SweepFlag};
+
+/// The cell and how the blade moves in it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FixtureCell {
+    /// The robots holding the blade's first and second end.
+    pub holders: [Holder; 2],
+    /// Where a block's frame (its min corner, its axes) is while it is cut, in the cell's
+    /// frame (z up), mm.
+    pub fixture: Isometry3<f64>,
+    /// The blade's length, mm.
+    pub blade_length: f64,
+    /// The largest curvature the blade may take while it travels, 1/mm (`None`: any).
+    pub max_curvature: Option<f64>,
+    /// Approach and retreat distance along the cutting plane's normal, mm (> 0).
+    pub approach: f64,
+    /// Height of the whole blade above the blocks while it travels, mm (> 0).
+    pub clearance: f64,
+    /// Largest step of a traveling end, mm, and of a rotation or end angle, radians.
+    pub travel_step: (f64, f64),
+    /// The postures the robots start from (the first pose's solution is the one nearest).
+    pub start: [Joints; 2],
+}
+
+/// One block to cut.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockCut {
+    /// Its number.
+    pub block: usize,
+    /// Its size along its own axes, mm.
+    pub size: [f64; 3],
+    /// The blade poses through it in cutting order, in the block's frame, mm.
+    pub poses: Vec<BladePose>,
+}
+
+/// What a move of the program does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+pub enum Phase {
+    /// To above the first block, before anything else (from where the operator left it).
+    Start,
+    /// Down in the approach plane to the approach point.
+    Descend,
+    /// Through the block (heated): into it, then pose by pose.
+    Cut,
+    /// Out of the block along the cutting plane's normal (heated).
+    Retreat,
+    /// Up in the cutting plane to the clearance height.
+    Rise,
+    /// At the clearance height towards the next block.
+    Travel,
+}
+
+/// One synchronized move of both ends.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Step {
+    /// What it does.
+    pub phase: Phase,
+    /// The block it belongs to (the block it travels to).
+    pub block: usize,
+    /// Where it goes: both tool frames in the fixture's frame (a block's frame), mm.
+    pub ends: BladePose,
+    /// Whether the blade is heated during the move.
+    pub heat: bool,
+    /// Before the move, the operator changes blocks: (block to remove, block to place).
+    pub change: Option<(Option<usize>, usize)>,
+}
+
+/// One robot's summary for one block.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct RobotCheck {
+    /// Moves of the block with no joint solution within the limits.
+    pub out_of_reach: usize,
+    /// Moves that change the arm configuration (`cfx`).
+    pub configuration_changes: usize,
+    /// Moves in which a joint turns by more than 30°.
+    pub joint_jumps: usize,
+    /// Fewest joint solutions at a reached pose.
+    pub fewest_solutions: usize,
+    /// Least margin of a joint to its limit, degrees.
+    pub margin_deg: Option<f64>,
+}
+
+/// One block's summary.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct BlockCheck {
+    /// The block.
+    pub block: usize,
+    /// Moves from the travel to it through its rise.
+    pub moves: usize,
+    /// Its robots, first end first.
+    pub robots: [RobotCheck; 2],
+    /// Least height of the blade above the block while it travels to or from it, mm.
+    pub air_clearance: f64,
+}
+
+impl BlockCheck {
+    /// Every move reached, with no configuration change and no joint jump.
+    pub fn is_clean(&self) -> bool {
+        self.robots
+            .iter()
+            .all(|r| r.out_of_reach + r.configuration_changes + r.joint_jumps == 0)
+    }
+}
+
+/// The planned program.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CellProgram {
+    /// Every move, in order.
+    pub steps: Vec<Step>,
+    /// Each robot's solution at every step.
+    pub solutions: [Vec<PoseSolution>; 2],
+    /// Each robot's flags, by step.
+    pub flags: [Vec<SweepFlag>; 2],
+    /// Per block.
+    pub blocks: Vec<BlockCheck>,
+}
+
+fn check(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<()> {
+    let positive = |v: f64| v > 0.0 && v.is_finite();
+    let bad = |what: &str| Err(CellError::Blade(what.to_string()));
+    if !positive(cell.blade_length) {
+        return bad("the blade's length must be positive");
+    }
+    if !positive(cell.approach) || !positive(cell.clearance) {
+        return bad("the approach distance and the clearance must be positive");
+    }
+    if !positive(cell.travel_step.0) || !positive(cell.travel_step.1) {
+        return bad("the travel steps must be positive");
+    }
+    if blocks.iter().all(|b| b.poses.is_empty()) {
+        return bad("no block has a blade pose");
+    }
+    Ok(())
+}
+
+/// Top of block `b` at the fixture (highest corner), mm.
+fn top(cell: &FixtureCell, b: &BlockCut) -> f64 {
+    let mut z = f64::NEG_INFINITY;
+    for corner in 0..8 {
+        let c = Vector3::from_fn(|i, _| {
+            if corner & (1 << i) != 0 {
+                b.size[i]
+            } else {
+                0.0
+            }
+        });
+        z = z.max((cell.fixture * nalgebra::Point3::from(c)).z);
+    }
+    z
+}
+
+/// A pose in the cell's frame.
+fn world(cell: &FixtureCell, p: &BladePose) -> BladePose {
+    [cell.fixture * p[0], cell.fixture * p[1]]
+}
+
+/// A pose in the fixture's frame.
+fn local(cell: &FixtureCell, p: &BladePose) -> BladePose {
+    let inv = cell.fixture.inverse();
+    [inv * p[0], inv * p[1]]
+}
+
+/// The lowest point of the blade at world pose `p`.
+fn lowest(cell: &FixtureCell, p: &BladePose) -> Result<f64> {
+    Ok(blade::shape(p, cell.blade_length)?.lowest())
+}
+
+/// The unit direction that rises in the cutting plane of world pose `p`.
+fn rise_direction(p: &BladePose, block: usize) -> Result<Vector3<f64>> {
+    let n = blade::normal(p);
+    let up = Vector3::z() - n * n.z;
+    if up.norm() < 0.2 {
+        return Err(CellError::Blade(format!(
+            "block {block}: the cutting plane is within 12° of horizontal, so the blade cannot rise in it to leave the block"
+        )));
+    }
+    Ok(up.normalize())
+}
+
+/// World pose `p` moved up in its plane (along `u`) until its lowest point is at `z`
+/// (not moved when it already is above).
+fn lifted(cell: &FixtureCell, p: &BladePose, u: &Vector3<f64>, z: f64) -> Result<BladePose> {
+    let low = lowest(cell, p)?;
+    let h = ((z - low) / u.z).max(0.0);
+    Ok(blade::translated(p, &(u * h)))
+}
+
+/// The travel from world pose `a` to world pose `b`: the interpolated poses after `a`,
+/// `b` last.
+fn travel(cell: &FixtureCell, a: &BladePose, b: &BladePose) -> Result<Vec<BladePose>> {
+    let (pa, pb) = (blade::planar(a)?, blade::planar(b)?);
+    let far = (pa.mid - pb.mid).norm() + 0.5 * (pa.chord - pb.chord).abs();
+    let turn = pa
+        .frame
+        .angle_to(&pb.frame)
+        .max((pa.angles[0] - pb.angles[0]).abs())
+        .max((pa.angles[1] - pb.angles[1]).abs());
+    let n = (far / cell.travel_step.0)
+        .max(turn / cell.travel_step.1)
+        .ceil()
+        .clamp(1.0, 1000.0) as usize;
+    Ok((1..=n)
+        .map(|k| blade::from_planar(&blade::interpolate(&pa, &pb, k as f64 / n as f64)))
+        .collect())
+}
+
+/// A block's moves in and out, in the cell's frame.
+struct Ends {
+    /// The first pose moved back by the approach distance.
+    approach: BladePose,
+    /// The last pose moved on by the approach distance.
+    retreat: BladePose,
+    /// Rise directions in the first and the last cutting plane.
+    rise: [Vector3<f64>; 2],
+    /// Top of the block at the fixture.
+    top: f64,
+}
+
+fn ends_of(cell: &FixtureCell, b: &BlockCut) -> Result<Ends> {
+    let first = world(cell, &b.poses[0]);
+    let last = world(cell, &b.poses[b.poses.len() - 1]);
+    Ok(Ends {
+        approach: blade::translated(&first, &(blade::normal(&first) * -cell.approach)),
+        retreat: blade::translated(&last, &(blade::normal(&last) * cell.approach)),
+        rise: [
+            rise_direction(&first, b.block)?,
+            rise_direction(&last, b.block)?,
+        ],
+        top: top(cell, b),
+    })
+}
+
+/// The lowest point of the blade on a travel (the risen pose, then `path`), and whether
+/// every pose on the path holds a blade bent no more than its limit, or than the travel's
+/// two end poses (cutting shapes, checked by the fit; the discrete blade measures them a
+/// little above their closed form). `Err(curvature)` names the worst bend over the limit.
+fn travel_low(
+    cell: &FixtureCell,
+    risen: &BladePose,
+    path: &[BladePose],
+) -> Result<std::result::Result<f64, f64>> {
+    let first = blade::shape(risen, cell.blade_length)?;
+    let last = match path.last() {
+        Some(p) => blade::shape(p, cell.blade_length)?,
+        None => first.clone(),
+    };
+    let limit = cell
+        .max_curvature
+        .map_or(f64::INFINITY, |k| k.max(first.max_curvature).max(last.max_curvature) * (1.0 + 1e-6));
+    let (mut low, mut worst) = (first.lowest(), 0.0f64);
+    for p in path {
+        let s = blade::shape(p, cell.blade_length)?;
+        worst = worst.max(s.max_curvature);
+        low = low.min(s.lowest());
+    }
+    Ok(if worst > limit { Err(worst) } else { Ok(low) })
+}
+
+/// Turn of each end of a relaxed blade against its chord, radians: a gentle arch.
+const RELAXED_RAD: f64 = 0.2;
+
+/// Pose `p` relaxed to a gentle circular arch of the blade's length in the same plane,
+/// about the same midpoint, bulging the same way.
+fn relaxed(cell: &FixtureCell, p: &BladePose) -> Result<BladePose> {
+    let mut q = blade::planar(p)?;
+    let s = if q.angles[0] - q.angles[1] < 0.0 { -1.0 } else { 1.0 };
+    q.chord = cell.blade_length * RELAXED_RAD.sin() / RELAXED_RAD;
+    q.angles = [s * RELAXED_RAD, -s * RELAXED_RAD];
+    Ok(blade::from_planar(&q))
+}
+
+/// The travel from `a` to `b`, straight when no pose between bends the blade too much,
+/// else through both relaxed: the poses after `a`, and the lowest blade point.
+fn travel_path(cell: &FixtureCell, a: &BladePose, b: &BladePose) -> Result<(Vec<BladePose>, f64)> {
+    let direct = travel(cell, a, b)?;
+    let worst = match travel_low(cell, a, &direct)? {
+        Ok(low) => return Ok((direct, low)),
+        Err(k) => k,
+    };
+    let (ra, rb) = (relaxed(cell, a)?, relaxed(cell, b)?);
+    let mut path = travel(cell, a, &ra)?;
+    path.extend(travel(cell, &ra, &rb)?);
+    path.extend(travel(cell, &rb, b)?);
+    match travel_low(cell, a, &path)? {
+        Ok(low) => Ok((path, low)),
+        Err(k) => Err(CellError::Blade(format!(
+            "every travel between two blocks bends the blade too much: to curvature {:.6}/mm directly, {k:.6}/mm relaxed",
+            worst
+        ))),
+    }
+}
+
+/// From block `a`'s retreat up to the height where the whole blade is at `z` or above,
+/// across to above block `b`'s approach: the risen pose, the travel after it (ending
+/// above `b`'s approach), and the lowest blade point on the way.
+fn transition(
+    cell: &FixtureCell,
+    a: &Ends,
+    b: &Ends,
+    z: f64,
+) -> Result<(BladePose, Vec<BladePose>, f64)> {
+    let mut target = z;
+    // lifting both ends by dz lifts every pose between by dz: one correction is enough
+    // unless a pose was already above the height; a few more settle that case
+    for _ in 0..8 {
+        let risen = lifted(cell, &a.retreat, &a.rise[1], target)?;
+        let above = lifted(cell, &b.approach, &b.rise[0], target)?;
+        let (path, low) = travel_path(cell, &risen, &above)?;
+        if low >= z - 1e-6 {
+            return Ok((risen, path, low));
+        }
+        target += z - low;
+    }
+    Err(CellError::Blade(format!(
+        "no travel keeps the blade {:.3} mm above the blocks",
+        cell.clearance
+    )))
+}
+
+/// Plans the program of `blocks` (in cutting order; blocks without poses are skipped).
+///
+/// # Errors
+/// [`CellError::Blade`] for bad settings, a cutting plane too flat to rise in, or a
+/// travel pose that holds no admissible blade; the errors of [`sweep`].
+pub fn plan(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<CellProgram> {
+    check(cell, blocks)?;
+    let blocks: Vec<&BlockCut> = blocks.iter().filter(|b| !b.poses.is_empty()).collect();
+    let ends = blocks
+        .iter()
+        .map(|b| ends_of(cell, b))
+        .collect::<Result<Vec<_>>>()?;
+    let mut steps: Vec<Step> = Vec::new();
+    let mut clearances = vec![f64::INFINITY; blocks.len()];
+    let step = |phase, block: usize, ends: &BladePose, heat| Step {
+        phase,
+        block,
+        ends: local(cell, ends),
+        heat,
+        change: None,
+    };
+    for (i, (b, e)) in blocks.iter().zip(&ends).enumerate() {
+        if i == 0 {
+            let above = lifted(cell, &e.approach, &e.rise[0], e.top + cell.clearance)?;
+            clearances[0] = lowest(cell, &above)? - e.top;
+            steps.push(Step {
+                change: Some((None, b.block)),
+                ..step(Phase::Start, b.block, &above, false)
+            });
+        } else {
+            let (a, before) = (blocks[i - 1], &ends[i - 1]);
+            let tops = before.top.max(e.top);
+            let (risen, path, low) = transition(cell, before, e, tops + cell.clearance)?;
+            for k in [i - 1, i] {
+                clearances[k] = clearances[k].min(low - tops);
+            }
+            steps.push(step(Phase::Rise, a.block, &risen, false));
+            for (k, p) in path.iter().enumerate() {
+                steps.push(Step {
+                    change: (k == 0).then_some((Some(a.block), b.block)),
+                    ..step(Phase::Travel, b.block, p, false)
+                });
+            }
+        }
+        steps.push(step(Phase::Descend, b.block, &e.approach, false));
+        for p in &b.poses {
+            steps.push(Step {
+                phase: Phase::Cut,
+                block: b.block,
+                ends: *p,
+                heat: true,
+                change: None,
+            });
+        }
+        steps.push(step(Phase::Retreat, b.block, &e.retreat, true));
+    }
+    let (b, e) = (blocks[blocks.len() - 1], &ends[ends.len() - 1]);
+    let risen = lifted(cell, &e.retreat, &e.rise[1], e.top + cell.clearance)?;
+    let k = blocks.len() - 1;
+    clearances[k] = clearances[k].min(lowest(cell, &risen)? - e.top);
+    steps.push(step(Phase::Rise, b.block, &risen, false));
+    solve(cell, steps, &blocks, &clearances)
+}
+
+/// Both robots' joints along `steps`, and the per-block summary.
+fn solve(
+    cell: &FixtureCell,
+    steps: Vec<Step>,
+    blocks: &[&BlockCut],
+    clearances: &[f64],
+) -> Result<CellProgram> {
+    let mut solutions: [Vec<PoseSolution>; 2] = [Vec::new(), Vec::new()];
+    let mut flags: [Vec<SweepFlag>; 2] = [Vec::new(), Vec::new()];
+    for r in 0..2 {
+        let tcp: Vec<Isometry3<f64>> = steps.iter().map(|s| cell.fixture * s.ends[r]).collect();
+        let sw = sweep(&cell.holders[r], &tcp, &cell.start[r])?;
+        solutions[r] = sw.poses;
+        flags[r] = sw.flags;
+    }
+    let summary = blocks
+        .iter()
+        .zip(clearances)
+        .map(|(b, &air)| {
+            let idx: Vec<usize> = (0..steps.len())
+                .filter(|&i| steps[i].block == b.block)
+                .collect();
+            let robot = |r: usize| {
+                let mine = |i: usize| steps.get(i).is_some_and(|s| s.block == b.block);
+                let count = |f: &dyn Fn(&SweepFlag) -> Option<usize>| {
+                    flags[r].iter().filter_map(f).filter(|i| mine(*i)).count()
+                };
+                let reached = idx.iter().filter_map(|&i| solutions[r][i].margin.map(|m| (solutions[r][i].solutions, m)));
+                let (fewest, margin) = reached.fold((usize::MAX, None::<f64>), |(n, m), (s, g)| {
+                    (n.min(s), Some(m.map_or(g, |m| m.min(g))))
+                });
+                RobotCheck {
+                    out_of_reach: count(&|f| match f {
+                        SweepFlag::OutOfReach(i) => Some(*i),
+                        _ => None,
+                    }),
+                    configuration_changes: count(&|f| match f {
+                        SweepFlag::ConfigurationChange(i) => Some(*i),
+                        _ => None,
+                    }),
+                    joint_jumps: count(&|f| match f {
+                        SweepFlag::JointJump { pose, .. } => Some(*pose),
+                        _ => None,
+                    }),
+                    fewest_solutions: if fewest == usize::MAX { 0 } else { fewest },
+                    margin_deg: margin,
+                }
+            };
+            BlockCheck {
+                block: b.block,
+                moves: idx.len(),
+                robots: [robot(0), robot(1)],
+                air_clearance: air,
+            }
+        })
+        .collect();
+    Ok(CellProgram {
+        steps,
+        solutions,
+        flags,
+        blocks: summary,
+    })
+}

@@ -1,0 +1,170 @@
+//! The robot cell of the tasks that pose the hot blade (`HotBlade`, `FacadeSegmentation`):
+//! the job's `cell:` checked, resolved to millimetres (or the default cell), the whole
+//! program planned by [`cell::fixture`], and its report. Shared by both tasks, which call
+//! it with their blade poses.
+
+/// The report's `cell` section.
+pub mod report;
+/// The cell in millimetres, with its defaults.
+pub mod resolve;
+
+use cell::fixture::{plan as plan_program, BlockCut, CellProgram, FixtureCell};
+use export::robot::Targets;
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+
+use crate::context::{Context, JobFields};
+use crate::error::{HotcutError, JobError, Result};
+use report::CellReport;
+use resolve::{block_frame, defaults, Resolved};
+
+/// What the robot files are written from.
+#[derive(Debug, Clone)]
+pub struct CellPlan {
+    /// The cell.
+    pub cell: Resolved,
+    /// The planned program.
+    pub program: CellProgram,
+    /// Cutting speed, mm/s.
+    pub cut_speed: f64,
+    /// The blocks' sizes, mm, by block number, in cutting order.
+    pub blocks: Vec<(usize, [f64; 3])>,
+    /// The report's section.
+    pub report: CellReport,
+}
+
+fn is_identifier(s: &str) -> bool {
+    s.len() <= 32
+        && s.starts_with(|c: char| c.is_ascii_alphabetic())
+        && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// Checks the job's `cell:`.
+pub fn check(job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+    let Some(c) = job.cell else { return };
+    let mut err = |at: &str, m: String| errors.push(job.error(&format!("/cell{at}"), m));
+    let positive = |v: Option<f64>| v.is_none_or(|v| v > 0.0 && v.is_finite());
+    if !positive(c.air_speed) {
+        err("/air_speed", "the air speed must be a positive number".into());
+    }
+    if !positive(c.clearance) {
+        err("/clearance", "the clearance must be a positive number".into());
+    }
+    if !is_identifier(&c.heat.signal) {
+        err("/heat/signal", format!("{:?} is not a RAPID identifier (a letter, then letters, digits or _, at most 32)", c.heat.signal));
+    }
+    if !(0.0..=600.0).contains(&c.heat.preheat_s) {
+        err("/heat/preheat_s", format!("the preheat must be 0–600 s, got {}", c.heat.preheat_s));
+    }
+    if c.block_carrier.is_some() {
+        err("/block_carrier", "a robot carrying the block is not supported yet: leave block_carrier out, the blocks are cut at the fixture".into());
+    }
+    let finite = |f: &crate::spec::FrameSpec| {
+        [f.origin.0, f.origin.1, f.origin.2, f.rotation.0, f.rotation.1, f.rotation.2]
+            .iter()
+            .all(|v| v.is_finite())
+    };
+    if c.fixture.as_ref().is_some_and(|f| !finite(f)) {
+        err("/fixture", "the fixture's frame must be finite".into());
+    }
+    let robots = c.robots.as_ref().map_or(2, Vec::len);
+    if let Some(rs) = &c.robots {
+        if rs.len() < 2 || rs.len() > 3 {
+            err("/robots", format!("the cell needs 2 robots (3 with a block carrier), got {}", rs.len()));
+        }
+        for (i, r) in rs.iter().enumerate() {
+            if !finite(&r.base) {
+                err(&format!("/robots/{i}/base"), "the base frame must be finite".into());
+            }
+            if let Err(e) = resolve::model(&r.model, 1.0).check() {
+                err(&format!("/robots/{i}/model"), e.to_string());
+            }
+        }
+    }
+    if let Some(hs) = &c.blade_holders {
+        if hs.len() != 2 {
+            err("/blade_holders", format!("the blade has two ends: give 2 holders, got {}", hs.len()));
+        }
+        for (i, h) in hs.iter().enumerate() {
+            if h.robot >= robots {
+                err(&format!("/blade_holders/{i}/robot"), format!("robot {} does not exist (the cell has {robots})", h.robot));
+            }
+            if h.tcp.as_ref().is_some_and(|f| !finite(f)) {
+                err(&format!("/blade_holders/{i}/tcp"), "the TCP frame must be finite".into());
+            }
+            if !positive(h.mass) {
+                err(&format!("/blade_holders/{i}/mass"), "the mass must be a positive number of kg".into());
+            }
+        }
+        if hs.len() == 2 && hs[0].robot == hs[1].robot {
+            err("/blade_holders/1/robot", "one robot cannot hold both ends of the blade".into());
+        }
+    } else if c.robots.is_some() && robots < 2 {
+        err("/blade_holders", "give the holders of the blade's two ends".into());
+    }
+}
+
+fn isometry(p: [f64; 3], q: [f64; 4], mm: f64) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::from(Vector3::from(p) * mm),
+        UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3])),
+    )
+}
+
+/// The blocks of `t` in their own frames, mm, with their sizes.
+fn block_cuts(t: &Targets, sizes: &[[f64; 3]]) -> Vec<BlockCut> {
+    let mm = 1.0 / t.per_mm;
+    t.blocks
+        .iter()
+        .zip(sizes)
+        .map(|(b, size)| {
+            let to_block = block_frame(b, mm).inverse();
+            BlockCut {
+                block: b.block,
+                size: size.map(|v| v * mm),
+                poses: b
+                    .poses
+                    .iter()
+                    .map(|p| p.ends.map(|e| to_block * isometry(e.position, e.rotation, mm)))
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
+/// Plans the cell's program for the poses `t` (blocks of `sizes`, job units, in the
+/// order of `t.blocks`), cutting at `speed` with `approach` (job units).
+///
+/// # Errors
+/// A plan that cannot be made (named), or with `strict: true`, any flag.
+pub fn plan(job: &Context, t: &Targets, sizes: &[[f64; 3]], speed: f64, approach: f64) -> Result<CellPlan> {
+    let mm = 1.0 / t.per_mm;
+    let largest = sizes.iter().fold([0.0f64; 3], |m, s| [m[0].max(s[0]), m[1].max(s[1]), m[2].max(s[2])]).map(|v| v * mm);
+    let blade = t.blade_length * mm;
+    let cell = resolve::resolve(job.cell.as_ref(), t, blade, largest);
+    let fixture = FixtureCell {
+        holders: [cell.holder(0), cell.holder(1)],
+        fixture: cell.fixture,
+        blade_length: blade,
+        max_curvature: Some(job.blade.max_curvature / mm),
+        approach: approach * mm,
+        clearance: cell.clearance,
+        travel_step: (defaults::TRAVEL_STEP_MM, defaults::TRAVEL_TURN_DEG.to_radians()),
+        start: [defaults::START_DEG.map(f64::to_radians); 2],
+    };
+    let cuts = block_cuts(t, sizes);
+    let program = plan_program(&fixture, &cuts).map_err(|e| job.fail(format!("robot cell: {e}")))?;
+    let report = report::report(&cell, &program, speed * mm);
+    if cell.strict && !report.clean {
+        return Err(HotcutError::Task {
+            path: job.path.clone(),
+            message: format!("robot cell (strict): {}", report.problems().join("; ")),
+        });
+    }
+    Ok(CellPlan {
+        cut_speed: speed * mm,
+        blocks: cuts.iter().filter(|b| !b.poses.is_empty()).map(|b| (b.block, b.size)).collect(),
+        cell,
+        program,
+        report,
+    })
+}

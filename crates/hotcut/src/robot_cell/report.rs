@@ -1,0 +1,160 @@
+//! The report's `cell` section: the cell as planned (millimetres and degrees, whatever the
+//! job's units, so a replay can rebuild every robot) and, per block, what the robots
+//! reach.
+
+use cell::fixture::{BlockCheck, CellProgram};
+use nalgebra::Isometry3;
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use super::resolve::Resolved;
+
+/// A frame: origin (mm) and orientation `[w, x, y, z]`.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct FrameReport {
+    /// Origin, mm.
+    pub origin_mm: [f64; 3],
+    /// Orientation `[w, x, y, z]`.
+    pub rotation: [f64; 4],
+}
+
+impl FrameReport {
+    /// The report of an isometry.
+    pub fn of(f: &Isometry3<f64>) -> Self {
+        let q = f.rotation.as_ref().coords;
+        let s = if q.w < 0.0 { -1.0 } else { 1.0 };
+        FrameReport {
+            origin_mm: f.translation.vector.into(),
+            rotation: [s * q.w, s * q.x, s * q.y, s * q.z],
+        }
+    }
+}
+
+/// A robot as planned.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct RobotReport {
+    /// Its RAPID task.
+    pub task: String,
+    /// Model name.
+    pub model: String,
+    /// OPW lengths `[a1, a2, b, c1, c2, c3, c4]`, mm.
+    pub opw_mm: [f64; 7],
+    /// Joint offsets from the OPW zero to the maker's, degrees.
+    pub offsets_deg: [f64; 6],
+    /// Joint directions, ±1.
+    pub signs: [i8; 6],
+    /// Joint limits, degrees.
+    pub limits_deg: [(f64, f64); 6],
+    /// Base frame in the cell's frame.
+    pub base: FrameReport,
+}
+
+/// A blade holder as planned.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct HolderReport {
+    /// Index of its robot.
+    pub robot: usize,
+    /// The TCP (the blade's end) in the flange's frame.
+    pub tcp: FrameReport,
+    /// Mass, kg.
+    pub mass_kg: f64,
+    /// Centre of gravity in the flange's frame, mm.
+    pub cog_mm: [f64; 3],
+}
+
+/// The `cell` section.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct CellReport {
+    /// Whether robots or holders are the default cell's (assumed, not the user's).
+    pub assumed: bool,
+    /// The robots, in task order.
+    pub robots: Vec<RobotReport>,
+    /// The holders of the blade's first and second end.
+    pub holders: Vec<HolderReport>,
+    /// A block's frame at the fixture, in the cell's frame.
+    pub fixture: FrameReport,
+    /// Height of the blade above the blocks between them, mm.
+    pub clearance_mm: f64,
+    /// Cutting speed, mm/s.
+    pub cut_speed_mm_s: f64,
+    /// Air speed, mm/s.
+    pub air_speed_mm_s: f64,
+    /// The heat's output.
+    pub heat_signal: String,
+    /// Preheat, s.
+    pub preheat_s: f64,
+    /// Synchronized moves of the program.
+    pub moves: usize,
+    /// Every move reached by both robots with no configuration change and no joint jump.
+    pub clean: bool,
+    /// Per block.
+    pub blocks: Vec<BlockCheck>,
+}
+
+impl CellReport {
+    /// What is wrong, one line per block and robot.
+    pub fn problems(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for b in &self.blocks {
+            for (r, c) in b.robots.iter().enumerate() {
+                if c.out_of_reach + c.configuration_changes + c.joint_jumps > 0 {
+                    out.push(format!(
+                        "block {}, robot {}: {} move(s) out of reach, {} configuration change(s), {} joint jump(s)",
+                        b.block,
+                        r + 1,
+                        c.out_of_reach,
+                        c.configuration_changes,
+                        c.joint_jumps
+                    ));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The report of a planned cell.
+pub fn report(cell: &Resolved, program: &CellProgram, cut_speed: f64) -> CellReport {
+    let robots = cell
+        .robots
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let o = &r.model.opw;
+            RobotReport {
+                task: format!("T_ROB{}", i + 1),
+                model: r.model.name.clone(),
+                opw_mm: [o.a1, o.a2, o.b, o.c1, o.c2, o.c3, o.c4],
+                offsets_deg: o.offsets.map(f64::to_degrees),
+                signs: o.signs,
+                limits_deg: r.model.limits.map(|(a, b)| (a.to_degrees(), b.to_degrees())),
+                base: FrameReport::of(&r.base),
+            }
+        })
+        .collect();
+    let holders = cell
+        .holders
+        .iter()
+        .map(|h| HolderReport {
+            robot: h.robot,
+            tcp: FrameReport::of(&h.tcp),
+            mass_kg: h.mass,
+            cog_mm: h.cog,
+        })
+        .collect();
+    let clean = program.blocks.iter().all(BlockCheck::is_clean);
+    CellReport {
+        assumed: cell.assumed,
+        robots,
+        holders,
+        fixture: FrameReport::of(&cell.fixture),
+        clearance_mm: cell.clearance,
+        cut_speed_mm_s: cut_speed,
+        air_speed_mm_s: cell.air_speed,
+        heat_signal: cell.heat.0.clone(),
+        preheat_s: cell.heat.1,
+        moves: program.steps.len(),
+        clean,
+        blocks: program.blocks.clone(),
+    }
+}

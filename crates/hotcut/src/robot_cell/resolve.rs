@@ -1,0 +1,270 @@
+//! The job's `cell:` in millimetres and frames, with the default cell where the job leaves
+//! it out: what [`cell::fixture`] plans with and the RAPID writer writes.
+
+use cell::model::{Opw, RobotModel};
+use cell::plan::Holder;
+use export::robot::Targets;
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+
+use crate::spec::{CellSpec, FrameSpec, HolderSpec, ModelSpec};
+
+/// Defaults of the cell, in millimetres (converted by the job's units where a job gives
+/// lengths).
+pub mod defaults {
+    /// Height of the fixture's floor (a block's bottom) above the robots' bases, mm.
+    pub const TABLE_MM: f64 = 200.0;
+    /// Horizontal distance from a default robot's axis 1 to the blade's end it holds,
+    /// when the blade's middle is over the poses' mean chord midpoint, mm.
+    pub const STANDOFF_MM: f64 = 800.0;
+    /// From the flange to the blade's end along the flange's z, mm.
+    pub const HOLDER_MM: f64 = 150.0;
+    /// Mass of a holder with its half of the blade, kg.
+    pub const HOLDER_KG: f64 = 2.0;
+    /// Air speed, mm/s.
+    pub const AIR_SPEED_MM_PER_S: f64 = 100.0;
+    /// Height of the blade above the blocks between them, mm.
+    pub const CLEARANCE_MM: f64 = 100.0;
+    /// Largest step of a travelling blade end, mm.
+    pub const TRAVEL_STEP_MM: f64 = 100.0;
+    /// Largest turn of the blade's plane or an end between two travel moves, degrees.
+    pub const TRAVEL_TURN_DEG: f64 = 5.0;
+    /// The robots' start posture, degrees (axis 5 bent so the wrist is not singular).
+    pub const START_DEG: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 30.0, 0.0];
+}
+
+/// A robot of the resolved cell.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Robot {
+    /// Its model (mm, radians).
+    pub model: RobotModel,
+    /// Its base in the cell's frame (mm).
+    pub base: Isometry3<f64>,
+}
+
+/// A blade holder of the resolved cell.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hold {
+    /// Index of its robot.
+    pub robot: usize,
+    /// The TCP in the flange's frame (mm).
+    pub tcp: Isometry3<f64>,
+    /// Mass, kg.
+    pub mass: f64,
+    /// Centre of gravity in the flange's frame, mm.
+    pub cog: [f64; 3],
+}
+
+/// The cell in millimetres.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Resolved {
+    /// Whether the default cell (or default holders) is used.
+    pub assumed: bool,
+    /// The robots.
+    pub robots: Vec<Robot>,
+    /// The holders of the blade's first and second end.
+    pub holders: [Hold; 2],
+    /// A block's frame at the fixture, in the cell's frame (mm).
+    pub fixture: Isometry3<f64>,
+    /// Air speed, mm/s.
+    pub air_speed: f64,
+    /// Clearance above the blocks, mm.
+    pub clearance: f64,
+    /// The heat's output and preheat.
+    pub heat: (String, f64),
+    /// Whether flags fail the run.
+    pub strict: bool,
+}
+
+impl Resolved {
+    /// The holder of end `e` as the planner takes it.
+    pub fn holder(&self, e: usize) -> Holder {
+        let h = &self.holders[e];
+        let r = &self.robots[h.robot];
+        Holder {
+            model: r.model.clone(),
+            base: r.base,
+            tool: h.tcp,
+        }
+    }
+}
+
+/// A frame of the job (origin in job units) in mm.
+pub fn frame(f: &FrameSpec, mm: f64) -> Isometry3<f64> {
+    let (a, b, c) = f.rotation;
+    Isometry3::from_parts(
+        Translation3::new(f.origin.0 * mm, f.origin.1 * mm, f.origin.2 * mm),
+        UnitQuaternion::from_euler_angles(c.to_radians(), b.to_radians(), a.to_radians()),
+    )
+}
+
+/// The robot model of a spec (custom lengths in job units, `mm` per unit).
+pub fn model(m: &ModelSpec, mm: f64) -> RobotModel {
+    match m {
+        ModelSpec::Irb1600 => RobotModel::irb1600_6_145(),
+        ModelSpec::Irb2600 => RobotModel::irb2600_12_165(),
+        ModelSpec::Irb4600 => RobotModel::irb4600_60_205(),
+        ModelSpec::Custom(c) => RobotModel {
+            name: c.name.clone(),
+            opw: Opw {
+                a1: c.a1 * mm,
+                a2: c.a2 * mm,
+                b: c.b * mm,
+                c1: c.c1 * mm,
+                c2: c.c2 * mm,
+                c3: c.c3 * mm,
+                c4: c.c4 * mm,
+                offsets: c
+                    .offsets
+                    .unwrap_or([0.0, 0.0, -90.0, 0.0, 0.0, 0.0])
+                    .map(f64::to_radians),
+                signs: c.signs.unwrap_or([1; 6]),
+            },
+            limits: c.limits.map(|(lo, hi)| (lo.to_radians(), hi.to_radians())),
+        },
+    }
+}
+
+/// The default holder of end `e`, from the blade's mean pose at the fixture (`mean`: the
+/// end's mean tool orientation in the cell's frame; `toward`: the horizontal direction
+/// from its robot to the blade): the TCP [`defaults::HOLDER_MM`] along the flange's z (a
+/// bracket hanging from the flange), turned so that at the mean pose the flange points
+/// straight down with its x towards the blade. Holding the blade level with the flange
+/// down keeps axis 5 near 90°, far from the wrist's singularity, whichever way the job
+/// cuts.
+fn default_tcp(mean: &UnitQuaternion<f64>, toward: &Vector3<f64>) -> Isometry3<f64> {
+    let z = -Vector3::z();
+    let x = toward - z * toward.dot(&z);
+    let x = if x.norm() > 1e-9 { x.normalize() } else { Vector3::x() };
+    let flange = UnitQuaternion::from_rotation_matrix(&nalgebra::Rotation3::from_matrix_unchecked(
+        nalgebra::Matrix3::from_columns(&[x, z.cross(&x), z]),
+    ));
+    Isometry3::from_parts(
+        Translation3::new(0.0, 0.0, defaults::HOLDER_MM),
+        flange.inverse() * mean,
+    )
+}
+
+/// The blade's mean pose at the fixture: the chords' mean midpoint, their mean horizontal
+/// direction, and each end's mean tool orientation (cell frame, mm).
+fn mean_pose(t: &Targets, fixture: &Isometry3<f64>) -> (Vector3<f64>, Vector3<f64>, [UnitQuaternion<f64>; 2]) {
+    let mm = 1.0 / t.per_mm;
+    let (mut chord, mut mid, mut n) = (Vector3::zeros(), Vector3::zeros(), 0.0);
+    let mut q = [nalgebra::Vector4::zeros(); 2];
+    for b in &t.blocks {
+        let to_cell = fixture * block_frame(b, mm).inverse();
+        for p in &b.poses {
+            let e = |k: usize| to_cell * nalgebra::Point3::from(Vector3::from(p.ends[k].position) * mm);
+            chord += e(1) - e(0);
+            mid += (e(0).coords + e(1).coords) * 0.5;
+            n += 1.0;
+            for (k, acc) in q.iter_mut().enumerate() {
+                let r = p.ends[k].rotation;
+                let r = to_cell.rotation
+                    * UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(r[0], r[1], r[2], r[3]));
+                let c = r.as_ref().coords;
+                // one hemisphere, so that the sum is a mean
+                *acc += if c.dot(acc) < 0.0 { -c } else { c };
+            }
+        }
+    }
+    let mid = if n > 0.0 { mid / n } else { Vector3::zeros() };
+    let dir = Vector3::new(chord.x, chord.y, 0.0);
+    let dir = if dir.norm() > 1e-9 { dir.normalize() } else { Vector3::y() };
+    let mean = q.map(|c| {
+        if c.norm() > 0.0 {
+            UnitQuaternion::from_quaternion(nalgebra::Quaternion::from(c))
+        } else {
+            UnitQuaternion::identity()
+        }
+    });
+    (mid, dir, mean)
+}
+
+fn hold(h: Option<&HolderSpec>, default: Isometry3<f64>, e: usize, mm: f64) -> Hold {
+    let tcp = h
+        .and_then(|h| h.tcp.as_ref())
+        .map_or(default, |f| frame(f, mm));
+    let half = tcp.translation.vector * 0.5;
+    Hold {
+        robot: h.map_or(e, |h| h.robot),
+        tcp,
+        mass: h.and_then(|h| h.mass).unwrap_or(defaults::HOLDER_KG),
+        cog: h
+            .and_then(|h| h.cog)
+            .map_or([half.x, half.y, half.z], |c| [c.0 * mm, c.1 * mm, c.2 * mm]),
+    }
+}
+
+/// The default fixture: a block of `size` (mm) centred over the cell's origin, its floor
+/// [`defaults::TABLE_MM`] up, its axes the cell's.
+fn default_fixture(size: [f64; 3]) -> Isometry3<f64> {
+    Isometry3::translation(-0.5 * size[0], -0.5 * size[1], defaults::TABLE_MM)
+}
+
+/// The default robots: two IRB 1600 on the floor, facing each other along the blade's
+/// mean chord `dir` (horizontal), each [`defaults::STANDOFF_MM`] beyond the end of a blade
+/// of `blade` whose middle is at `mid`.
+fn default_robots(mid: &Vector3<f64>, dir: &Vector3<f64>, blade: f64) -> Vec<Robot> {
+    let irb = RobotModel::irb1600_6_145();
+    (0..2)
+        .map(|e| {
+            let s = if e == 0 { -1.0 } else { 1.0 };
+            let at = Vector3::new(mid.x, mid.y, 0.0) + dir * (s * (0.5 * blade + defaults::STANDOFF_MM));
+            let facing = -dir * s;
+            Robot {
+                model: irb.clone(),
+                base: Isometry3::from_parts(
+                    Translation3::from(at),
+                    UnitQuaternion::from_axis_angle(&Vector3::z_axis(), facing.y.atan2(facing.x)),
+                ),
+            }
+        })
+        .collect()
+}
+
+/// A block's frame in job coordinates, mm.
+pub fn block_frame(b: &export::robot::TargetsBlock, mm: f64) -> Isometry3<f64> {
+    let q = b.rotation;
+    Isometry3::from_parts(
+        Translation3::from(Vector3::from(b.origin) * mm),
+        UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3])),
+    )
+}
+
+/// The cell of `spec` (the default where absent) for the poses `t` of a blade of
+/// `blade_mm`, blocks of at most `block_mm`.
+pub fn resolve(spec: Option<&CellSpec>, t: &Targets, blade_mm: f64, block_mm: [f64; 3]) -> Resolved {
+    let mm = 1.0 / t.per_mm;
+    let default = CellSpec::default();
+    let s = spec.unwrap_or(&default);
+    let fixture = s
+        .fixture
+        .as_ref()
+        .map_or_else(|| default_fixture(block_mm), |f| frame(f, mm));
+    let (mid, dir, mean) = mean_pose(t, &fixture);
+    let hs = s.blade_holders.as_deref();
+    let holders = [0, 1].map(|e| {
+        let toward = if e == 0 { dir } else { -dir };
+        hold(hs.and_then(|h| h.get(e)), default_tcp(&mean[e], &toward), e, mm)
+    });
+    let robots = match &s.robots {
+        Some(r) => r
+            .iter()
+            .map(|r| Robot {
+                model: model(&r.model, mm),
+                base: frame(&r.base, mm),
+            })
+            .collect(),
+        None => default_robots(&mid, &dir, blade_mm),
+    };
+    Resolved {
+        assumed: spec.is_none() || s.robots.is_none() || s.blade_holders.is_none(),
+        robots,
+        holders,
+        fixture,
+        air_speed: s.air_speed.map_or(defaults::AIR_SPEED_MM_PER_S, |v| v * mm),
+        clearance: s.clearance.map_or(defaults::CLEARANCE_MM, |v| v * mm),
+        heat: (s.heat.signal.clone(), s.heat.preheat_s),
+        strict: s.strict,
+    }
+}
