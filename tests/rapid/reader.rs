@@ -1,8 +1,10 @@
 //! An independent reader of the RAPID modules of a hot-blade cell: it knows RAPID's data
-//! formats and MultiMove's rules, not hotcut's writer. It reads the work objects, tools and
-//! robtargets, follows `main` through its procedure calls, and lists every move of the
-//! task with its TCP pose in the cell's world frame (mm), its `\ID` and whether it runs
-//! between `SyncMoveOn` and `SyncMoveOff`.
+//! formats and MultiMove's rules, not hotcut's writer. It reads the work objects, tools,
+//! robtargets (with the joints each was planned with, from the comment that follows it)
+//! and block sizes, follows `main` through its procedure calls, and lists every move of
+//! the task with its TCP pose in the cell's world frame (mm), its `\ID`, whether it runs
+//! between `SyncMoveOn` and `SyncMoveOff`, the state of the heat output (`SetDO`) and the
+//! block at the fixture (`change_block remove, place`).
 
 use std::collections::HashMap;
 
@@ -17,12 +19,22 @@ pub struct Move {
     pub target: String,
     /// The TCP pose in the world frame: work object × target.
     pub pose: Isometry3<f64>,
+    /// The work object's frame in the world.
+    pub wobj: Isometry3<f64>,
+    /// The TCP in the flange's frame (the move's tooldata).
+    pub tool: Isometry3<f64>,
     /// `\ID`, when given.
     pub id: Option<u32>,
     /// Between `SyncMoveOn` and `SyncMoveOff`.
     pub synced: bool,
     /// The robtarget's `[cf1, cf4, cf6, cfx]`.
     pub conf: [i32; 4],
+    /// The joints stated with the robtarget, degrees.
+    pub joints: Option<[f64; 6]>,
+    /// The heat output during the move (as this task set it; `None`: never set here).
+    pub heat: Option<bool>,
+    /// The block at the fixture during the move (as this task's block changes say).
+    pub block: Option<usize>,
 }
 
 /// A task's program.
@@ -32,6 +44,12 @@ pub struct Task {
     pub moves: Vec<Move>,
     /// `SyncMoveOn` blocks, in order: the `\ID`s of their moves.
     pub segments: Vec<Vec<u32>>,
+    /// Block sizes (`posBlock<n>`), mm.
+    pub blocks: HashMap<usize, [f64; 3]>,
+    /// Heat state when the operator is asked to change blocks, per change.
+    pub heat_at_changes: Vec<bool>,
+    /// Heat state at the end.
+    pub heat_at_end: Option<bool>,
 }
 
 /// The numbers of a RAPID aggregate `[[1,2,3],[4,5,6,7]]`, flattened.
@@ -69,31 +87,67 @@ fn declaration<'a>(line: &'a str, kind: &str) -> Option<(&'a str, &'a str)> {
     Some((name.trim(), value.trim().trim_end_matches(';')))
 }
 
+/// The joints of a `! joints [a,b,c,d,e,f]` comment.
+fn joints(comment: &str) -> Option<[f64; 6]> {
+    let v = numbers(comment.trim().strip_prefix("joints")?).ok()?;
+    (v.len() == 6).then(|| [v[0], v[1], v[2], v[3], v[4], v[5]])
+}
+
+/// What a module declares.
+#[derive(Default)]
+struct Data {
+    wobj: HashMap<String, Isometry3<f64>>,
+    tools: HashMap<String, Isometry3<f64>>,
+    targets: HashMap<String, (Isometry3<f64>, [i32; 4], Option<[f64; 6]>)>,
+    blocks: HashMap<usize, [f64; 3]>,
+}
+
+fn declare(raw: &str, line: &str, d: &mut Data) -> Result<bool, String> {
+    if let Some((name, value)) = declaration(line, "wobjdata") {
+        // [robhold, ufprog, ufmec, uframe, oframe]: the object frame in the user frame
+        let v = numbers(value)?;
+        if v.len() != 14 {
+            return Err(format!("wobjdata {name}: {} numbers", v.len()));
+        }
+        d.wobj.insert(name.into(), pose(&v[..7])? * pose(&v[7..])?);
+    } else if let Some((name, value)) = declaration(line, "tooldata") {
+        // [robhold, tframe, tload]: tload = [mass, cog, aom, ix, iy, iz]
+        let v = numbers(value)?;
+        if v.len() != 18 || !(v[7] > 0.0) {
+            return Err(format!("tooldata {name}: {} numbers, mass {:?}", v.len(), v.get(7)));
+        }
+        d.tools.insert(name.into(), pose(&v[..7])?);
+    } else if let Some((name, value)) = declaration(line, "robtarget") {
+        let v = numbers(value)?;
+        if v.len() != 17 {
+            return Err(format!("robtarget {name}: {} numbers", v.len()));
+        }
+        let conf = [v[7] as i32, v[8] as i32, v[9] as i32, v[10] as i32];
+        let j = raw.split_once('!').and_then(|(_, c)| joints(c));
+        d.targets.insert(name.into(), (pose(&v[..7])?, conf, j));
+    } else if let Some((name, value)) = declaration(line, "pos") {
+        if let Some(n) = name.strip_prefix("posBlock") {
+            let v = numbers(value)?;
+            let n: usize = n.parse().map_err(|_| format!("block name {name}"))?;
+            d.blocks.insert(n, [v[0], v[1], v[2]]);
+        }
+    } else {
+        return Ok(false);
+    }
+    Ok(true)
+}
+
 /// Reads one module.
 ///
 /// # Errors
 /// What does not read as the data and instructions of a blade program.
 pub fn read(text: &str) -> Result<Task, String> {
-    let mut wobj: HashMap<String, Isometry3<f64>> = HashMap::new();
-    let mut targets: HashMap<String, (Isometry3<f64>, [i32; 4])> = HashMap::new();
+    let mut data = Data::default();
     let mut procs: HashMap<String, Vec<String>> = HashMap::new();
     let mut current: Option<(String, Vec<String>)> = None;
     for raw in text.lines() {
         let line = raw.split('!').next().unwrap_or("").trim();
-        if let Some((name, value)) = declaration(line, "wobjdata") {
-            // [robhold, ufprog, ufmec, uframe, oframe]: the object frame in the user frame
-            let v = numbers(value)?;
-            if v.len() != 14 {
-                return Err(format!("wobjdata {name}: {} numbers", v.len()));
-            }
-            wobj.insert(name.into(), pose(&v[..7])? * pose(&v[7..])?);
-        } else if let Some((name, value)) = declaration(line, "robtarget") {
-            let v = numbers(value)?;
-            if v.len() != 17 {
-                return Err(format!("robtarget {name}: {} numbers", v.len()));
-            }
-            let conf = [v[7] as i32, v[8] as i32, v[9] as i32, v[10] as i32];
-            targets.insert(name.into(), (pose(&v[..7])?, conf));
+        if declare(raw, line, &mut data)? {
         } else if let Some(name) = line.strip_prefix("PROC ") {
             let name = name.split('(').next().unwrap_or("").trim().to_string();
             current = Some((name, Vec::new()));
@@ -107,18 +161,20 @@ pub fn read(text: &str) -> Result<Task, String> {
             }
         }
     }
-    let mut task = Task::default();
-    let mut synced = false;
+    let mut state = State::default();
     let mut depth = 0;
     run(
         "main",
         &procs,
-        &mut |line| step(line, &wobj, &targets, &mut synced, &mut task),
+        &mut |line| step(line, &data, &mut state),
         &mut depth,
     )?;
-    if synced {
+    if state.synced {
         return Err("the program ends in synchronized motion".into());
     }
+    let mut task = state.task;
+    task.blocks = data.blocks;
+    task.heat_at_end = state.heat;
     Ok(task)
 }
 
@@ -146,31 +202,46 @@ fn run(
     Ok(())
 }
 
+#[derive(Default)]
+struct State {
+    synced: bool,
+    heat: Option<bool>,
+    block: Option<usize>,
+    task: Task,
+}
+
 /// One instruction.
-fn step(
-    line: &str,
-    wobj: &HashMap<String, Isometry3<f64>>,
-    targets: &HashMap<String, (Isometry3<f64>, [i32; 4])>,
-    synced: &mut bool,
-    task: &mut Task,
-) -> Result<(), String> {
+fn step(line: &str, d: &Data, s: &mut State) -> Result<(), String> {
     let word = line.split_whitespace().next().unwrap_or("");
+    let args: Vec<&str> = line[word.len()..].split(',').map(str::trim).collect();
     match word {
         "SyncMoveOn" => {
-            if *synced {
+            if s.synced {
                 return Err("SyncMoveOn inside synchronized motion".into());
             }
-            *synced = true;
-            task.segments.push(Vec::new());
+            s.synced = true;
+            s.task.segments.push(Vec::new());
         }
         "SyncMoveOff" => {
-            if !*synced {
+            if !s.synced {
                 return Err("SyncMoveOff outside synchronized motion".into());
             }
-            *synced = false;
+            s.synced = false;
+        }
+        "SetDO" => {
+            let v: u8 = args.get(1).and_then(|v| v.parse().ok()).ok_or(format!("{line}: value"))?;
+            s.heat = Some(v == 1);
+        }
+        "change_block" => {
+            let place: usize = args.get(1).and_then(|v| v.parse().ok()).ok_or(format!("{line}: block"))?;
+            let remove: usize = args[0].parse().map_err(|_| format!("{line}: block"))?;
+            if remove != s.block.unwrap_or(0) {
+                return Err(format!("{line}: block {remove} is not the one at the fixture ({:?})", s.block));
+            }
+            s.task.heat_at_changes.push(s.heat.unwrap_or(false));
+            s.block = Some(place);
         }
         "MoveL" | "MoveJ" => {
-            let args: Vec<&str> = line[word.len()..].split(',').map(str::trim).collect();
             let (target, id) = match args[0].split_once("\\ID:=") {
                 Some((t, id)) => (
                     t.trim(),
@@ -179,29 +250,37 @@ fn step(
                 None => (args[0], None),
             };
             // MultiMove: every move in synchronized motion has an \ID, no other move has one
-            if id.is_some() != *synced {
+            if id.is_some() != s.synced {
                 return Err(format!(
                     "{line}: \\ID must be given exactly in synchronized motion"
                 ));
             }
-            let frame = args
-                .iter()
-                .find_map(|a| a.split_once("\\WObj:=").map(|(_, w)| w.trim()))
+            let tool_frame = args.last().ok_or(format!("{line}: no tool"))?;
+            let (tool, frame) = tool_frame
+                .split_once("\\WObj:=")
+                .map(|(t, w)| (t.trim(), w.trim()))
                 .ok_or(format!("{line}: no work object"))?;
-            let w = wobj.get(frame).ok_or(format!("no wobjdata {frame}"))?;
-            let (t, conf) = targets
+            let w = d.wobj.get(frame).ok_or(format!("no wobjdata {frame}"))?;
+            let tool = d.tools.get(tool).ok_or(format!("no tooldata {tool}"))?;
+            let (t, conf, joints) = d
+                .targets
                 .get(target)
                 .ok_or(format!("no robtarget {target}"))?;
-            if let (Some(id), Some(seg)) = (id, task.segments.last_mut()) {
+            if let (Some(id), Some(seg)) = (id, s.task.segments.last_mut()) {
                 seg.push(id);
             }
-            task.moves.push(Move {
+            s.task.moves.push(Move {
                 linear: word == "MoveL",
                 target: target.into(),
                 pose: w * t,
+                wobj: *w,
+                tool: *tool,
                 id,
-                synced: *synced,
+                synced: s.synced,
                 conf: *conf,
+                joints: *joints,
+                heat: s.heat,
+                block: s.block,
             });
         }
         _ => {}

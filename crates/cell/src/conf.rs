@@ -24,8 +24,12 @@ pub struct Conf {
 
 /// ABB's quarter-turn number of an angle (radians): 0 for [0°, 90°), 1 for [90°, 180°),
 /// −1 for (−90°, 0°), −2 for (−180°, −90°], … (the RAPID manual's rule: positive angles
-/// truncate `a / 90°`, negative ones truncate `a / 90° − 1`).
+/// truncate `a / 90°`, negative ones truncate `a / 90° − 1`). The angle is first rounded
+/// to 1e-6°, the precision programs state joints with, so that an angle a hair below a
+/// boundary gets the quarter its printed value has.
 pub fn quadrant(angle: f64) -> i32 {
+    let degrees = (angle.to_degrees() * 1e6).round() / 1e6;
+    let angle = if degrees == 0.0 { 0.0 } else { degrees.to_radians() };
     let quarters = angle / std::f64::consts::FRAC_PI_2;
     if angle >= 0.0 {
         quarters.trunc() as i32
