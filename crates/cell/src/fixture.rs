@@ -346,12 +346,32 @@ fn transition(
     )))
 }
 
-/// Plans the program of `blocks` (in cutting order; blocks without poses are skipped).
+/// The moves of a program before any robot is solved: they depend on the fixture only
+/// through which way is up (a fixture moved without turning keeps them).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Moves {
+    /// Every move, in order.
+    pub steps: Vec<Step>,
+    /// Per block (in cutting order): its number and the least height of the blade above
+    /// it while it travels to or from it, mm.
+    pub clearances: Vec<(usize, f64)>,
+}
+
+/// Plans the program of `blocks` (in cutting order; blocks without poses are skipped):
+/// [`moves`], then [`solve`].
+///
+/// # Errors
+/// As [`moves`] and [`solve`].
+pub fn plan(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<CellProgram> {
+    solve(cell, &moves(cell, blocks)?)
+}
+
+/// The moves through `blocks` (in cutting order; blocks without poses are skipped).
 ///
 /// # Errors
 /// [`CellError::Blade`] for bad settings, a cutting plane too flat to rise in, or a
-/// travel pose that holds no admissible blade; the errors of [`sweep`].
-pub fn plan(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<CellProgram> {
+/// travel pose that holds no admissible blade.
+pub fn moves(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<Moves> {
     check(cell, blocks)?;
     let blocks: Vec<&BlockCut> = blocks.iter().filter(|b| !b.poses.is_empty()).collect();
     let ends = blocks
@@ -407,16 +427,18 @@ pub fn plan(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<CellProgram> {
     let k = blocks.len() - 1;
     clearances[k] = clearances[k].min(lowest(cell, &risen)? - e.top);
     steps.push(step(Phase::Rise, b.block, &risen, false));
-    solve(cell, steps, &blocks, &clearances)
+    Ok(Moves {
+        steps,
+        clearances: blocks.iter().map(|b| b.block).zip(clearances).collect(),
+    })
 }
 
-/// Both robots' joints along `steps`, and the per-block summary.
-fn solve(
-    cell: &FixtureCell,
-    steps: Vec<Step>,
-    blocks: &[&BlockCut],
-    clearances: &[f64],
-) -> Result<CellProgram> {
+/// Both robots' joints along the moves, and the per-block summary.
+///
+/// # Errors
+/// The errors of [`sweep`].
+pub fn solve(cell: &FixtureCell, moves: &Moves) -> Result<CellProgram> {
+    let steps = &moves.steps;
     let mut solutions: [Vec<PoseSolution>; 2] = [Vec::new(), Vec::new()];
     let mut flags: [Vec<SweepFlag>; 2] = [Vec::new(), Vec::new()];
     for r in 0..2 {
@@ -425,15 +447,15 @@ fn solve(
         solutions[r] = sw.poses;
         flags[r] = sw.flags;
     }
-    let summary = blocks
+    let summary = moves
+        .clearances
         .iter()
-        .zip(clearances)
-        .map(|(b, &air)| {
+        .map(|&(block, air)| {
             let idx: Vec<usize> = (0..steps.len())
-                .filter(|&i| steps[i].block == b.block)
+                .filter(|&i| steps[i].block == block)
                 .collect();
             let robot = |r: usize| {
-                let mine = |i: usize| steps.get(i).is_some_and(|s| s.block == b.block);
+                let mine = |i: usize| steps.get(i).is_some_and(|s| s.block == block);
                 let count = |f: &dyn Fn(&SweepFlag) -> Option<usize>| {
                     flags[r].iter().filter_map(f).filter(|i| mine(*i)).count()
                 };
@@ -459,7 +481,7 @@ fn solve(
                 }
             };
             BlockCheck {
-                block: b.block,
+                block: block,
                 moves: idx.len(),
                 robots: [robot(0), robot(1)],
                 air_clearance: air,
@@ -467,7 +489,7 @@ fn solve(
         })
         .collect();
     Ok(CellProgram {
-        steps,
+        steps: steps.clone(),
         solutions,
         flags,
         blocks: summary,

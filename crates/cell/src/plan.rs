@@ -31,9 +31,9 @@ pub struct Holder {
 /// larger one is a flip of the wrist or the arm through a singularity.
 pub const MAX_STEP_RAD: f64 = 10.0 * std::f64::consts::PI / 180.0;
 /// Longest piece a straight move is followed in, mm.
-pub const PIECE_MM: f64 = 10.0;
-/// Largest turn of a piece, radians (1°).
-pub const PIECE_RAD: f64 = std::f64::consts::PI / 180.0;
+pub const PIECE_MM: f64 = 25.0;
+/// Largest turn of a piece, radians (2.5°).
+pub const PIECE_RAD: f64 = 2.5 * std::f64::consts::PI / 180.0;
 
 /// The solution at one pose.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]

@@ -8,14 +8,15 @@ pub mod report;
 /// The cell in millimetres, with its defaults.
 pub mod resolve;
 
-use cell::fixture::{plan as plan_program, BlockCut, CellProgram, FixtureCell};
+use cell::fixture::{BlockCut, CellProgram, FixtureCell};
 use export::robot::Targets;
+use rayon::prelude::*;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
 use crate::context::{Context, JobFields};
 use crate::error::{HotcutError, JobError, Result};
 use report::CellReport;
-use resolve::{block_frame, defaults, Resolved};
+use resolve::{block_frame, defaults, HolderStyle, Layout, Resolved};
 
 /// What the robot files are written from.
 #[derive(Debug, Clone)]
@@ -131,8 +132,62 @@ fn block_cuts(t: &Targets, sizes: &[[f64; 3]]) -> Vec<BlockCut> {
         .collect()
 }
 
+/// The layouts to try: every default table height, standoff and holder style that the
+/// job leaves to the default cell (the table with the default fixture and robots, the
+/// standoff with the default robots, the style with the default holders).
+fn layouts(job: &Context) -> Vec<Layout> {
+    let c = job.cell.as_ref();
+    let robots = c.is_none_or(|c| c.robots.is_none());
+    let fixture = c.is_none_or(|c| c.fixture.is_none());
+    let holders = c.is_none_or(|c| c.blade_holders.is_none());
+    let tables: &[f64] = if robots && fixture { &defaults::TABLES_MM } else { &defaults::TABLES_MM[..1] };
+    let standoffs: &[f64] = if robots { &defaults::STANDOFFS_MM } else { &defaults::STANDOFFS_MM[..1] };
+    let styles: &[HolderStyle] = if holders { &[HolderStyle::Facing, HolderStyle::Hanging] } else { &[HolderStyle::Facing] };
+    let mut out = Vec::new();
+    for &style in styles {
+        for &table in tables {
+            for &standoff in standoffs {
+                out.push(Layout { table, standoff, style });
+            }
+        }
+    }
+    out
+}
+
+/// How bad a program is: moves out of reach, then configuration changes and joint jumps,
+/// then the least joint margin (larger is better).
+fn score(p: &CellProgram) -> (usize, usize, f64) {
+    let (mut reach, mut flips, mut margin) = (0, 0, f64::INFINITY);
+    for b in &p.blocks {
+        for r in &b.robots {
+            reach += r.out_of_reach;
+            flips += r.configuration_changes + r.joint_jumps;
+            margin = margin.min(r.margin_deg.unwrap_or(f64::NEG_INFINITY));
+        }
+    }
+    (reach, flips, -margin)
+}
+
+fn fixture_cell(cell: &Resolved, blade: f64, max_curvature: f64, approach: f64, start: [f64; 6]) -> FixtureCell {
+    FixtureCell {
+        holders: [cell.holder(0), cell.holder(1)],
+        fixture: cell.fixture,
+        blade_length: blade,
+        max_curvature: Some(max_curvature),
+        approach,
+        clearance: cell.clearance,
+        travel_step: (defaults::TRAVEL_STEP_MM, defaults::TRAVEL_TURN_DEG.to_radians()),
+        start: [start.map(f64::to_radians); 2],
+    }
+}
+
 /// Plans the cell's program for the poses `t` (blocks of `sizes`, job units, in the
-/// order of `t.blocks`), cutting at `speed` with `approach` (job units).
+/// order of `t.blocks`), cutting at `speed` with `approach` (job units). What the job
+/// leaves to the default cell is laid out by trying the default table heights, standoffs,
+/// holder styles and wrist sides in order, in chunks of four, until a chunk holds a layout
+/// with every move reached, no flip and a joint margin of [`defaults::GOOD_MARGIN_DEG`];
+/// the first best is kept (fewest moves out of reach, then fewest flips, then the largest
+/// joint margin).
 ///
 /// # Errors
 /// A plan that cannot be made (named), or with `strict: true`, any flag.
@@ -140,19 +195,45 @@ pub fn plan(job: &Context, t: &Targets, sizes: &[[f64; 3]], speed: f64, approach
     let mm = 1.0 / t.per_mm;
     let largest = sizes.iter().fold([0.0f64; 3], |m, s| [m[0].max(s[0]), m[1].max(s[1]), m[2].max(s[2])]).map(|v| v * mm);
     let blade = t.blade_length * mm;
-    let cell = resolve::resolve(job.cell.as_ref(), t, blade, largest);
-    let fixture = FixtureCell {
-        holders: [cell.holder(0), cell.holder(1)],
-        fixture: cell.fixture,
-        blade_length: blade,
-        max_curvature: Some(job.blade.max_curvature / mm),
-        approach: approach * mm,
-        clearance: cell.clearance,
-        travel_step: (defaults::TRAVEL_STEP_MM, defaults::TRAVEL_TURN_DEG.to_radians()),
-        start: [defaults::START_DEG.map(f64::to_radians); 2],
-    };
     let cuts = block_cuts(t, sizes);
-    let program = plan_program(&fixture, &cuts).map_err(|e| job.fail(format!("robot cell: {e}")))?;
+    let fail = |e: cell::CellError| job.fail(format!("robot cell: {e}"));
+    let layouts = layouts(job);
+    let (curvature, approach) = (job.blade.max_curvature / mm, approach * mm);
+    let start = defaults::STARTS_DEG[0];
+    let first = resolve::resolve(job.cell.as_ref(), t, blade, largest, layouts[0]);
+    // the fixture only moves up between layouts: the moves stay
+    let moves = cell::fixture::moves(&fixture_cell(&first, blade, curvature, approach, start), &cuts)
+        .map_err(fail)?;
+    let tries: Vec<(Layout, [f64; 6])> = layouts
+        .iter()
+        .flat_map(|l| defaults::STARTS_DEG.iter().map(move |s| (*l, *s)))
+        .collect();
+    // in chunks of a fixed size, in order, until one is good enough: the same result
+    // whatever the thread count
+    let mut best: Option<(Resolved, CellProgram)> = None;
+    for chunk in tries.chunks(4) {
+        let solved = chunk
+            .par_iter()
+            .map(|(layout, start)| {
+                let cell = resolve::resolve(job.cell.as_ref(), t, blade, largest, *layout);
+                let fc = fixture_cell(&cell, blade, curvature, approach, *start);
+                Ok((cell, cell::fixture::solve(&fc, &moves)?))
+            })
+            .collect::<std::result::Result<Vec<_>, cell::CellError>>()
+            .map_err(fail)?;
+        for (cell, program) in solved {
+            if best.as_ref().is_none_or(|(_, b)| score(&program) < score(b)) {
+                best = Some((cell, program));
+            }
+        }
+        if best.as_ref().is_some_and(|(_, b)| {
+            let (reach, flips, margin) = score(b);
+            reach + flips == 0 && -margin >= defaults::GOOD_MARGIN_DEG
+        }) {
+            break;
+        }
+    }
+    let (cell, program) = best.ok_or_else(|| job.fail("robot cell: no layout"))?;
     let report = report::report(&cell, &program, speed * mm);
     if cell.strict && !report.clean {
         return Err(HotcutError::Task {

@@ -11,15 +11,20 @@ use crate::spec::{CellSpec, FrameSpec, HolderSpec, ModelSpec};
 /// Defaults of the cell, in millimetres (converted by the job's units where a job gives
 /// lengths).
 pub mod defaults {
-    /// Height of the fixture's floor (a block's bottom) above the robots' bases, mm.
-    pub const TABLE_MM: f64 = 200.0;
-    /// Horizontal distance from a default robot's axis 1 to the blade's end it holds,
-    /// when the blade's middle is over the poses' mean chord midpoint, mm.
-    pub const STANDOFF_MM: f64 = 800.0;
+    /// Heights of the fixture's floor (a block's bottom) above the robots' bases tried by
+    /// the default cell, mm, the likeliest first.
+    pub const TABLES_MM: [f64; 4] = [200.0, 0.0, 400.0, 600.0];
+    /// Horizontal distances from a default robot's axis 1 to the blade's end it holds
+    /// (the blade's middle over the poses' mean chord midpoint) tried by the default
+    /// cell, mm, the likeliest first.
+    pub const STANDOFFS_MM: [f64; 4] = [800.0, 1000.0, 600.0, 1200.0];
     /// From the flange to the blade's end along the flange's z, mm.
     pub const HOLDER_MM: f64 = 150.0;
     /// Mass of a holder with its half of the blade, kg.
     pub const HOLDER_KG: f64 = 2.0;
+    /// A layout whose least joint margin is at least this, with every move reached and no
+    /// flip, ends the search, degrees.
+    pub const GOOD_MARGIN_DEG: f64 = 5.0;
     /// Air speed, mm/s.
     pub const AIR_SPEED_MM_PER_S: f64 = 100.0;
     /// Height of the blade above the blocks between them, mm.
@@ -28,8 +33,9 @@ pub mod defaults {
     pub const TRAVEL_STEP_MM: f64 = 100.0;
     /// Largest turn of the blade's plane or an end between two travel moves, degrees.
     pub const TRAVEL_TURN_DEG: f64 = 5.0;
-    /// The robots' start posture, degrees (axis 5 bent so the wrist is not singular).
-    pub const START_DEG: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 30.0, 0.0];
+    /// The robots' start postures tried, degrees: axis 5 bent either way (the wrist
+    /// keeps its side through a whole program, so both sides are tried).
+    pub const STARTS_DEG: [[f64; 6]; 2] = [[0.0, 0.0, 0.0, 0.0, 30.0, 0.0], [0.0, 0.0, 0.0, 0.0, -30.0, 0.0]];
 }
 
 /// A robot of the resolved cell.
@@ -124,17 +130,33 @@ pub fn model(m: &ModelSpec, mm: f64) -> RobotModel {
     }
 }
 
-/// The default holder of end `e`, from the blade's mean pose at the fixture (`mean`: the
-/// end's mean tool orientation in the cell's frame; `toward`: the horizontal direction
-/// from its robot to the blade): the TCP [`defaults::HOLDER_MM`] along the flange's z (a
-/// bracket hanging from the flange), turned so that at the mean pose the flange points
-/// straight down with its x towards the blade. Holding the blade level with the flange
-/// down keeps axis 5 near 90°, far from the wrist's singularity, whichever way the job
-/// cuts.
-fn default_tcp(mean: &UnitQuaternion<f64>, toward: &Vector3<f64>) -> Isometry3<f64> {
-    let z = -Vector3::z();
-    let x = toward - z * toward.dot(&z);
-    let x = if x.norm() > 1e-9 { x.normalize() } else { Vector3::x() };
+/// How a default holder holds its end of the blade.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HolderStyle {
+    /// The flange faces along the cutting plane's normal, the blade's end
+    /// [`defaults::HOLDER_MM`] in front of it on the flange's axis; at the job's mean pose
+    /// the flange's x points down. The blade turns in its plane about axis 6.
+    Facing,
+    /// A bracket hanging from a flange that points down at the job's mean pose, its x from
+    /// the robot towards the blade; the blade's end [`defaults::HOLDER_MM`] below it.
+    Hanging,
+}
+
+/// The default holder's TCP for an end whose mean tool orientation in the cell's frame is
+/// `mean`, on a robot that reaches towards the blade along `toward` (horizontal).
+fn default_tcp(style: HolderStyle, mean: &UnitQuaternion<f64>, toward: &Vector3<f64>) -> Isometry3<f64> {
+    let unit = |v: Vector3<f64>, or: Vector3<f64>| if v.norm() > 1e-6 { v.normalize() } else { or };
+    let (x, z) = match style {
+        HolderStyle::Facing => {
+            let z = mean * Vector3::z();
+            let down = -Vector3::z();
+            (unit(down - z * down.dot(&z), mean * Vector3::x()), z)
+        }
+        HolderStyle::Hanging => {
+            let z = -Vector3::z();
+            (unit(toward - z * toward.dot(&z), Vector3::x()), z)
+        }
+    };
     let flange = UnitQuaternion::from_rotation_matrix(&nalgebra::Rotation3::from_matrix_unchecked(
         nalgebra::Matrix3::from_columns(&[x, z.cross(&x), z]),
     ));
@@ -196,20 +218,20 @@ fn hold(h: Option<&HolderSpec>, default: Isometry3<f64>, e: usize, mm: f64) -> H
 }
 
 /// The default fixture: a block of `size` (mm) centred over the cell's origin, its floor
-/// [`defaults::TABLE_MM`] up, its axes the cell's.
-fn default_fixture(size: [f64; 3]) -> Isometry3<f64> {
-    Isometry3::translation(-0.5 * size[0], -0.5 * size[1], defaults::TABLE_MM)
+/// `table` up, its axes the cell's.
+fn default_fixture(size: [f64; 3], table: f64) -> Isometry3<f64> {
+    Isometry3::translation(-0.5 * size[0], -0.5 * size[1], table)
 }
 
 /// The default robots: two IRB 1600 on the floor, facing each other along the blade's
-/// mean chord `dir` (horizontal), each [`defaults::STANDOFF_MM`] beyond the end of a blade
-/// of `blade` whose middle is at `mid`.
-fn default_robots(mid: &Vector3<f64>, dir: &Vector3<f64>, blade: f64) -> Vec<Robot> {
-    let irb = RobotModel::irb1600_6_145();
+/// mean chord `dir` (horizontal), each `standoff` beyond the end of a blade of `blade`
+/// whose middle is at `mid`.
+fn default_robots(mid: &Vector3<f64>, dir: &Vector3<f64>, blade: f64, standoff: f64) -> Vec<Robot> {
+    let irb = RobotModel::irb2600_12_165();
     (0..2)
         .map(|e| {
             let s = if e == 0 { -1.0 } else { 1.0 };
-            let at = Vector3::new(mid.x, mid.y, 0.0) + dir * (s * (0.5 * blade + defaults::STANDOFF_MM));
+            let at = Vector3::new(mid.x, mid.y, 0.0) + dir * (s * (0.5 * blade + standoff));
             let facing = -dir * s;
             Robot {
                 model: irb.clone(),
@@ -231,21 +253,38 @@ pub fn block_frame(b: &export::robot::TargetsBlock, mm: f64) -> Isometry3<f64> {
     )
 }
 
-/// The cell of `spec` (the default where absent) for the poses `t` of a blade of
-/// `blade_mm`, blocks of at most `block_mm`.
-pub fn resolve(spec: Option<&CellSpec>, t: &Targets, blade_mm: f64, block_mm: [f64; 3]) -> Resolved {
+/// How the default cell is laid out.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Layout {
+    /// Height of the fixture's floor above the robots' bases, mm.
+    pub table: f64,
+    /// Horizontal distance from a robot's axis 1 to its end of the blade, mm.
+    pub standoff: f64,
+    /// How the holders hold the blade.
+    pub style: HolderStyle,
+}
+
+/// The cell of `spec` (the default where absent, laid out by `layout`) for the poses `t`
+/// of a blade of `blade_mm`, blocks of at most `block_mm`.
+pub fn resolve(
+    spec: Option<&CellSpec>,
+    t: &Targets,
+    blade_mm: f64,
+    block_mm: [f64; 3],
+    layout: Layout,
+) -> Resolved {
     let mm = 1.0 / t.per_mm;
     let default = CellSpec::default();
     let s = spec.unwrap_or(&default);
     let fixture = s
         .fixture
         .as_ref()
-        .map_or_else(|| default_fixture(block_mm), |f| frame(f, mm));
+        .map_or_else(|| default_fixture(block_mm, layout.table), |f| frame(f, mm));
     let (mid, dir, mean) = mean_pose(t, &fixture);
     let hs = s.blade_holders.as_deref();
     let holders = [0, 1].map(|e| {
         let toward = if e == 0 { dir } else { -dir };
-        hold(hs.and_then(|h| h.get(e)), default_tcp(&mean[e], &toward), e, mm)
+        hold(hs.and_then(|h| h.get(e)), default_tcp(layout.style, &mean[e], &toward), e, mm)
     });
     let robots = match &s.robots {
         Some(r) => r
@@ -255,7 +294,7 @@ pub fn resolve(spec: Option<&CellSpec>, t: &Targets, blade_mm: f64, block_mm: [f
                 base: frame(&r.base, mm),
             })
             .collect(),
-        None => default_robots(&mid, &dir, blade_mm),
+        None => default_robots(&mid, &dir, blade_mm, layout.standoff),
     };
     Resolved {
         assumed: spec.is_none() || s.robots.is_none() || s.blade_holders.is_none(),
