@@ -317,7 +317,7 @@ impl Task for FacadeSegmentation {
             surface: SurfaceInfo::of(job, surface),
             cell: None,
         };
-        if job.robot_files && run.posed.iter().any(|p| !p.parts.is_empty()) {
+        if (job.robot_files || job.cell.is_some()) && run.posed.iter().any(|p| !p.parts.is_empty()) {
             let (t, sizes) = outputs::targets(&run, params.blade.length, job.units)
                 .map_err(|e| job.fail(e.to_string()))?;
             let m = &params.motion;
@@ -410,6 +410,10 @@ impl Task for FacadeSegmentation {
                 "\n  warning: pieces breaking a constraint — dimension {}, approximation {}, shape {}, blade strain {}",
                 f.dimension, f.approximation, f.shape, f.blade_strain
             ));
+        }
+        if let Some(cell) = &r.cell {
+            out.push('\n');
+            out.push_str(&cell.summary());
         }
         out
     }

@@ -111,7 +111,7 @@ pub struct HotBladeRun {
     pub cut: Rationalization,
     /// The surface as loaded.
     pub surface: SurfaceInfo,
-    /// The robot cell's plan (when the job writes robot files and a block has poses).
+    /// The robot cell's plan (when the job writes robot files or gives a cell, and a block has poses).
     pub cell: Option<CellPlan>,
 }
 
@@ -279,7 +279,7 @@ impl Task for HotBlade {
                 other => job.fail(other.to_string()),
             })?;
         let posed = cut.blocks.iter().any(|b| !b.sections.is_empty());
-        let cell = if job.robot_files && posed {
+        let cell = if (job.robot_files || job.cell.is_some()) && posed {
             let (t, sizes) = outputs::targets(&cut, params.pipeline.blade.length, job.units);
             let m = &params.motion;
             Some(robot_cell::plan(job, &t, &sizes, m.speed, m.approach)?)
@@ -355,8 +355,9 @@ impl Task for HotBlade {
                 f.approximation, f.blade_strain, f.shape, f.blade_length, f.flat_blade, f.block_height, f.overlap
             )
         };
+        let cell = r.cell.as_ref().map(|c| format!("\n{}", c.summary())).unwrap_or_default();
         format!(
-            "{} (HotBlade, {:?}, {:?}): {} block(s) in {} row(s) × {} column(s), {} split(s)\n  {} section(s): L2 min {:.4}, max {:.4}, avg {:.4}; largest fit distance {:.4} {units}, deviation {:.4} {units}\n  blade: max |κ| {:.4e} /{units}, ≤ {} inflection(s); plane angle ≤ {:.1}°; face gap {:.1e} {units}, angle {:.1e} rad\n{verdict}",
+            "{} (HotBlade, {:?}, {:?}): {} block(s) in {} row(s) × {} column(s), {} split(s)\n  {} section(s): L2 min {:.4}, max {:.4}, avg {:.4}; largest fit distance {:.4} {units}, deviation {:.4} {units}\n  blade: max |κ| {:.4e} /{units}, ≤ {} inflection(s); plane angle ≤ {:.1}°; face gap {:.1e} {units}, angle {:.1e} rad\n{verdict}{cell}",
             r.job, r.settings.constraint, r.settings.continuity, s.blocks, r.grid.rows, r.grid.columns, r.splits.len(),
             s.sections, s.l2.min, s.l2.max, s.l2.avg, s.max_fit_distance, s.max_deviation,
             s.max_abs_curvature, s.max_inflections, s.max_plane_angle.to_degrees(), s.max_face_gap, s.max_face_angle,

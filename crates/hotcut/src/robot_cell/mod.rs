@@ -76,6 +76,13 @@ pub fn check(job: &JobFields<'_>, errors: &mut Vec<JobError>) {
             if !finite(&r.base) {
                 err(&format!("/robots/{i}/base"), "the base frame must be finite".into());
             }
+            if let crate::spec::ModelSpec::Custom(c) = &r.model {
+                let six = |n: Option<usize>| n.is_none_or(|n| n == 6);
+                if !six(Some(c.limits.len())) || !six(c.offsets.as_ref().map(Vec::len)) || !six(c.signs.as_ref().map(Vec::len)) {
+                    err(&format!("/robots/{i}/model/Custom"), "limits, offsets and signs have one entry per axis: 6".into());
+                    continue;
+                }
+            }
             if let Err(e) = resolve::model(&r.model, 1.0).check() {
                 err(&format!("/robots/{i}/model"), e.to_string());
             }

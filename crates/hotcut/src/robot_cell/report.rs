@@ -92,6 +92,26 @@ pub struct CellReport {
 }
 
 impl CellReport {
+    /// One line for the run's summary: the robots, the moves, the verdict.
+    pub fn summary(&self) -> String {
+        let models: Vec<&str> = self.robots.iter().map(|r| r.model.as_str()).collect();
+        let verdict = if self.clean {
+            "every move reached, no flip".to_string()
+        } else {
+            format!("warning: {}", self.problems().join("; "))
+        };
+        let assumed = if self.assumed {
+            " (default cell: placement and tool data assumed, check them on the controller)"
+        } else {
+            ""
+        };
+        format!(
+            "  cell: {}{assumed}; {} synchronized moves; {verdict}",
+            models.join(" + "),
+            self.moves
+        )
+    }
+
     /// What is wrong, one line per block and robot.
     pub fn problems(&self) -> Vec<String> {
         let mut out = Vec::new();

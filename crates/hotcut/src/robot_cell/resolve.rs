@@ -119,13 +119,17 @@ pub fn model(m: &ModelSpec, mm: f64) -> RobotModel {
                 c2: c.c2 * mm,
                 c3: c.c3 * mm,
                 c4: c.c4 * mm,
-                offsets: c
-                    .offsets
-                    .unwrap_or([0.0, 0.0, -90.0, 0.0, 0.0, 0.0])
-                    .map(f64::to_radians),
-                signs: c.signs.unwrap_or([1; 6]),
+                // lengths are checked at validation; a short list reads as its defaults
+                offsets: std::array::from_fn(|i| {
+                    let abb = [0.0, 0.0, -90.0, 0.0, 0.0, 0.0];
+                    c.offsets.as_ref().and_then(|o| o.get(i)).copied().unwrap_or(abb[i]).to_radians()
+                }),
+                signs: std::array::from_fn(|i| c.signs.as_ref().and_then(|s| s.get(i)).copied().unwrap_or(1)),
             },
-            limits: c.limits.map(|(lo, hi)| (lo.to_radians(), hi.to_radians())),
+            limits: std::array::from_fn(|i| {
+                let (lo, hi) = c.limits.get(i).copied().unwrap_or((f64::NAN, f64::NAN));
+                (lo.to_radians(), hi.to_radians())
+            }),
         },
     }
 }
@@ -223,7 +227,8 @@ fn default_fixture(size: [f64; 3], table: f64) -> Isometry3<f64> {
     Isometry3::translation(-0.5 * size[0], -0.5 * size[1], table)
 }
 
-/// The default robots: two IRB 1600 on the floor, facing each other along the blade's
+/// The default robots: two IRB 2600-12/1.65 on the floor (the workshop's IRB 1600 cannot
+/// hold every job's blade through its travels within its wrist's ±115°), facing each other along the blade's
 /// mean chord `dir` (horizontal), each `standoff` beyond the end of a blade of `blade`
 /// whose middle is at `mid`.
 fn default_robots(mid: &Vector3<f64>, dir: &Vector3<f64>, blade: f64, standoff: f64) -> Vec<Robot> {

@@ -10,13 +10,14 @@ use serde::{Deserialize, Serialize};
 /// a fixture: after each block the blade retreats, rises in its cutting plane above the
 /// block, and the program waits for the operator to change blocks.
 ///
-/// Without `cell:` the default cell is used: two IRB 1600-6/1.45 facing each other across
-/// the fixture, placed by the rule in the README ("The robot cell"), with holders 150 mm
-/// long. Its configuration data and tool data are then assumed, and the run says so.
+/// Without `cell:` the default cell is used: two IRB 2600-12/1.65 facing each other across
+/// the fixture, laid out by the rule in the README ("The robot cell"), with holders 150 mm
+/// long. Its placement and tool data are then assumed, and the programs say so.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, rename = "Cell")]
 pub struct CellSpec {
-    /// The robots, `[Robot(..), ..]`. Default: the two of the default cell.
+    /// The robots, `[Robot(..), ..]`; the first two are the tasks `T_ROB1` and `T_ROB2`.
+    /// Default: the two IRB 2600 of the default cell.
     #[serde(default)]
     pub robots: Option<Vec<RobotSpec>>,
     /// The holders of the blade's first and second end (exactly two). Default: robot 0
@@ -29,7 +30,8 @@ pub struct CellSpec {
     pub block_carrier: Option<CarrierSpec>,
     /// Where a block stands while it is cut: its frame (min corner; axes along the cut,
     /// across it, up) in the cell's frame. Default: the block centred over the cell's
-    /// origin across and along the cut, its floor 500 mm up.
+    /// origin across and along the cut, its floor 200 mm up (with the default robots, the
+    /// first of 200, 0, 400, 600 mm that the robots reach well).
     #[serde(default)]
     pub fixture: Option<FrameSpec>,
     /// The heat: output signal and preheat time.
@@ -110,14 +112,15 @@ pub struct CustomModel {
     /// Wrist centre to flange.
     pub c4: f64,
     /// Joint offsets from the OPW zero (arm straight up) to the maker's zero, degrees.
-    /// Default: ABB's `(0, 0, -90, 0, 0, 0)`.
+    /// Default: ABB's `[0, 0, -90, 0, 0, 0]`.
     #[serde(default)]
-    pub offsets: Option<[f64; 6]>,
-    /// Direction of each joint against the OPW convention, +1 or −1. Default: all +1.
+    pub offsets: Option<Vec<f64>>,
+    /// Direction of each joint against the OPW convention, `[1, 1, 1, 1, 1, 1]` with −1
+    /// for a joint that turns the other way. Default: all 1.
     #[serde(default)]
-    pub signs: Option<[i8; 6]>,
-    /// Joint limits `(min, max)` of axes 1–6, degrees.
-    pub limits: [(f64, f64); 6],
+    pub signs: Option<Vec<i8>>,
+    /// Joint limits `[(min, max), ..]` of axes 1–6, degrees.
+    pub limits: Vec<(f64, f64)>,
 }
 
 /// What holds one end of the blade.

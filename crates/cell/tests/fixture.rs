@@ -1,0 +1,175 @@
+//! The fixture cell's program on blocks of arched blade poses: every move's chosen joints
+//! reach its target through forward kinematics (1e-6 mm, 1e-9 rad) with the stated
+//! configuration data, the blade never stretches, the heat is on exactly from the entry
+//! into a block to the retreat, the blade clears the blocks between them, and the program
+//! does not change when the whole cell is moved rigidly.
+
+use cell::blade::{from_planar, planar, shape, BladePose, PlanarPose};
+use cell::conf::conf;
+use cell::fixture::{plan, BlockCut, CellProgram, FixtureCell, Phase};
+use cell::kinematics::{forward, pose_distance};
+use cell::model::RobotModel;
+use cell::plan::{Holder, SweepFlag};
+use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+use proptest::prelude::*;
+
+const BLADE: f64 = 800.0;
+
+fn rotation(x: Vector3<f64>, z: Vector3<f64>) -> UnitQuaternion<f64> {
+    UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(Matrix3::from_columns(
+        &[x, z.cross(&x), z],
+    )))
+}
+
+/// Poses through a 600 mm block along x: arches of the blade with ends turned by `turn`
+/// against the chord, the chord tilted by `tilt` about x, its midpoint at `height`.
+fn block(number: usize, turn: f64, tilt: f64, height: f64, n: usize) -> BlockCut {
+    let chord = BLADE * turn.sin() / turn * 0.98;
+    let x = Vector3::new(0.0, tilt.cos(), tilt.sin());
+    let poses = (0..n)
+        .map(|k| {
+            let along = 600.0 * k as f64 / (n - 1) as f64;
+            from_planar(&PlanarPose {
+                mid: Vector3::new(along, 300.0, height),
+                frame: rotation(x, Vector3::x()),
+                chord,
+                angles: [turn, -turn],
+            })
+        })
+        .collect();
+    BlockCut {
+        block: number,
+        size: [600.0, 600.0, 600.0],
+        poses,
+    }
+}
+
+/// Two IRB 2600 facing each other across a fixture 200 mm up, holders facing along the
+/// cut with the blade 150 mm in front of the flange.
+fn cell() -> FixtureCell {
+    let robot = |y: f64, yaw: f64| Isometry3::from_parts(
+        Translation3::new(0.0, y, 0.0),
+        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+    );
+    let holder = |base, e: usize| {
+        // at the mean pose: flange z along the cut (x), flange x down
+        let tool = if e == 0 { Vector3::y() } else { Vector3::y() };
+        let flange = rotation(-Vector3::z(), Vector3::x());
+        Holder {
+            model: RobotModel::irb2600_12_165(),
+            base,
+            tool: Isometry3::from_parts(
+                Translation3::new(0.0, 0.0, 150.0),
+                flange.inverse() * rotation(tool, Vector3::x()),
+            ),
+        }
+    };
+    FixtureCell {
+        holders: [
+            holder(robot(-1200.0, std::f64::consts::FRAC_PI_2), 0),
+            holder(robot(1200.0, -std::f64::consts::FRAC_PI_2), 1),
+        ],
+        fixture: Isometry3::translation(-300.0, -300.0, 200.0),
+        blade_length: BLADE,
+        max_curvature: None,
+        approach: 50.0,
+        clearance: 100.0,
+        travel_step: (100.0, 5f64.to_radians()),
+        start: [[0.0, 0.0, 0.0, 0.0, 0.5, 0.0]; 2],
+    }
+}
+
+fn blocks(turn: f64, tilt: f64) -> Vec<BlockCut> {
+    vec![
+        block(1, turn, tilt, 350.0, 9),
+        block(2, 0.6 * turn, -tilt, 300.0, 9),
+        block(3, turn, 0.5 * tilt, 380.0, 9),
+    ]
+}
+
+/// Every check of the module's doc on one program. A move out of reach must be flagged;
+/// every cutting move must be reached (this cell reaches the blocks).
+fn check(cell: &FixtureCell, blocks: &[BlockCut], p: &CellProgram) {
+    for (k, s) in p.steps.iter().enumerate() {
+        let world: BladePose = [cell.fixture * s.ends[0], cell.fixture * s.ends[1]];
+        // the chord never exceeds the blade, and the blade between is an elastica
+        let q = planar(&world).unwrap();
+        assert!(q.chord < BLADE, "move {k}: chord {}", q.chord);
+        let blade = shape(&world, BLADE).unwrap();
+        // heat exactly on the moves that cut: into the block, through it, out of it
+        assert_eq!(s.heat, matches!(s.phase, Phase::Cut | Phase::Retreat), "move {k}");
+        if matches!(s.phase, Phase::Rise | Phase::Travel | Phase::Start) {
+            let top = 200.0 + 600.0;
+            assert!(blade.lowest() >= top + cell.clearance - 1e-6, "move {k}: {}", blade.lowest());
+        }
+        for r in 0..2 {
+            let h = &cell.holders[r];
+            let sol = &p.solutions[r][k];
+            let Some(joints) = sol.joints else {
+                assert!(s.phase != Phase::Cut, "move {k} robot {r}: a cut out of reach");
+                assert!(p.flags[r].contains(&SweepFlag::OutOfReach(k)), "move {k} robot {r}: not flagged");
+                continue;
+            };
+            let joints = joints.map(f64::to_radians);
+            let tcp = h.base * forward(&h.model, &joints).unwrap() * h.tool;
+            let (dp, da) = pose_distance(&tcp, &world[r]);
+            assert!(dp < 1e-6 && da < 1e-9, "move {k} robot {r}: {dp} mm, {da} rad");
+            assert_eq!(sol.conf, Some(conf(&h.model, &joints)));
+            assert!(sol.margin.unwrap() >= 0.0);
+        }
+    }
+    // blocks in order, each placed once, each cut through every pose
+    let changes: Vec<_> = p.steps.iter().filter_map(|s| s.change).collect();
+    let numbers: Vec<usize> = blocks.iter().map(|b| b.block).collect();
+    assert_eq!(changes.iter().map(|c| c.1).collect::<Vec<_>>(), numbers);
+    let cuts = p.steps.iter().filter(|s| s.phase == Phase::Cut).count();
+    assert_eq!(cuts, blocks.iter().map(|b| b.poses.len()).sum::<usize>());
+}
+
+#[test]
+fn every_chosen_joint_reaches_its_target_and_the_blade_stays_safe() {
+    let (cell, blocks) = (cell(), blocks(0.35, 0.2));
+    let p = plan(&cell, &blocks).unwrap();
+    check(&cell, &blocks, &p);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 6, ..ProptestConfig::default() })]
+
+    #[test]
+    fn moving_the_whole_cell_changes_nothing(
+        turn in 0.15f64..0.45, tilt in -0.25f64..0.25,
+        shift in proptest::array::uniform3(-2000.0f64..2000.0), yaw in -3.1f64..3.1,
+    ) {
+        let (cell, blocks) = (cell(), blocks(turn, tilt));
+        let p = plan(&cell, &blocks).unwrap();
+        check(&cell, &blocks, &p);
+        // a rigid motion that keeps "up": bases and fixture moved together
+        let g = Isometry3::from_parts(
+            Translation3::new(shift[0], shift[1], shift[2]),
+            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+        );
+        let mut moved = cell.clone();
+        moved.fixture = g * cell.fixture;
+        for h in &mut moved.holders {
+            h.base = g * h.base;
+        }
+        let q = plan(&moved, &blocks).unwrap();
+        prop_assert_eq!(p.steps.len(), q.steps.len());
+        for r in 0..2 {
+            let key = |f: &SweepFlag| match f {
+                SweepFlag::OutOfReach(i) => (0, *i, 0),
+                SweepFlag::ConfigurationChange(i) => (1, *i, 0),
+                SweepFlag::JointJump { pose, axis, .. } => (2, *pose, *axis),
+            };
+            let keys = |v: &[SweepFlag]| v.iter().map(key).collect::<Vec<_>>();
+            prop_assert_eq!(keys(&p.flags[r]), keys(&q.flags[r]));
+            for (a, b) in p.solutions[r].iter().zip(&q.solutions[r]) {
+                match (a.joints, b.joints) {
+                    (Some(a), Some(b)) => prop_assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-6), "{:?} {:?}", a, b),
+                    (a, b) => prop_assert_eq!(a, b),
+                }
+            }
+        }
+    }
+}
