@@ -80,7 +80,7 @@ impl Robot {
     /// ABB's `[cf1, cf4, cf6, cfx]` of joints (degrees): quarter turns of axes 1, 4, 6; cfx = 4·(wrist centre behind axis 1) + 2·(behind the lower arm)
     /// + (axis 5 negative).
     pub fn conf(&self, j: &[f64; 6]) -> [i32; 4] {
-        let [a1, _, _, c1, c2, _, _] = self.opw;
+        let [a1, _, _, c1, _, _, _] = self.opw;
         let q = self.paper(j);
         let (_, wrist) = self.flange(j);
         let forward = Vector3::new(q[0].cos(), q[0].sin(), 0.0);

@@ -124,17 +124,31 @@ fn a_wrist_passing_axis_five_zero_changes_configuration() {
 }
 
 #[test]
-fn a_turn_of_the_tool_between_poses_is_a_joint_jump() {
+fn a_long_turn_of_the_tool_is_followed_not_a_jump() {
+    // axis 6 turning 90° between two poses: the move is followed in pieces, continuously
     let h = holder(RobotModel::irb4600_60_205());
     let a = deg([0.0, 20.0, 0.0, 0.0, 50.0, 0.0]);
     let b = deg([0.0, 20.0, 0.0, 0.0, 50.0, 90.0]);
+    let s = sweep(&h, &tcp(&h, &[a, b]), &a).unwrap();
+    assert!(s.is_clean(), "{:?}", s.flags);
+    let j = s.poses[1].joints.unwrap();
+    assert!((j[5] - 90.0).abs() < 1e-6, "{j:?}");
+}
+
+#[test]
+fn a_wrist_flip_near_its_singularity_is_a_joint_jump() {
+    // axis 5 at 2°: two flange poses a few degrees apart need axes 4 and 6 to swing 120°
+    // the other way round; the straight move between them flips the wrist
+    let h = holder(RobotModel::irb4600_60_205());
+    let a = deg([0.0, 20.0, 0.0, 60.0, 2.0, -60.0]);
+    let b = deg([0.0, 20.0, 0.0, -60.0, 2.0, 60.0]);
     let s = sweep(&h, &tcp(&h, &[a, b]), &a).unwrap();
     assert!(
         s.flags.iter().any(|f| matches!(
             f,
             SweepFlag::JointJump {
                 pose: 1,
-                axis: 6,
+                axis: 4 | 6,
                 ..
             }
         )),

@@ -37,10 +37,10 @@ fn facade_segmentation_runs_and_writes_its_files() {
         "sections.csv",
         "targets.json",
         "targets.csv",
-        "FacadeSeg_T_ROB1.mod",
-        "FacadeSeg_T_ROB1.pgf",
-        "FacadeSeg_T_ROB2.mod",
-        "FacadeSeg_T_ROB2.pgf",
+        "t_T_ROB1.mod",
+        "t_T_ROB1.pgf",
+        "t_T_ROB2.mod",
+        "t_T_ROB2.pgf",
     ] {
         assert!(dir.path().join("o/t").join(f).is_file(), "missing {f}");
     }
