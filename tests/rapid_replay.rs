@@ -6,8 +6,8 @@
 //! - the blade: in every move, the distance between the two held ends stays within the
 //!   blade's length (both TCPs move linearly over the same time, so the distance is convex
 //!   along a move: its ends bound it); along every move, sampled, the blade rebuilt from
-//!   its ends never enters the block at the fixture unless it is heated, and each heated
-//!   run does cut into the block: the heat is on exactly during the cuts;
+//!   its ends never enters the block at the fixture unless it is heated, and in each heated
+//!   run the blade's plane passes through the block: the heat is on exactly during cuts;
 //! - the operator changes blocks only with the heat off, and the program ends cold;
 //! - every robtarget is reached: forward kinematics of the joints stated with it, through
 //!   the robot's base and the tool, lands on it (to the precision the file prints), the
@@ -169,8 +169,13 @@ fn check_blade(a: &reader::Task, b: &reader::Task, blade: f64, r: &mut Replay) -
                 .iter()
                 .map(|p| robot::depth(&ma[k].wobj, size, p))
                 .fold(f64::NEG_INFINITY, f64::max);
-            if deepest > 0.1 {
+            // a heated run cuts when its blade's plane passes through the block (the
+            // rebuilt shape of a nearly taut blade may take the other of two equilibria,
+            // so the plane, which does not depend on it, decides)
+            if robot::crosses(&ma[k].wobj, size, &ends[0]) {
                 inside = true;
+            }
+            if deepest > 0.1 {
                 if !heat {
                     return Err(format!(
                         "{} (\\ID {:?}): the cold blade is {deepest:.1} mm inside block {block}",

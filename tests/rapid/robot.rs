@@ -133,3 +133,18 @@ pub fn depth(f: &Isometry3<f64>, size: &[f64; 3], p: &Vector3<f64>) -> f64 {
         .map(|i| l[i].min(size[i] - l[i]))
         .fold(f64::INFINITY, f64::min)
 }
+
+/// Whether the plane of the tool frame `end` (its z the normal) passes through the box
+/// `[0, size]` of frame `f`.
+pub fn crosses(f: &Isometry3<f64>, size: &[f64; 3], end: &Isometry3<f64>) -> bool {
+    let n = end.rotation * Vector3::z();
+    let at = end.translation.vector;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for corner in 0..8 {
+        let c = Vector3::from_fn(|i, _| if corner & (1 << i) != 0 { size[i] } else { 0.0 });
+        let d = ((f * Point3::from(c)).coords - at).dot(&n);
+        lo = lo.min(d);
+        hi = hi.max(d);
+    }
+    lo < 0.0 && hi > 0.0
+}

@@ -3,8 +3,8 @@
 //! both robots' joint solutions along it.
 //!
 //! For each block, in order:
-//! 1. *descend* in the first cutting plane, shifted back by the approach distance, from
-//!    the clearance height to the approach point (air, cold);
+//! 1. *descend* in the first cutting plane, shifted back until it is the approach distance
+//!    clear of the block, from the clearance height to the approach point (air, cold);
 //! 2. heat on, then *cut*: into the block and through every pose, and *retreat* by the
 //!    approach distance along the cutting plane's normal;
 //! 3. heat off, *rise* in the cutting plane until the whole blade is `clearance` above the
@@ -164,18 +164,7 @@ fn check(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<()> {
 
 /// Top of block `b` at the fixture (highest corner), mm.
 fn top(cell: &FixtureCell, b: &BlockCut) -> f64 {
-    let mut z = f64::NEG_INFINITY;
-    for corner in 0..8 {
-        let c = Vector3::from_fn(|i, _| {
-            if corner & (1 << i) != 0 {
-                b.size[i]
-            } else {
-                0.0
-            }
-        });
-        z = z.max((cell.fixture * nalgebra::Point3::from(c)).z);
-    }
-    z
+    corners(cell, b).iter().map(|c| c.z).fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// A pose in the cell's frame.
@@ -245,12 +234,38 @@ struct Ends {
     top: f64,
 }
 
+/// How far the block reaches beyond the plane of world pose `p` along `dir` (the largest
+/// signed distance of a corner, 0 when none is beyond).
+fn overhang(cell: &FixtureCell, b: &BlockCut, p: &BladePose, dir: &Vector3<f64>) -> f64 {
+    let at = p[0].translation.vector;
+    corners(cell, b)
+        .iter()
+        .map(|c| (c - at).dot(dir))
+        .fold(0.0, f64::max)
+}
+
+/// The block's corners at the fixture.
+fn corners(cell: &FixtureCell, b: &BlockCut) -> Vec<Vector3<f64>> {
+    (0..8)
+        .map(|corner| {
+            let c = Vector3::from_fn(|i, _| if corner & (1 << i) != 0 { b.size[i] } else { 0.0 });
+            (cell.fixture * nalgebra::Point3::from(c)).coords
+        })
+        .collect()
+}
+
+/// The approach and retreat lie `approach` beyond the block: outside the first and last
+/// cutting plane by that much, more where the block reaches past them (a plane turned
+/// against the block, a curved cut), so the blade never enters the block cold.
 fn ends_of(cell: &FixtureCell, b: &BlockCut) -> Result<Ends> {
     let first = world(cell, &b.poses[0]);
     let last = world(cell, &b.poses[b.poses.len() - 1]);
+    let (n0, n1) = (blade::normal(&first), blade::normal(&last));
+    let back = cell.approach + overhang(cell, b, &first, &-n0);
+    let on = cell.approach + overhang(cell, b, &last, &n1);
     Ok(Ends {
-        approach: blade::translated(&first, &(blade::normal(&first) * -cell.approach)),
-        retreat: blade::translated(&last, &(blade::normal(&last) * cell.approach)),
+        approach: blade::translated(&first, &(n0 * -back)),
+        retreat: blade::translated(&last, &(n1 * on)),
         rise: [
             rise_direction(&first, b.block)?,
             rise_direction(&last, b.block)?,

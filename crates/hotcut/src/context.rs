@@ -153,6 +153,8 @@ pub struct JobFields<'a> {
     pub wire: Option<&'a WireSpec>,
     /// The robot cell.
     pub cell: Option<&'a CellSpec>,
+    /// Length unit of the job.
+    pub units: Units,
     /// Cutting direction, sections and curve.
     pub cutting: &'a CuttingSpec,
     /// Files to write.

@@ -92,6 +92,18 @@ fn bases() -> Vec<Base> {
             vec![],
         ),
         (
+            "cell",
+            job(
+                "HotBlade(targets_per_block: 5, samples: 30, refine: 1)",
+                "Report, Rapid",
+            )
+            .replace(
+                "task:",
+                r#"cell: Cell(robots: [Robot(model: Custom(name: "c", a1: 150, a2: -115, b: 0, c1: 445, c2: 700, c3: 795, c4: 85, offsets: [0, 0, -90, 0, 0, 0], signs: [1, 1, 1, 1, 1, 1], limits: [(-180, 180), (-95, 155), (-180, 75), (-400, 400), (-120, 120), (-400, 400)]), base: Frame(origin: (150, -1100, 0), rotation: (90, 0, 0))), Robot(model: Irb4600, base: Frame(origin: (150, 1300, 0), rotation: (-90, 0, 0)))], blade_holders: [Holder(robot: 0, tcp: Frame(origin: (0, 0, 150), rotation: (0, 0, -90)), mass: 2, cog: (0, 0, 70)), Holder(robot: 1, tcp: Frame(origin: (0, 0, 150), rotation: (180, 0, -90)), mass: 2, cog: (0, 0, 70))], fixture: Frame(origin: (0, -225, 300), rotation: (0, 0, 0)), heat: Heat(signal: "doHeat", preheat_s: 2), air_speed: 120, clearance: 80, strict: false), task:"#,
+            ),
+            vec![],
+        ),
+        (
             "precut",
             r#"Job(name: "h", surface: HeightField(z: "100 + 80*exp(-((x/200)^2 + (y/200)^2))", x: (-300, 300), y: (-300, 300)), block: Block(size: (600, 600, 300), origin: (-300, -300, 0)), wire: Wire(tower_distance: 900, kerf: 1.5, speed: 300, lead: 20, clearance: 50), task: PreCut(legs: 2, directions: [X], sections: 8, samples: 8, controls: 5), outputs: [Report, GCode, Csv])"#.to_string(),
             vec![],

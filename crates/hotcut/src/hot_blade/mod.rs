@@ -157,7 +157,7 @@ impl Task for HotBlade {
             errors.push(job.error(&format!("{PTR}/constraint"), "HotBlade fits keep the sections' end points so that neighbouring blocks meet: use EndPoints or EndPointsAndLength"));
         }
         job.check_motion(PTR, self.speed, self.approach, errors);
-        robot_cell::check(job, errors);
+        robot_cell::check(job, 1.0 / job.units.per_mm(), errors);
         // the pipeline's own checks of these fields and of the cutting curve
         let pipeline = hotblade::Params {
             curve: job.cutting.curve.clone(),

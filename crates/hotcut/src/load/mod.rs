@@ -119,6 +119,7 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
         blade: job.blade.as_ref(),
         wire: job.wire.as_ref(),
         cell: job.cell.as_ref(),
+        units: job.units,
         cutting: &job.cutting,
         outputs: &job.outputs,
     };

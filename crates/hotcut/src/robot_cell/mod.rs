@@ -39,16 +39,22 @@ fn is_identifier(s: &str) -> bool {
         && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
-/// Checks the job's `cell:`.
-pub fn check(job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+/// Largest distance of a frame's origin, a clearance or a centre of gravity from zero, mm
+/// (a cell is a room, not a city).
+const MAX_MM: f64 = 100_000.0;
+/// Fastest air speed, mm/s (ABB arms top out near 7 m/s).
+const MAX_AIR_MM_PER_S: f64 = 5_000.0;
+
+/// Checks the job's `cell:` (`mm`: millimetres per job unit).
+pub fn check(job: &JobFields<'_>, mm: f64, errors: &mut Vec<JobError>) {
     let Some(c) = job.cell else { return };
     let mut err = |at: &str, m: String| errors.push(job.error(&format!("/cell{at}"), m));
-    let positive = |v: Option<f64>| v.is_none_or(|v| v > 0.0 && v.is_finite());
-    if !positive(c.air_speed) {
-        err("/air_speed", "the air speed must be a positive number".into());
+    let within = |v: Option<f64>, max: f64| v.is_none_or(|v| v > 0.0 && v * mm <= max);
+    if !within(c.air_speed, MAX_AIR_MM_PER_S) {
+        err("/air_speed", format!("the air speed must be positive, at most {MAX_AIR_MM_PER_S} mm/s"));
     }
-    if !positive(c.clearance) {
-        err("/clearance", "the clearance must be a positive number".into());
+    if !within(c.clearance, MAX_MM) {
+        err("/clearance", format!("the clearance must be positive, at most {MAX_MM} mm"));
     }
     if !is_identifier(&c.heat.signal) {
         err("/heat/signal", format!("{:?} is not a RAPID identifier (a letter, then letters, digits or _, at most 32)", c.heat.signal));
@@ -59,13 +65,13 @@ pub fn check(job: &JobFields<'_>, errors: &mut Vec<JobError>) {
     if c.block_carrier.is_some() {
         err("/block_carrier", "a robot carrying the block is not supported yet: leave block_carrier out, the blocks are cut at the fixture".into());
     }
+    let near = |p: (f64, f64, f64)| [p.0, p.1, p.2].iter().all(|v| v.is_finite() && (v * mm).abs() <= MAX_MM);
     let finite = |f: &crate::spec::FrameSpec| {
-        [f.origin.0, f.origin.1, f.origin.2, f.rotation.0, f.rotation.1, f.rotation.2]
-            .iter()
-            .all(|v| v.is_finite())
+        near(f.origin) && [f.rotation.0, f.rotation.1, f.rotation.2].iter().all(|v| v.is_finite() && v.abs() <= 720.0)
     };
+    let frame_msg = format!("a frame's origin must lie within {MAX_MM} mm, its angles within ±720°");
     if c.fixture.as_ref().is_some_and(|f| !finite(f)) {
-        err("/fixture", "the fixture's frame must be finite".into());
+        err("/fixture", frame_msg.clone());
     }
     let robots = c.robots.as_ref().map_or(2, Vec::len);
     if let Some(rs) = &c.robots {
@@ -74,7 +80,7 @@ pub fn check(job: &JobFields<'_>, errors: &mut Vec<JobError>) {
         }
         for (i, r) in rs.iter().enumerate() {
             if !finite(&r.base) {
-                err(&format!("/robots/{i}/base"), "the base frame must be finite".into());
+                err(&format!("/robots/{i}/base"), frame_msg.clone());
             }
             if let crate::spec::ModelSpec::Custom(c) = &r.model {
                 let six = |n: Option<usize>| n.is_none_or(|n| n == 6);
@@ -83,7 +89,7 @@ pub fn check(job: &JobFields<'_>, errors: &mut Vec<JobError>) {
                     continue;
                 }
             }
-            if let Err(e) = resolve::model(&r.model, 1.0).check() {
+            if let Err(e) = resolve::model(&r.model, mm).check() {
                 err(&format!("/robots/{i}/model"), e.to_string());
             }
         }
@@ -97,10 +103,13 @@ pub fn check(job: &JobFields<'_>, errors: &mut Vec<JobError>) {
                 err(&format!("/blade_holders/{i}/robot"), format!("robot {} does not exist (the cell has {robots})", h.robot));
             }
             if h.tcp.as_ref().is_some_and(|f| !finite(f)) {
-                err(&format!("/blade_holders/{i}/tcp"), "the TCP frame must be finite".into());
+                err(&format!("/blade_holders/{i}/tcp"), frame_msg.clone());
             }
-            if !positive(h.mass) {
-                err(&format!("/blade_holders/{i}/mass"), "the mass must be a positive number of kg".into());
+            if !h.mass.is_none_or(|m| m > 0.0 && m <= 1000.0) {
+                err(&format!("/blade_holders/{i}/mass"), "the mass must be positive, at most 1000 kg".into());
+            }
+            if !h.cog.is_none_or(near) {
+                err(&format!("/blade_holders/{i}/cog"), format!("the centre of gravity must lie within {MAX_MM} mm"));
             }
         }
         if hs.len() == 2 && hs[0].robot == hs[1].robot {
