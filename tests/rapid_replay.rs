@@ -117,7 +117,12 @@ fn check_joints(moves: &[reader::Move], robot: &Robot, r: &mut Replay) -> Result
             .ok_or(format!("{}: no joints stated (out of reach)", m.target))?;
         for (i, (lo, hi)) in robot.limits.iter().enumerate() {
             if !(j[i] >= lo - 1e-6 && j[i] <= hi + 1e-6) {
-                return Err(format!("{}: axis {} at {}° is past its limits", m.target, i + 1, j[i]));
+                return Err(format!(
+                    "{}: axis {} at {}° is past its limits",
+                    m.target,
+                    i + 1,
+                    j[i]
+                ));
             }
         }
         let (flange, _) = robot.flange(&j);
@@ -125,12 +130,18 @@ fn check_joints(moves: &[reader::Move], robot: &Robot, r: &mut Replay) -> Result
         let d = (tcp.translation.vector - m.pose.translation.vector).norm();
         let a = tcp.rotation.angle_to(&m.pose.rotation);
         if d > FK_MM || a > FK_RAD {
-            return Err(format!("{}: the stated joints reach {d:.6} mm / {a:.2e} rad away", m.target));
+            return Err(format!(
+                "{}: the stated joints reach {d:.6} mm / {a:.2e} rad away",
+                m.target
+            ));
         }
         r.worst_fk_mm = r.worst_fk_mm.max(d);
         let conf = robot.conf(&j);
         if conf != m.conf {
-            return Err(format!("{}: configuration {:?}, the joints' is {conf:?}", m.target, m.conf));
+            return Err(format!(
+                "{}: configuration {:?}, the joints' is {conf:?}",
+                m.target, m.conf
+            ));
         }
     }
     Ok(())
@@ -149,19 +160,37 @@ fn ends_at(a: &[reader::Move], b: &[reader::Move], k: usize, w: f64) -> [Isometr
 }
 
 /// The blade along every move against the block at the fixture and the heat.
-fn check_blade(a: &reader::Task, b: &reader::Task, blade: f64, r: &mut Replay) -> Result<(), String> {
+fn check_blade(
+    a: &reader::Task,
+    b: &reader::Task,
+    blade: f64,
+    r: &mut Replay,
+) -> Result<(), String> {
     let (ma, mb) = (&a.moves, &b.moves);
     // a heated run: whether it cut into the block
     let mut run_cut: Option<bool> = None;
     for k in 0..ma.len() {
         let heat = ma[k].heat.unwrap_or(false);
-        let block = ma[k].block.ok_or(format!("{}: no block at the fixture", ma[k].target))?;
-        let size = a.blocks.get(&block).ok_or(format!("no size of block {block}"))?;
+        let block = ma[k]
+            .block
+            .ok_or(format!("{}: no block at the fixture", ma[k].target))?;
+        let size = a
+            .blocks
+            .get(&block)
+            .ok_or(format!("no size of block {block}"))?;
         // the first move starts wherever the operator left the robots: only its target
-        let fractions: &[f64] = if k == 0 { &[1.0] } else { &[0.25, 0.5, 0.75, 1.0] };
+        let fractions: &[f64] = if k == 0 {
+            &[1.0]
+        } else {
+            &[0.25, 0.5, 0.75, 1.0]
+        };
         let mut inside = false;
         for &w in fractions {
-            let ends = if k == 0 { [ma[0].pose, mb[0].pose] } else { ends_at(ma, mb, k, w) };
+            let ends = if k == 0 {
+                [ma[0].pose, mb[0].pose]
+            } else {
+                ends_at(ma, mb, k, w)
+            };
             let points = robot::blade([&ends[0], &ends[1]], blade)
                 .map_err(|e| format!("{} (\\ID {:?}): no blade: {e}", ma[k].target, ma[k].id))?;
             r.samples += 1;
@@ -175,13 +204,11 @@ fn check_blade(a: &reader::Task, b: &reader::Task, blade: f64, r: &mut Replay) -
             if robot::crosses(&ma[k].wobj, size, &ends[0]) {
                 inside = true;
             }
-            if deepest > 0.1 {
-                if !heat {
-                    return Err(format!(
-                        "{} (\\ID {:?}): the cold blade is {deepest:.1} mm inside block {block}",
-                        ma[k].target, ma[k].id
-                    ));
-                }
+            if deepest > 0.1 && !heat {
+                return Err(format!(
+                    "{} (\\ID {:?}): the cold blade is {deepest:.1} mm inside block {block}",
+                    ma[k].target, ma[k].id
+                ));
             }
         }
         match (heat, run_cut) {
@@ -191,7 +218,10 @@ fn check_blade(a: &reader::Task, b: &reader::Task, blade: f64, r: &mut Replay) -
             }
             (false, Some(cut)) => {
                 if !cut {
-                    return Err(format!("{}: the heat was on, but the blade cut nothing", ma[k].target));
+                    return Err(format!(
+                        "{}: the heat was on, but the blade cut nothing",
+                        ma[k].target
+                    ));
                 }
                 r.cuts += 1;
                 run_cut = None;
@@ -210,7 +240,10 @@ fn check_blade(a: &reader::Task, b: &reader::Task, blade: f64, r: &mut Replay) -
 
 /// What is wrong with a cell's program.
 fn check(cell: &Cell) -> Result<Replay, String> {
-    let (a, b) = (reader::read(&cell.modules[0])?, reader::read(&cell.modules[1])?);
+    let (a, b) = (
+        reader::read(&cell.modules[0])?,
+        reader::read(&cell.modules[1])?,
+    );
     if a.segments != b.segments {
         return Err("the tasks' synchronized segments differ".into());
     }
@@ -298,30 +331,47 @@ fn the_check_fails_on_programs_made_unsafe_on_purpose() {
     let e = check(&with(r1.clone(), shifted(&r2, "pB1_C3", [0.0, 100.0, 0.0]))).unwrap_err();
     assert!(e.contains("pB1_C3") && e.contains("apart"), "{e}");
     // a travel to block 2 lowered by 500 mm in both tasks: through the block, cold
-    let (l1, l2) = (shifted(&r1, "pB2_T3", [0.0, 0.0, -500.0]), shifted(&r2, "pB2_T3", [0.0, 0.0, -500.0]));
+    let (l1, l2) = (
+        shifted(&r1, "pB2_T3", [0.0, 0.0, -500.0]),
+        shifted(&r2, "pB2_T3", [0.0, 0.0, -500.0]),
+    );
     let e = check(&with(l1, l2)).unwrap_err();
     assert!(e.contains("inside block"), "{e}");
     // the travel's joints no longer those of its target, or the configuration changed
     let moved = shifted(&r1, "pB2_T3", [0.0, 0.0, 1.0]);
-    assert!(check(&with(moved, r2.clone())).unwrap_err().contains("stated joints"));
-    let line = r1.lines().find(|l| l.contains("robtarget pB1_C5 ")).unwrap();
+    assert!(check(&with(moved, r2.clone()))
+        .unwrap_err()
+        .contains("stated joints"));
+    let line = r1
+        .lines()
+        .find(|l| l.contains("robtarget pB1_C5 "))
+        .unwrap();
     // [trans, rot, robconf, extax]: cf1 is the first number after the quaternion
     let conf = line.find("],[9E+09").unwrap();
     let open = line[..conf].rfind('[').unwrap();
-    let cf: Vec<i32> = line[open + 1..conf].split(',').map(|v| v.parse().unwrap()).collect();
+    let cf: Vec<i32> = line[open + 1..conf]
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
     let new_conf = format!("{},{},{},{}", cf[0] + 1, cf[1], cf[2], cf[3]);
     let flipped = format!("{}{new_conf}{}", &line[..open + 1], &line[conf..]);
     assert_ne!(flipped, line);
     let e = check(&with(r1.replace(line, &flipped), r2.clone())).unwrap_err();
     assert!(e.contains("configuration"), "{e}");
     // the heat left on after block 1's retreat, over the block change
-    let late = r1.replacen("        SetDO doBladeHeat, 0;\n        MoveL pB1_U1", "        MoveL pB1_U1", 1);
+    let late = r1.replacen(
+        "        SetDO doBladeHeat, 0;\n        MoveL pB1_U1",
+        "        MoveL pB1_U1",
+        1,
+    );
     assert_ne!(late, r1);
     let e = check(&with(late, r2.clone())).unwrap_err();
     assert!(e.contains("heated"), "{e}");
     // an \ID missing, or one task's moves out of step
     let no_id = r2.replacen(" \\ID:=30,", ",", 1);
-    assert!(check(&with(r1.clone(), no_id)).unwrap_err().contains("\\ID"));
+    assert!(check(&with(r1.clone(), no_id))
+        .unwrap_err()
+        .contains("\\ID"));
     let fewer = r2.replacen(" \\ID:=30,", " \\ID:=31,", 1);
     assert!(check(&with(r1, fewer)).is_err());
 }

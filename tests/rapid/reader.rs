@@ -93,12 +93,15 @@ fn joints(comment: &str) -> Option<[f64; 6]> {
     (v.len() == 6).then(|| [v[0], v[1], v[2], v[3], v[4], v[5]])
 }
 
+/// A robtarget: pose, configuration data, stated joints.
+type Target = (Isometry3<f64>, [i32; 4], Option<[f64; 6]>);
+
 /// What a module declares.
 #[derive(Default)]
 struct Data {
     wobj: HashMap<String, Isometry3<f64>>,
     tools: HashMap<String, Isometry3<f64>>,
-    targets: HashMap<String, (Isometry3<f64>, [i32; 4], Option<[f64; 6]>)>,
+    targets: HashMap<String, Target>,
     blocks: HashMap<usize, [f64; 3]>,
 }
 
@@ -114,7 +117,11 @@ fn declare(raw: &str, line: &str, d: &mut Data) -> Result<bool, String> {
         // [robhold, tframe, tload]: tload = [mass, cog, aom, ix, iy, iz]
         let v = numbers(value)?;
         if v.len() != 18 || !(v[7] > 0.0) {
-            return Err(format!("tooldata {name}: {} numbers, mass {:?}", v.len(), v.get(7)));
+            return Err(format!(
+                "tooldata {name}: {} numbers, mass {:?}",
+                v.len(),
+                v.get(7)
+            ));
         }
         d.tools.insert(name.into(), pose(&v[..7])?);
     } else if let Some((name, value)) = declaration(line, "robtarget") {
@@ -229,14 +236,23 @@ fn step(line: &str, d: &Data, s: &mut State) -> Result<(), String> {
             s.synced = false;
         }
         "SetDO" => {
-            let v: u8 = args.get(1).and_then(|v| v.parse().ok()).ok_or(format!("{line}: value"))?;
+            let v: u8 = args
+                .get(1)
+                .and_then(|v| v.parse().ok())
+                .ok_or(format!("{line}: value"))?;
             s.heat = Some(v == 1);
         }
         "change_block" => {
-            let place: usize = args.get(1).and_then(|v| v.parse().ok()).ok_or(format!("{line}: block"))?;
+            let place: usize = args
+                .get(1)
+                .and_then(|v| v.parse().ok())
+                .ok_or(format!("{line}: block"))?;
             let remove: usize = args[0].parse().map_err(|_| format!("{line}: block"))?;
             if remove != s.block.unwrap_or(0) {
-                return Err(format!("{line}: block {remove} is not the one at the fixture ({:?})", s.block));
+                return Err(format!(
+                    "{line}: block {remove} is not the one at the fixture ({:?})",
+                    s.block
+                ));
             }
             s.task.heat_at_changes.push(s.heat.unwrap_or(false));
             s.block = Some(place);

@@ -22,8 +22,18 @@ pub struct Robot {
 }
 
 fn frame(v: &serde_json::Value) -> Isometry3<f64> {
-    let o: Vec<f64> = v["origin_mm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
-    let q: Vec<f64> = v["rotation"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    let o: Vec<f64> = v["origin_mm"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let q: Vec<f64> = v["rotation"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
     Isometry3::from_parts(
         Translation3::new(o[0], o[1], o[2]),
         UnitQuaternion::from_quaternion(Quaternion::new(q[0], q[1], q[2], q[3])),
@@ -89,7 +99,13 @@ impl Robot {
         let (u, w) = ((q[1].sin(), q[1].cos()), (along - a1, wrist.z - c1));
         let behind_arm = u.0 * w.1 - u.1 * w.0 > 0.0;
         // the RAPID manual: int(a / 90°) for a ≥ 0, int(a / 90° − 1) below (int truncates)
-        let quarter = |a: f64| if a >= 0.0 { (a / 90.0).trunc() as i32 } else { (a / 90.0 - 1.0).trunc() as i32 };
+        let quarter = |a: f64| {
+            if a >= 0.0 {
+                (a / 90.0).trunc() as i32
+            } else {
+                (a / 90.0 - 1.0).trunc() as i32
+            }
+        };
         let cfx = 4 * i32::from(along < 0.0) + 2 * i32::from(behind_arm) + i32::from(j[4] < 0.0);
         [quarter(j[0]), quarter(j[3]), quarter(j[5]), cfx]
     }
@@ -112,7 +128,8 @@ pub fn blade(ends: [&Isometry3<f64>; 2], length: f64) -> Result<Vec<Vector3<f64>
         t.dot(&y).atan2(t.dot(&x))
     };
     let (a0, a1) = (angle(0), angle(1));
-    let turn = (a1 - a0 + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+    let turn =
+        (a1 - a0 + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
     let d = discrete_elastica(&DiscreteParams {
         segments: 32,
         start: [0.0, 0.0],

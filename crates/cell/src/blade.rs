@@ -45,7 +45,10 @@ pub struct BladeShape {
 impl BladeShape {
     /// The lowest `z` of the blade.
     pub fn lowest(&self) -> f64 {
-        self.points.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min)
+        self.points
+            .iter()
+            .map(|p| p[2])
+            .fold(f64::INFINITY, f64::min)
     }
 }
 
@@ -111,7 +114,10 @@ pub fn interpolate(a: &PlanarPose, b: &PlanarPose, w: f64) -> PlanarPose {
         mid: a.mid + (b.mid - a.mid) * w,
         frame: a.frame.slerp(&b.frame, w),
         chord: lerp(a.chord, b.chord),
-        angles: [lerp(a.angles[0], b.angles[0]), lerp(a.angles[1], b.angles[1])],
+        angles: [
+            lerp(a.angles[0], b.angles[0]),
+            lerp(a.angles[1], b.angles[1]),
+        ],
     }
 }
 

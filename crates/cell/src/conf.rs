@@ -29,7 +29,11 @@ pub struct Conf {
 /// boundary gets the quarter its printed value has.
 pub fn quadrant(angle: f64) -> i32 {
     let degrees = (angle.to_degrees() * 1e6).round() / 1e6;
-    let angle = if degrees == 0.0 { 0.0 } else { degrees.to_radians() };
+    let angle = if degrees == 0.0 {
+        0.0
+    } else {
+        degrees.to_radians()
+    };
     let quarters = angle / std::f64::consts::FRAC_PI_2;
     if angle >= 0.0 {
         quarters.trunc() as i32

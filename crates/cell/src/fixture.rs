@@ -164,7 +164,10 @@ fn check(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<()> {
 
 /// Top of block `b` at the fixture (highest corner), mm.
 fn top(cell: &FixtureCell, b: &BlockCut) -> f64 {
-    corners(cell, b).iter().map(|c| c.z).fold(f64::NEG_INFINITY, f64::max)
+    corners(cell, b)
+        .iter()
+        .map(|c| c.z)
+        .fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// A pose in the cell's frame.
@@ -248,7 +251,13 @@ fn overhang(cell: &FixtureCell, b: &BlockCut, p: &BladePose, dir: &Vector3<f64>)
 fn corners(cell: &FixtureCell, b: &BlockCut) -> Vec<Vector3<f64>> {
     (0..8)
         .map(|corner| {
-            let c = Vector3::from_fn(|i, _| if corner & (1 << i) != 0 { b.size[i] } else { 0.0 });
+            let c = Vector3::from_fn(|i, _| {
+                if corner & (1 << i) != 0 {
+                    b.size[i]
+                } else {
+                    0.0
+                }
+            });
             (cell.fixture * nalgebra::Point3::from(c)).coords
         })
         .collect()
@@ -288,9 +297,9 @@ fn travel_low(
         Some(p) => blade::shape(p, cell.blade_length)?,
         None => first.clone(),
     };
-    let limit = cell
-        .max_curvature
-        .map_or(f64::INFINITY, |k| k.max(first.max_curvature).max(last.max_curvature) * (1.0 + 1e-6));
+    let limit = cell.max_curvature.map_or(f64::INFINITY, |k| {
+        k.max(first.max_curvature).max(last.max_curvature) * (1.0 + 1e-6)
+    });
     let (mut low, mut worst) = (first.lowest(), 0.0f64);
     for p in path {
         let s = blade::shape(p, cell.blade_length)?;
@@ -307,7 +316,11 @@ const RELAXED_RAD: f64 = 0.2;
 /// about the same midpoint, bulging the same way.
 fn relaxed(cell: &FixtureCell, p: &BladePose) -> Result<BladePose> {
     let mut q = blade::planar(p)?;
-    let s = if q.angles[0] - q.angles[1] < 0.0 { -1.0 } else { 1.0 };
+    let s = if q.angles[0] - q.angles[1] < 0.0 {
+        -1.0
+    } else {
+        1.0
+    };
     q.chord = cell.blade_length * RELAXED_RAD.sin() / RELAXED_RAD;
     q.angles = [s * RELAXED_RAD, -s * RELAXED_RAD];
     Ok(blade::from_planar(&q))
@@ -474,7 +487,11 @@ pub fn solve(cell: &FixtureCell, moves: &Moves) -> Result<CellProgram> {
                 let count = |f: &dyn Fn(&SweepFlag) -> Option<usize>| {
                     flags[r].iter().filter_map(f).filter(|i| mine(*i)).count()
                 };
-                let reached = idx.iter().filter_map(|&i| solutions[r][i].margin.map(|m| (solutions[r][i].solutions, m)));
+                let reached = idx.iter().filter_map(|&i| {
+                    solutions[r][i]
+                        .margin
+                        .map(|m| (solutions[r][i].solutions, m))
+                });
                 let (fewest, margin) = reached.fold((usize::MAX, None::<f64>), |(n, m), (s, g)| {
                     (n.min(s), Some(m.map_or(g, |m| m.min(g))))
                 });
@@ -496,7 +513,7 @@ pub fn solve(cell: &FixtureCell, moves: &Moves) -> Result<CellProgram> {
                 }
             };
             BlockCheck {
-                block: block,
+                block,
                 moves: idx.len(),
                 robots: [robot(0), robot(1)],
                 air_clearance: air,

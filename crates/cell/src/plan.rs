@@ -109,7 +109,10 @@ fn follow(
     q: &Joints,
 ) -> Result<Option<(Joints, usize, f64)>> {
     let (d, turn) = crate::kinematics::pose_distance(a, b);
-    let n = (d / PIECE_MM).max(turn / PIECE_RAD).ceil().clamp(1.0, 100_000.0) as usize;
+    let n = (d / PIECE_MM)
+        .max(turn / PIECE_RAD)
+        .ceil()
+        .clamp(1.0, 100_000.0) as usize;
     let to_base = holder.base.inverse();
     let tool_inverse = holder.tool.inverse();
     let (mut q, mut worst) = (*q, (0, 0.0));

@@ -47,13 +47,16 @@ fn block(number: usize, turn: f64, tilt: f64, height: f64, n: usize) -> BlockCut
 /// Two IRB 2600 facing each other across a fixture 200 mm up, holders facing along the
 /// cut with the blade 150 mm in front of the flange.
 fn cell() -> FixtureCell {
-    let robot = |y: f64, yaw: f64| Isometry3::from_parts(
-        Translation3::new(0.0, y, 0.0),
-        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
-    );
-    let holder = |base, e: usize| {
-        // at the mean pose: flange z along the cut (x), flange x down
-        let tool = if e == 0 { Vector3::y() } else { Vector3::y() };
+    let robot = |y: f64, yaw: f64| {
+        Isometry3::from_parts(
+            Translation3::new(0.0, y, 0.0),
+            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+        )
+    };
+    let holder = |base| {
+        // at the mean pose: flange z along the cut (x), flange x down; the blade's
+        // tangent along y at both ends
+        let tool = Vector3::y();
         let flange = rotation(-Vector3::z(), Vector3::x());
         Holder {
             model: RobotModel::irb2600_12_165(),
@@ -66,8 +69,8 @@ fn cell() -> FixtureCell {
     };
     FixtureCell {
         holders: [
-            holder(robot(-1200.0, std::f64::consts::FRAC_PI_2), 0),
-            holder(robot(1200.0, -std::f64::consts::FRAC_PI_2), 1),
+            holder(robot(-1200.0, std::f64::consts::FRAC_PI_2)),
+            holder(robot(1200.0, -std::f64::consts::FRAC_PI_2)),
         ],
         fixture: Isometry3::translation(-300.0, -300.0, 200.0),
         blade_length: BLADE,
@@ -97,23 +100,39 @@ fn check(cell: &FixtureCell, blocks: &[BlockCut], p: &CellProgram) {
         assert!(q.chord < BLADE, "move {k}: chord {}", q.chord);
         let blade = shape(&world, BLADE).unwrap();
         // heat exactly on the moves that cut: into the block, through it, out of it
-        assert_eq!(s.heat, matches!(s.phase, Phase::Cut | Phase::Retreat), "move {k}");
+        assert_eq!(
+            s.heat,
+            matches!(s.phase, Phase::Cut | Phase::Retreat),
+            "move {k}"
+        );
         if matches!(s.phase, Phase::Rise | Phase::Travel | Phase::Start) {
             let top = 200.0 + 600.0;
-            assert!(blade.lowest() >= top + cell.clearance - 1e-6, "move {k}: {}", blade.lowest());
+            assert!(
+                blade.lowest() >= top + cell.clearance - 1e-6,
+                "move {k}: {}",
+                blade.lowest()
+            );
         }
-        for r in 0..2 {
-            let h = &cell.holders[r];
+        for (r, (h, end)) in cell.holders.iter().zip(&world).enumerate() {
             let sol = &p.solutions[r][k];
             let Some(joints) = sol.joints else {
-                assert!(s.phase != Phase::Cut, "move {k} robot {r}: a cut out of reach");
-                assert!(p.flags[r].contains(&SweepFlag::OutOfReach(k)), "move {k} robot {r}: not flagged");
+                assert!(
+                    s.phase != Phase::Cut,
+                    "move {k} robot {r}: a cut out of reach"
+                );
+                assert!(
+                    p.flags[r].contains(&SweepFlag::OutOfReach(k)),
+                    "move {k} robot {r}: not flagged"
+                );
                 continue;
             };
             let joints = joints.map(f64::to_radians);
             let tcp = h.base * forward(&h.model, &joints).unwrap() * h.tool;
-            let (dp, da) = pose_distance(&tcp, &world[r]);
-            assert!(dp < 1e-6 && da < 1e-9, "move {k} robot {r}: {dp} mm, {da} rad");
+            let (dp, da) = pose_distance(&tcp, end);
+            assert!(
+                dp < 1e-6 && da < 1e-9,
+                "move {k} robot {r}: {dp} mm, {da} rad"
+            );
             assert_eq!(sol.conf, Some(conf(&h.model, &joints)));
             assert!(sol.margin.unwrap() >= 0.0);
         }

@@ -229,7 +229,9 @@ fn body(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
     if p.master {
         line(String::new());
         line("    PROC change_block(num remove, num place)".into());
-        line("        ! the blade is cold and above the fixture: the operator changes blocks".into());
+        line(
+            "        ! the blade is cold and above the fixture: the operator changes blocks".into(),
+        );
         line("        TPErase;".into());
         line("        IF remove > 0 TPWrite \"Remove block \" \\Num:=remove;".into());
         line("        TPWrite \"Place block \" \\Num:=place;".into());

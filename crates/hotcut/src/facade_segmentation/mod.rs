@@ -317,7 +317,8 @@ impl Task for FacadeSegmentation {
             surface: SurfaceInfo::of(job, surface),
             cell: None,
         };
-        if (job.robot_files || job.cell.is_some()) && run.posed.iter().any(|p| !p.parts.is_empty()) {
+        if (job.robot_files || job.cell.is_some()) && run.posed.iter().any(|p| !p.parts.is_empty())
+        {
             let (t, sizes) = outputs::targets(&run, params.blade.length, job.units)
                 .map_err(|e| job.fail(e.to_string()))?;
             let m = &params.motion;

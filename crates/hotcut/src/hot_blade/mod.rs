@@ -355,7 +355,11 @@ impl Task for HotBlade {
                 f.approximation, f.blade_strain, f.shape, f.blade_length, f.flat_blade, f.block_height, f.overlap
             )
         };
-        let cell = r.cell.as_ref().map(|c| format!("\n{}", c.summary())).unwrap_or_default();
+        let cell = r
+            .cell
+            .as_ref()
+            .map(|c| format!("\n{}", c.summary()))
+            .unwrap_or_default();
         format!(
             "{} (HotBlade, {:?}, {:?}): {} block(s) in {} row(s) × {} column(s), {} split(s)\n  {} section(s): L2 min {:.4}, max {:.4}, avg {:.4}; largest fit distance {:.4} {units}, deviation {:.4} {units}\n  blade: max |κ| {:.4e} /{units}, ≤ {} inflection(s); plane angle ≤ {:.1}°; face gap {:.1e} {units}, angle {:.1e} rad\n{verdict}{cell}",
             r.job, r.settings.constraint, r.settings.continuity, s.blocks, r.grid.rows, r.grid.columns, r.splits.len(),

@@ -20,7 +20,11 @@ use export::robot::{Targets, TargetsBlock};
 type Done<'a> = Finished<'a, HotBlade>;
 
 /// The targets of a run: every block's poses in cutting order, and the blocks' sizes.
-pub(super) fn targets(cut: &Rationalization, blade_length: f64, units: Units) -> (Targets, Vec<[f64; 3]>) {
+pub(super) fn targets(
+    cut: &Rationalization,
+    blade_length: f64,
+    units: Units,
+) -> (Targets, Vec<[f64; 3]>) {
     let blocks = cut
         .blocks
         .iter()
@@ -37,7 +41,11 @@ pub(super) fn targets(cut: &Rationalization, blade_length: f64, units: Units) ->
 
 /// `targets.json` and `targets.csv`, or the RAPID modules `<job>_T_ROB<n>.mod/.pgf`.
 pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    let (t, _) = targets(&done.run.cut, done.params.pipeline.blade.length, done.job.units);
+    let (t, _) = targets(
+        &done.run.cut,
+        done.params.pipeline.blade.length,
+        done.job.units,
+    );
     robot::write(files, &t, done.run.cell.as_ref(), &done.job.name, o.kind())
 }
 

@@ -6,7 +6,9 @@
 use cell::fixture::{Phase, Step};
 use elastica::sweep::BladePose;
 use export::csv::Table;
-use export::rapid::{identifier, write_module, write_pgf, RapidMove, RapidProgram, RapidTarget, RapidTool};
+use export::rapid::{
+    identifier, write_module, write_pgf, RapidMove, RapidProgram, RapidTarget, RapidTool,
+};
 use export::robot::TARGET_DIGITS;
 use export::robot::{targets_csv, EndPose, Pose, Targets, TargetsBlock};
 use nalgebra::Isometry3;
@@ -83,7 +85,8 @@ fn moves(plan: &CellPlan, r: usize) -> Vec<RapidMove> {
             let sol = &plan.program.solutions[r][k];
             let c = sol.conf;
             let next = steps.get(k + 1);
-            let fine = next.is_none_or(|n| n.phase != s.phase || n.heat != s.heat || n.change.is_some())
+            let fine = next
+                .is_none_or(|n| n.phase != s.phase || n.heat != s.heat || n.change.is_some())
                 || !matches!(s.phase, Phase::Cut | Phase::Travel);
             RapidMove {
                 name: names[k].clone(),
@@ -105,7 +108,12 @@ fn comment(plan: &CellPlan, job: &str, r: usize) -> Vec<String> {
     let h = &cell.holders[r];
     let robot = &cell.robots[h.robot];
     let base = FrameReport::of(&robot.base);
-    let f = |v: &[f64]| v.iter().map(|x| export::fmt_float(*x, 3)).collect::<Vec<_>>().join(", ");
+    let f = |v: &[f64]| {
+        v.iter()
+            .map(|x| export::fmt_float(*x, 3))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
     let mut c = vec![
         format!("hotcut job \"{job}\": hot-blade cut. Task T_ROB{} ({}) holds the blade's {} end.", r + 1, robot.model.name, if r == 0 { "first" } else { "second" }),
         format!("Its base frame in the world (set it in the controller): [{}] mm, q [{}].", f(&base.origin_mm), f(&base.rotation)),
@@ -141,7 +149,8 @@ pub fn write(
             files.text("targets.csv", targets_csv(t))
         }
         OutputKind::Rapid => {
-            let plan = plan.ok_or_else(|| export::ExportError::Data("no robot cell was planned".into()))?;
+            let plan =
+                plan.ok_or_else(|| export::ExportError::Data("no robot cell was planned".into()))?;
             let tasks = ["T_ROB1".to_string(), "T_ROB2".to_string()];
             let stem = identifier(job, 25);
             for r in 0..2 {
@@ -181,7 +190,9 @@ pub fn write(
 
 /// `cell.csv`: one row per move and robot.
 fn cell_csv(plan: &CellPlan) -> String {
-    let mut t = Table::new("move,block,phase,heat,robot,solutions,j1,j2,j3,j4,j5,j6,cf1,cf4,cf6,cfx,margin_deg");
+    let mut t = Table::new(
+        "move,block,phase,heat,robot,solutions,j1,j2,j3,j4,j5,j6,cf1,cf4,cf6,cfx,margin_deg",
+    );
     let f = Table::num;
     for (k, s) in plan.program.steps.iter().enumerate() {
         for r in 0..2 {

@@ -10,8 +10,8 @@ pub mod resolve;
 
 use cell::fixture::{BlockCut, CellProgram, FixtureCell};
 use export::robot::Targets;
-use rayon::prelude::*;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use rayon::prelude::*;
 
 use crate::context::{Context, JobFields};
 use crate::error::{HotcutError, JobError, Result};
@@ -51,32 +51,61 @@ pub fn check(job: &JobFields<'_>, mm: f64, errors: &mut Vec<JobError>) {
     let mut err = |at: &str, m: String| errors.push(job.error(&format!("/cell{at}"), m));
     let within = |v: Option<f64>, max: f64| v.is_none_or(|v| v > 0.0 && v * mm <= max);
     if !within(c.air_speed, MAX_AIR_MM_PER_S) {
-        err("/air_speed", format!("the air speed must be positive, at most {MAX_AIR_MM_PER_S} mm/s"));
+        err(
+            "/air_speed",
+            format!("the air speed must be positive, at most {MAX_AIR_MM_PER_S} mm/s"),
+        );
     }
     if !within(c.clearance, MAX_MM) {
-        err("/clearance", format!("the clearance must be positive, at most {MAX_MM} mm"));
+        err(
+            "/clearance",
+            format!("the clearance must be positive, at most {MAX_MM} mm"),
+        );
     }
     if !is_identifier(&c.heat.signal) {
-        err("/heat/signal", format!("{:?} is not a RAPID identifier (a letter, then letters, digits or _, at most 32)", c.heat.signal));
+        err(
+            "/heat/signal",
+            format!(
+                "{:?} is not a RAPID identifier (a letter, then letters, digits or _, at most 32)",
+                c.heat.signal
+            ),
+        );
     }
     if !(0.0..=600.0).contains(&c.heat.preheat_s) {
-        err("/heat/preheat_s", format!("the preheat must be 0–600 s, got {}", c.heat.preheat_s));
+        err(
+            "/heat/preheat_s",
+            format!("the preheat must be 0–600 s, got {}", c.heat.preheat_s),
+        );
     }
     if c.block_carrier.is_some() {
         err("/block_carrier", "a robot carrying the block is not supported yet: leave block_carrier out, the blocks are cut at the fixture".into());
     }
-    let near = |p: (f64, f64, f64)| [p.0, p.1, p.2].iter().all(|v| v.is_finite() && (v * mm).abs() <= MAX_MM);
-    let finite = |f: &crate::spec::FrameSpec| {
-        near(f.origin) && [f.rotation.0, f.rotation.1, f.rotation.2].iter().all(|v| v.is_finite() && v.abs() <= 720.0)
+    let near = |p: (f64, f64, f64)| {
+        [p.0, p.1, p.2]
+            .iter()
+            .all(|v| v.is_finite() && (v * mm).abs() <= MAX_MM)
     };
-    let frame_msg = format!("a frame's origin must lie within {MAX_MM} mm, its angles within ±720°");
+    let finite = |f: &crate::spec::FrameSpec| {
+        near(f.origin)
+            && [f.rotation.0, f.rotation.1, f.rotation.2]
+                .iter()
+                .all(|v| v.is_finite() && v.abs() <= 720.0)
+    };
+    let frame_msg =
+        format!("a frame's origin must lie within {MAX_MM} mm, its angles within ±720°");
     if c.fixture.as_ref().is_some_and(|f| !finite(f)) {
         err("/fixture", frame_msg.clone());
     }
     let robots = c.robots.as_ref().map_or(2, Vec::len);
     if let Some(rs) = &c.robots {
         if rs.len() < 2 || rs.len() > 3 {
-            err("/robots", format!("the cell needs 2 robots (3 with a block carrier), got {}", rs.len()));
+            err(
+                "/robots",
+                format!(
+                    "the cell needs 2 robots (3 with a block carrier), got {}",
+                    rs.len()
+                ),
+            );
         }
         for (i, r) in rs.iter().enumerate() {
             if !finite(&r.base) {
@@ -84,8 +113,14 @@ pub fn check(job: &JobFields<'_>, mm: f64, errors: &mut Vec<JobError>) {
             }
             if let crate::spec::ModelSpec::Custom(c) = &r.model {
                 let six = |n: Option<usize>| n.is_none_or(|n| n == 6);
-                if !six(Some(c.limits.len())) || !six(c.offsets.as_ref().map(Vec::len)) || !six(c.signs.as_ref().map(Vec::len)) {
-                    err(&format!("/robots/{i}/model/Custom"), "limits, offsets and signs have one entry per axis: 6".into());
+                if !six(Some(c.limits.len()))
+                    || !six(c.offsets.as_ref().map(Vec::len))
+                    || !six(c.signs.as_ref().map(Vec::len))
+                {
+                    err(
+                        &format!("/robots/{i}/model/Custom"),
+                        "limits, offsets and signs have one entry per axis: 6".into(),
+                    );
                     continue;
                 }
             }
@@ -96,27 +131,45 @@ pub fn check(job: &JobFields<'_>, mm: f64, errors: &mut Vec<JobError>) {
     }
     if let Some(hs) = &c.blade_holders {
         if hs.len() != 2 {
-            err("/blade_holders", format!("the blade has two ends: give 2 holders, got {}", hs.len()));
+            err(
+                "/blade_holders",
+                format!("the blade has two ends: give 2 holders, got {}", hs.len()),
+            );
         }
         for (i, h) in hs.iter().enumerate() {
             if h.robot >= robots {
-                err(&format!("/blade_holders/{i}/robot"), format!("robot {} does not exist (the cell has {robots})", h.robot));
+                err(
+                    &format!("/blade_holders/{i}/robot"),
+                    format!("robot {} does not exist (the cell has {robots})", h.robot),
+                );
             }
             if h.tcp.as_ref().is_some_and(|f| !finite(f)) {
                 err(&format!("/blade_holders/{i}/tcp"), frame_msg.clone());
             }
             if !h.mass.is_none_or(|m| m > 0.0 && m <= 1000.0) {
-                err(&format!("/blade_holders/{i}/mass"), "the mass must be positive, at most 1000 kg".into());
+                err(
+                    &format!("/blade_holders/{i}/mass"),
+                    "the mass must be positive, at most 1000 kg".into(),
+                );
             }
             if !h.cog.is_none_or(near) {
-                err(&format!("/blade_holders/{i}/cog"), format!("the centre of gravity must lie within {MAX_MM} mm"));
+                err(
+                    &format!("/blade_holders/{i}/cog"),
+                    format!("the centre of gravity must lie within {MAX_MM} mm"),
+                );
             }
         }
         if hs.len() == 2 && hs[0].robot == hs[1].robot {
-            err("/blade_holders/1/robot", "one robot cannot hold both ends of the blade".into());
+            err(
+                "/blade_holders/1/robot",
+                "one robot cannot hold both ends of the blade".into(),
+            );
         }
     } else if c.robots.is_some() && robots < 2 {
-        err("/blade_holders", "give the holders of the blade's two ends".into());
+        err(
+            "/blade_holders",
+            "give the holders of the blade's two ends".into(),
+        );
     }
 }
 
@@ -141,7 +194,10 @@ fn block_cuts(t: &Targets, sizes: &[[f64; 3]]) -> Vec<BlockCut> {
                 poses: b
                     .poses
                     .iter()
-                    .map(|p| p.ends.map(|e| to_block * isometry(e.position, e.rotation, mm)))
+                    .map(|p| {
+                        p.ends
+                            .map(|e| to_block * isometry(e.position, e.rotation, mm))
+                    })
                     .collect(),
             }
         })
@@ -156,14 +212,30 @@ fn layouts(job: &Context) -> Vec<Layout> {
     let robots = c.is_none_or(|c| c.robots.is_none());
     let fixture = c.is_none_or(|c| c.fixture.is_none());
     let holders = c.is_none_or(|c| c.blade_holders.is_none());
-    let tables: &[f64] = if robots && fixture { &defaults::TABLES_MM } else { &defaults::TABLES_MM[..1] };
-    let standoffs: &[f64] = if robots { &defaults::STANDOFFS_MM } else { &defaults::STANDOFFS_MM[..1] };
-    let styles: &[HolderStyle] = if holders { &[HolderStyle::Facing, HolderStyle::Hanging] } else { &[HolderStyle::Facing] };
+    let tables: &[f64] = if robots && fixture {
+        &defaults::TABLES_MM
+    } else {
+        &defaults::TABLES_MM[..1]
+    };
+    let standoffs: &[f64] = if robots {
+        &defaults::STANDOFFS_MM
+    } else {
+        &defaults::STANDOFFS_MM[..1]
+    };
+    let styles: &[HolderStyle] = if holders {
+        &[HolderStyle::Facing, HolderStyle::Hanging]
+    } else {
+        &[HolderStyle::Facing]
+    };
     let mut out = Vec::new();
     for &style in styles {
         for &table in tables {
             for &standoff in standoffs {
-                out.push(Layout { table, standoff, style });
+                out.push(Layout {
+                    table,
+                    standoff,
+                    style,
+                });
             }
         }
     }
@@ -184,7 +256,13 @@ fn score(p: &CellProgram) -> (usize, usize, f64) {
     (reach, flips, -margin)
 }
 
-fn fixture_cell(cell: &Resolved, blade: f64, max_curvature: f64, approach: f64, start: [f64; 6]) -> FixtureCell {
+fn fixture_cell(
+    cell: &Resolved,
+    blade: f64,
+    max_curvature: f64,
+    approach: f64,
+    start: [f64; 6],
+) -> FixtureCell {
     FixtureCell {
         holders: [cell.holder(0), cell.holder(1)],
         fixture: cell.fixture,
@@ -192,7 +270,10 @@ fn fixture_cell(cell: &Resolved, blade: f64, max_curvature: f64, approach: f64, 
         max_curvature: Some(max_curvature),
         approach,
         clearance: cell.clearance,
-        travel_step: (defaults::TRAVEL_STEP_MM, defaults::TRAVEL_TURN_DEG.to_radians()),
+        travel_step: (
+            defaults::TRAVEL_STEP_MM,
+            defaults::TRAVEL_TURN_DEG.to_radians(),
+        ),
         start: [start.map(f64::to_radians); 2],
     }
 }
@@ -207,9 +288,20 @@ fn fixture_cell(cell: &Resolved, blade: f64, max_curvature: f64, approach: f64, 
 ///
 /// # Errors
 /// A plan that cannot be made (named), or with `strict: true`, any flag.
-pub fn plan(job: &Context, t: &Targets, sizes: &[[f64; 3]], speed: f64, approach: f64) -> Result<CellPlan> {
+pub fn plan(
+    job: &Context,
+    t: &Targets,
+    sizes: &[[f64; 3]],
+    speed: f64,
+    approach: f64,
+) -> Result<CellPlan> {
     let mm = 1.0 / t.per_mm;
-    let largest = sizes.iter().fold([0.0f64; 3], |m, s| [m[0].max(s[0]), m[1].max(s[1]), m[2].max(s[2])]).map(|v| v * mm);
+    let largest = sizes
+        .iter()
+        .fold([0.0f64; 3], |m, s| {
+            [m[0].max(s[0]), m[1].max(s[1]), m[2].max(s[2])]
+        })
+        .map(|v| v * mm);
     let blade = t.blade_length * mm;
     let cuts = block_cuts(t, sizes);
     let fail = |e: cell::CellError| job.fail(format!("robot cell: {e}"));
@@ -218,8 +310,11 @@ pub fn plan(job: &Context, t: &Targets, sizes: &[[f64; 3]], speed: f64, approach
     let start = defaults::STARTS_DEG[0];
     let first = resolve::resolve(job.cell.as_ref(), t, blade, largest, layouts[0]);
     // the fixture only moves up between layouts: the moves stay
-    let moves = cell::fixture::moves(&fixture_cell(&first, blade, curvature, approach, start), &cuts)
-        .map_err(fail)?;
+    let moves = cell::fixture::moves(
+        &fixture_cell(&first, blade, curvature, approach, start),
+        &cuts,
+    )
+    .map_err(fail)?;
     let tries: Vec<(Layout, [f64; 6])> = layouts
         .iter()
         .flat_map(|l| defaults::STARTS_DEG.iter().map(move |s| (*l, *s)))
@@ -238,7 +333,10 @@ pub fn plan(job: &Context, t: &Targets, sizes: &[[f64; 3]], speed: f64, approach
             .collect::<std::result::Result<Vec<_>, cell::CellError>>()
             .map_err(fail)?;
         for (cell, program) in solved {
-            if best.as_ref().is_none_or(|(_, b)| score(&program) < score(b)) {
+            if best
+                .as_ref()
+                .is_none_or(|(_, b)| score(&program) < score(b))
+            {
                 best = Some((cell, program));
             }
         }
@@ -259,7 +357,11 @@ pub fn plan(job: &Context, t: &Targets, sizes: &[[f64; 3]], speed: f64, approach
     }
     Ok(CellPlan {
         cut_speed: speed * mm,
-        blocks: cuts.iter().filter(|b| !b.poses.is_empty()).map(|b| (b.block, b.size)).collect(),
+        blocks: cuts
+            .iter()
+            .filter(|b| !b.poses.is_empty())
+            .map(|b| (b.block, b.size))
+            .collect(),
         cell,
         program,
         report,

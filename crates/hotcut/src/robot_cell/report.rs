@@ -147,7 +147,10 @@ pub fn report(cell: &Resolved, program: &CellProgram, cut_speed: f64) -> CellRep
                 opw_mm: [o.a1, o.a2, o.b, o.c1, o.c2, o.c3, o.c4],
                 offsets_deg: o.offsets.map(f64::to_degrees),
                 signs: o.signs,
-                limits_deg: r.model.limits.map(|(a, b)| (a.to_degrees(), b.to_degrees())),
+                limits_deg: r
+                    .model
+                    .limits
+                    .map(|(a, b)| (a.to_degrees(), b.to_degrees())),
                 base: FrameReport::of(&r.base),
             }
         })

@@ -35,7 +35,10 @@ pub mod defaults {
     pub const TRAVEL_TURN_DEG: f64 = 5.0;
     /// The robots' start postures tried, degrees: axis 5 bent either way (the wrist
     /// keeps its side through a whole program, so both sides are tried).
-    pub const STARTS_DEG: [[f64; 6]; 2] = [[0.0, 0.0, 0.0, 0.0, 30.0, 0.0], [0.0, 0.0, 0.0, 0.0, -30.0, 0.0]];
+    pub const STARTS_DEG: [[f64; 6]; 2] = [
+        [0.0, 0.0, 0.0, 0.0, 30.0, 0.0],
+        [0.0, 0.0, 0.0, 0.0, -30.0, 0.0],
+    ];
 }
 
 /// A robot of the resolved cell.
@@ -122,9 +125,20 @@ pub fn model(m: &ModelSpec, mm: f64) -> RobotModel {
                 // lengths are checked at validation; a short list reads as its defaults
                 offsets: std::array::from_fn(|i| {
                     let abb = [0.0, 0.0, -90.0, 0.0, 0.0, 0.0];
-                    c.offsets.as_ref().and_then(|o| o.get(i)).copied().unwrap_or(abb[i]).to_radians()
+                    c.offsets
+                        .as_ref()
+                        .and_then(|o| o.get(i))
+                        .copied()
+                        .unwrap_or(abb[i])
+                        .to_radians()
                 }),
-                signs: std::array::from_fn(|i| c.signs.as_ref().and_then(|s| s.get(i)).copied().unwrap_or(1)),
+                signs: std::array::from_fn(|i| {
+                    c.signs
+                        .as_ref()
+                        .and_then(|s| s.get(i))
+                        .copied()
+                        .unwrap_or(1)
+                }),
             },
             limits: std::array::from_fn(|i| {
                 let (lo, hi) = c.limits.get(i).copied().unwrap_or((f64::NAN, f64::NAN));
@@ -148,7 +162,11 @@ pub enum HolderStyle {
 
 /// The default holder's TCP for an end whose mean tool orientation in the cell's frame is
 /// `mean`, on a robot that reaches towards the blade along `toward` (horizontal).
-fn default_tcp(style: HolderStyle, mean: &UnitQuaternion<f64>, toward: &Vector3<f64>) -> Isometry3<f64> {
+fn default_tcp(
+    style: HolderStyle,
+    mean: &UnitQuaternion<f64>,
+    toward: &Vector3<f64>,
+) -> Isometry3<f64> {
     let unit = |v: Vector3<f64>, or: Vector3<f64>| if v.norm() > 1e-6 { v.normalize() } else { or };
     let (x, z) = match style {
         HolderStyle::Facing => {
@@ -172,21 +190,27 @@ fn default_tcp(style: HolderStyle, mean: &UnitQuaternion<f64>, toward: &Vector3<
 
 /// The blade's mean pose at the fixture: the chords' mean midpoint, their mean horizontal
 /// direction, and each end's mean tool orientation (cell frame, mm).
-fn mean_pose(t: &Targets, fixture: &Isometry3<f64>) -> (Vector3<f64>, Vector3<f64>, [UnitQuaternion<f64>; 2]) {
+fn mean_pose(
+    t: &Targets,
+    fixture: &Isometry3<f64>,
+) -> (Vector3<f64>, Vector3<f64>, [UnitQuaternion<f64>; 2]) {
     let mm = 1.0 / t.per_mm;
     let (mut chord, mut mid, mut n) = (Vector3::zeros(), Vector3::zeros(), 0.0);
     let mut q = [nalgebra::Vector4::zeros(); 2];
     for b in &t.blocks {
         let to_cell = fixture * block_frame(b, mm).inverse();
         for p in &b.poses {
-            let e = |k: usize| to_cell * nalgebra::Point3::from(Vector3::from(p.ends[k].position) * mm);
+            let e =
+                |k: usize| to_cell * nalgebra::Point3::from(Vector3::from(p.ends[k].position) * mm);
             chord += e(1) - e(0);
             mid += (e(0).coords + e(1).coords) * 0.5;
             n += 1.0;
             for (k, acc) in q.iter_mut().enumerate() {
                 let r = p.ends[k].rotation;
                 let r = to_cell.rotation
-                    * UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(r[0], r[1], r[2], r[3]));
+                    * UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+                        r[0], r[1], r[2], r[3],
+                    ));
                 let c = r.as_ref().coords;
                 // one hemisphere, so that the sum is a mean
                 *acc += if c.dot(acc) < 0.0 { -c } else { c };
@@ -195,7 +219,11 @@ fn mean_pose(t: &Targets, fixture: &Isometry3<f64>) -> (Vector3<f64>, Vector3<f6
     }
     let mid = if n > 0.0 { mid / n } else { Vector3::zeros() };
     let dir = Vector3::new(chord.x, chord.y, 0.0);
-    let dir = if dir.norm() > 1e-9 { dir.normalize() } else { Vector3::y() };
+    let dir = if dir.norm() > 1e-9 {
+        dir.normalize()
+    } else {
+        Vector3::y()
+    };
     let mean = q.map(|c| {
         if c.norm() > 0.0 {
             UnitQuaternion::from_quaternion(nalgebra::Quaternion::from(c))
@@ -289,7 +317,12 @@ pub fn resolve(
     let hs = s.blade_holders.as_deref();
     let holders = [0, 1].map(|e| {
         let toward = if e == 0 { dir } else { -dir };
-        hold(hs.and_then(|h| h.get(e)), default_tcp(layout.style, &mean[e], &toward), e, mm)
+        hold(
+            hs.and_then(|h| h.get(e)),
+            default_tcp(layout.style, &mean[e], &toward),
+            e,
+            mm,
+        )
     });
     let robots = match &s.robots {
         Some(r) => r

@@ -14,7 +14,9 @@ mod cell;
 /// The hot-wire machine: `Wire(..)` and its controller profile.
 mod wire;
 
-pub use cell::{CarrierSpec, CellSpec, CustomModel, FrameSpec, HeatSpec, HolderSpec, ModelSpec, RobotSpec};
+pub use cell::{
+    CarrierSpec, CellSpec, CustomModel, FrameSpec, HeatSpec, HolderSpec, ModelSpec, RobotSpec,
+};
 
 pub use wire::{FluidNcAxes, MachineSpec, TravelSpec, WireSpec};
 
