@@ -35,6 +35,10 @@ pub struct Move {
     pub heat: Option<bool>,
     /// The block at the fixture during the move (as this task's block changes say).
     pub block: Option<usize>,
+    /// Its speeddata's name.
+    pub speed: String,
+    /// Whether it stops at its target (`fine`).
+    pub fine: bool,
 }
 
 /// A task's program.
@@ -50,6 +54,10 @@ pub struct Task {
     pub heat_at_changes: Vec<bool>,
     /// Heat state at the end.
     pub heat_at_end: Option<bool>,
+    /// The digital outputs `SetDO` sets.
+    pub signals: Vec<String>,
+    /// Whether the operator's procedure asks for a confirmation (`TPReadFK`).
+    pub asks_operator: bool,
 }
 
 /// The numbers of a RAPID aggregate `[[1,2,3],[4,5,6,7]]`, flattened.
@@ -107,14 +115,21 @@ struct Data {
 
 fn declare(raw: &str, line: &str, d: &mut Data) -> Result<bool, String> {
     if let Some((name, value)) = declaration(line, "wobjdata") {
-        // [robhold, ufprog, ufmec, uframe, oframe]: the object frame in the user frame
+        // [robhold, ufprog, ufmec, uframe, oframe]: the object frame in the user frame; a
+        // fixture is not held by the robot and is fixed (ufprog TRUE)
+        if !value.starts_with("[FALSE,TRUE,") {
+            return Err(format!("wobjdata {name}: not a fixed work object: {value}"));
+        }
         let v = numbers(value)?;
         if v.len() != 14 {
             return Err(format!("wobjdata {name}: {} numbers", v.len()));
         }
         d.wobj.insert(name.into(), pose(&v[..7])? * pose(&v[7..])?);
     } else if let Some((name, value)) = declaration(line, "tooldata") {
-        // [robhold, tframe, tload]: tload = [mass, cog, aom, ix, iy, iz]
+        // [robhold, tframe, tload]: tload = [mass, cog, aom, ix, iy, iz]; the robot holds it
+        if !value.starts_with("[TRUE,") {
+            return Err(format!("tooldata {name}: not held by the robot: {value}"));
+        }
         let v = numbers(value)?;
         if v.len() != 18 || !(v[7] > 0.0) {
             return Err(format!(
@@ -182,6 +197,9 @@ pub fn read(text: &str) -> Result<Task, String> {
     let mut task = state.task;
     task.blocks = data.blocks;
     task.heat_at_end = state.heat;
+    task.asks_operator = procs
+        .get("change_block")
+        .is_some_and(|b| b.iter().any(|l| l.starts_with("TPReadFK ")));
     Ok(task)
 }
 
@@ -240,9 +258,13 @@ fn step(line: &str, d: &Data, s: &mut State) -> Result<(), String> {
                 .get(1)
                 .and_then(|v| v.parse().ok())
                 .ok_or(format!("{line}: value"))?;
+            // after a corner zone the controller would switch it while still moving
+            stopped(s, line)?;
+            s.task.signals.push(args[0].to_string());
             s.heat = Some(v == 1);
         }
         "change_block" => {
+            stopped(s, line)?;
             let place: usize = args
                 .get(1)
                 .and_then(|v| v.parse().ok())
@@ -285,7 +307,13 @@ fn step(line: &str, d: &Data, s: &mut State) -> Result<(), String> {
             if let (Some(id), Some(seg)) = (id, s.task.segments.last_mut()) {
                 seg.push(id);
             }
+            let zone = args
+                .get(args.len().saturating_sub(2))
+                .copied()
+                .unwrap_or("");
             s.task.moves.push(Move {
+                speed: args.get(1).copied().unwrap_or("").to_string(),
+                fine: zone == "fine",
                 linear: word == "MoveL",
                 target: target.into(),
                 pose: w * t,
@@ -302,4 +330,15 @@ fn step(line: &str, d: &Data, s: &mut State) -> Result<(), String> {
         _ => {}
     }
     Ok(())
+}
+
+/// An instruction that must run with the robot standing: the move before it ends `fine`.
+fn stopped(s: &State, line: &str) -> Result<(), String> {
+    match s.task.moves.last() {
+        Some(m) if !m.fine => Err(format!(
+            "{line}: after {}, which does not stop there (zone)",
+            m.target
+        )),
+        _ => Ok(()),
+    }
 }

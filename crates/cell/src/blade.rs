@@ -106,19 +106,27 @@ pub fn from_planar(p: &PlanarPose) -> BladePose {
 }
 
 /// The pose a fraction `w ∈ [0, 1]` of the way from `a` to `b`: midpoint, chord and end
-/// angles linear, plane frame by spherical interpolation. Each end then moves on a smooth
-/// path, and the chord never exceeds the longer of the two.
+/// angles linear (each angle the short way round), plane frame by spherical
+/// interpolation. Each end then moves on a smooth path, and the chord never exceeds the
+/// longer of the two.
 pub fn interpolate(a: &PlanarPose, b: &PlanarPose, w: f64) -> PlanarPose {
     let lerp = |u: f64, v: f64| u + (v - u) * w;
+    let turn = |u: f64, v: f64| u + angle_between(u, v) * w;
     PlanarPose {
         mid: a.mid + (b.mid - a.mid) * w,
         frame: a.frame.slerp(&b.frame, w),
         chord: lerp(a.chord, b.chord),
         angles: [
-            lerp(a.angles[0], b.angles[0]),
-            lerp(a.angles[1], b.angles[1]),
+            turn(a.angles[0], b.angles[0]),
+            turn(a.angles[1], b.angles[1]),
         ],
     }
+}
+
+/// The turn from angle `u` to angle `v` the short way round, in (−π, π].
+pub fn angle_between(u: f64, v: f64) -> f64 {
+    let pi = std::f64::consts::PI;
+    pi - (pi - (v - u)).rem_euclid(2.0 * pi)
 }
 
 /// The shape of a blade of `length` held at `p`: the discrete elastica of

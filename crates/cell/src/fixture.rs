@@ -65,7 +65,8 @@ pub struct BlockCut {
 /// What a move of the program does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
 pub enum Phase {
-    /// To above the first block, before anything else (from where the operator left it).
+    /// To above the fixture, before anything else (from where the operator left the
+    /// robots; no block stands there yet).
     Start,
     /// Down in the approach plane to the approach point.
     Descend,
@@ -214,8 +215,8 @@ fn travel(cell: &FixtureCell, a: &BladePose, b: &BladePose) -> Result<Vec<BladeP
     let turn = pa
         .frame
         .angle_to(&pb.frame)
-        .max((pa.angles[0] - pb.angles[0]).abs())
-        .max((pa.angles[1] - pb.angles[1]).abs());
+        .max(blade::angle_between(pa.angles[0], pb.angles[0]).abs())
+        .max(blade::angle_between(pa.angles[1], pb.angles[1]).abs());
     let n = (far / cell.travel_step.0)
         .max(turn / cell.travel_step.1)
         .ceil()
@@ -419,10 +420,7 @@ pub fn moves(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<Moves> {
         if i == 0 {
             let above = lifted(cell, &e.approach, &e.rise[0], e.top + cell.clearance)?;
             clearances[0] = lowest(cell, &above)? - e.top;
-            steps.push(Step {
-                change: Some((None, b.block)),
-                ..step(Phase::Start, b.block, &above, false)
-            });
+            steps.push(step(Phase::Start, b.block, &above, false));
         } else {
             let (a, before) = (blocks[i - 1], &ends[i - 1]);
             let tops = before.top.max(e.top);
@@ -438,7 +436,11 @@ pub fn moves(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<Moves> {
                 });
             }
         }
-        steps.push(step(Phase::Descend, b.block, &e.approach, false));
+        // the first block is placed once the blade waits above the fixture
+        steps.push(Step {
+            change: (i == 0).then_some((None, b.block)),
+            ..step(Phase::Descend, b.block, &e.approach, false)
+        });
         for p in &b.poses {
             steps.push(Step {
                 phase: Phase::Cut,

@@ -177,7 +177,7 @@ impl RobotModel {
         if !o.offsets.iter().all(|v| v.is_finite() && v.abs() <= turn) {
             return bad("offsets", format!("{:?} must be within ±2π", o.offsets));
         }
-        if !o.signs.iter().all(|s| s.abs() == 1) {
+        if !o.signs.iter().all(|s| matches!(s, 1 | -1)) {
             return bad("signs", format!("{:?} must be 1 or −1", o.signs));
         }
         for (i, (lo, hi)) in self.limits.iter().enumerate() {

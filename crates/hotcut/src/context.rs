@@ -57,8 +57,9 @@ pub struct Context {
     pub wire: Option<WireSpec>,
     /// The robot cell, as written.
     pub cell: Option<CellSpec>,
-    /// Whether the job writes robot files (`RobotTargets` or `Rapid`).
-    pub robot_files: bool,
+    /// Whether the job writes robot programs (`Rapid`): the robot cell is planned then, or
+    /// when the job gives a `cell:`.
+    pub rapid: bool,
     /// Cutting direction, sections and curve, as written.
     pub cutting: CuttingSpec,
     /// Unit cutting direction (the curve's chord when the job gives a curve).

@@ -214,7 +214,7 @@ impl Task for FacadeSegmentation {
             errors.push(job.error(&format!("{PTR}/constraint"), "a piece's fits keep its parts' end points so that neighbouring pieces meet: use EndPoints or EndPointsAndLength"));
         }
         job.check_motion(PTR, self.speed, self.approach, errors);
-        robot_cell::check(job, 1.0 / job.units.per_mm(), errors);
+        robot_cell::check(job, (PTR, self.speed, self.approach), errors);
         if job.blade.is_some_and(|b| b.max_inflections == 0) {
             errors.push(job.error("/blade/max_inflections", "FacadeSegmentation needs max_inflections ≥ 1: parts meet between inflections, never exactly on one, so a section with an inflection cannot be split into parts without any"));
         }
@@ -317,8 +317,7 @@ impl Task for FacadeSegmentation {
             surface: SurfaceInfo::of(job, surface),
             cell: None,
         };
-        if (job.robot_files || job.cell.is_some()) && run.posed.iter().any(|p| !p.parts.is_empty())
-        {
+        if (job.rapid || job.cell.is_some()) && run.posed.iter().any(|p| !p.parts.is_empty()) {
             let (t, sizes) = outputs::targets(&run, params.blade.length, job.units)
                 .map_err(|e| job.fail(e.to_string()))?;
             let m = &params.motion;

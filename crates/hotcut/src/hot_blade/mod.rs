@@ -157,7 +157,7 @@ impl Task for HotBlade {
             errors.push(job.error(&format!("{PTR}/constraint"), "HotBlade fits keep the sections' end points so that neighbouring blocks meet: use EndPoints or EndPointsAndLength"));
         }
         job.check_motion(PTR, self.speed, self.approach, errors);
-        robot_cell::check(job, 1.0 / job.units.per_mm(), errors);
+        robot_cell::check(job, (PTR, self.speed, self.approach), errors);
         // the pipeline's own checks of these fields and of the cutting curve
         let pipeline = hotblade::Params {
             curve: job.cutting.curve.clone(),
@@ -279,7 +279,7 @@ impl Task for HotBlade {
                 other => job.fail(other.to_string()),
             })?;
         let posed = cut.blocks.iter().any(|b| !b.sections.is_empty());
-        let cell = if (job.robot_files || job.cell.is_some()) && posed {
+        let cell = if (job.rapid || job.cell.is_some()) && posed {
             let (t, sizes) = outputs::targets(&cut, params.pipeline.blade.length, job.units);
             let m = &params.motion;
             Some(robot_cell::plan(job, &t, &sizes, m.speed, m.approach)?)

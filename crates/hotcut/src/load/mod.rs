@@ -141,10 +141,7 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
         block: job.block,
         wire: job.wire,
         cell: job.cell,
-        robot_files: job
-            .outputs
-            .iter()
-            .any(|o| matches!(o, OutputSpec::RobotTargets { .. } | OutputSpec::Rapid)),
+        rapid: job.outputs.iter().any(|o| matches!(o, OutputSpec::Rapid)),
         cutting: job.cutting,
         direction,
         tolerance: job.tolerance.resolve(job.units),

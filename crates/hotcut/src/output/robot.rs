@@ -151,6 +151,19 @@ pub fn write(
         OutputKind::Rapid => {
             let plan =
                 plan.ok_or_else(|| export::ExportError::Data("no robot cell was planned".into()))?;
+            let unreached: Vec<String> = plan
+                .report
+                .blocks
+                .iter()
+                .filter(|b| b.robots.iter().any(|r| r.out_of_reach > 0))
+                .map(|b| b.block.to_string())
+                .collect();
+            if !unreached.is_empty() {
+                return Err(export::ExportError::Data(format!(
+                    "the robots cannot reach every move of block(s) {} (report: cell): no program is written; move the robots or the fixture (cell:), or leave Rapid out",
+                    unreached.join(", ")
+                )));
+            }
             let tasks = ["T_ROB1".to_string(), "T_ROB2".to_string()];
             let stem = identifier(job, 25);
             for r in 0..2 {

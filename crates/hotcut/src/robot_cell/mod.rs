@@ -15,6 +15,7 @@ use rayon::prelude::*;
 
 use crate::context::{Context, JobFields};
 use crate::error::{HotcutError, JobError, Result};
+use crate::spec::CellSpec;
 use report::CellReport;
 use resolve::{block_frame, defaults, HolderStyle, Layout, Resolved};
 
@@ -45,15 +46,111 @@ const MAX_MM: f64 = 100_000.0;
 /// Fastest air speed, mm/s (ABB arms top out near 7 m/s).
 const MAX_AIR_MM_PER_S: f64 = 5_000.0;
 
-/// Checks the job's `cell:` (`mm`: millimetres per job unit).
-pub fn check(job: &JobFields<'_>, mm: f64, errors: &mut Vec<JobError>) {
+/// Where a reported problem is (under `/cell`) and what it is.
+type Report<'a> = &'a mut dyn FnMut(&str, String);
+
+/// A point within [`MAX_MM`] of zero (`mm` per job unit).
+fn near(p: (f64, f64, f64), mm: f64) -> bool {
+    [p.0, p.1, p.2]
+        .iter()
+        .all(|v| v.is_finite() && (v * mm).abs() <= MAX_MM)
+}
+
+/// A frame near zero with angles within two turns.
+fn frame_ok(f: &crate::spec::FrameSpec, mm: f64) -> bool {
+    near(f.origin, mm)
+        && [f.rotation.0, f.rotation.1, f.rotation.2]
+            .iter()
+            .all(|v| v.is_finite() && v.abs() <= 720.0)
+}
+
+fn frame_message() -> String {
+    format!("a frame's origin must lie within {MAX_MM} mm, its angles within ±720°")
+}
+
+/// Names the programs declare, and RAPID words a signal must not take (compared without
+/// case, as RAPID does).
+const TAKEN: &[&str] = &[
+    "main",
+    "change_block",
+    "tlBlade",
+    "idStart",
+    "idSyncOn",
+    "idSyncOff",
+    "idEnd",
+    "nAnswer",
+    "vCut",
+    "vAir",
+    "wFixture",
+    "tBlade1",
+    "tBlade2",
+    "stEmpty",
+    "remove",
+    "place",
+    "IF",
+    "THEN",
+    "ELSE",
+    "ENDIF",
+    "FOR",
+    "WHILE",
+    "PROC",
+    "ENDPROC",
+    "MODULE",
+    "ENDMODULE",
+    "CONST",
+    "PERS",
+    "VAR",
+    "TRUE",
+    "FALSE",
+    "AND",
+    "OR",
+    "NOT",
+    "XOR",
+    "DIV",
+    "MOD",
+    "RETURN",
+    "TO",
+    "DO",
+];
+
+/// Checks the job's `cell:` and what a robot program needs of the task's motion: a
+/// positive approach (the blade must start and end outside the block) and a cutting
+/// speed RAPID can state (`mm`: millimetres per job unit; `ptr` the task's pointer).
+pub fn check(
+    job: &JobFields<'_>,
+    (ptr, speed, approach): (&str, Option<f64>, Option<f64>),
+    errors: &mut Vec<JobError>,
+) {
+    let mm = 1.0 / job.units.per_mm();
+    let rapid = job
+        .outputs
+        .iter()
+        .any(|o| matches!(o, crate::spec::OutputSpec::Rapid));
+    if rapid || job.cell.is_some() {
+        if approach.is_some_and(|a| !(a > 0.0)) {
+            errors.push(job.error(&format!("{ptr}/approach"), "a robot program needs an approach > 0: the blade starts and ends outside the block"));
+        }
+        if speed.is_some_and(|v| !(v * mm >= 0.01 && v * mm <= MAX_AIR_MM_PER_S)) {
+            errors.push(job.error(
+                &format!("{ptr}/speed"),
+                format!("a robot program's cutting speed must be 0.01–{MAX_AIR_MM_PER_S} mm/s"),
+            ));
+        }
+    }
     let Some(c) = job.cell else { return };
     let mut err = |at: &str, m: String| errors.push(job.error(&format!("/cell{at}"), m));
+    check_settings(c, mm, &mut err);
+    let robots = check_robots(c, mm, &mut err);
+    check_holders(c, robots, mm, &mut err);
+}
+
+/// Speeds, clearance, heat, fixture, carrier.
+fn check_settings(c: &CellSpec, mm: f64, err: Report<'_>) {
     let within = |v: Option<f64>, max: f64| v.is_none_or(|v| v > 0.0 && v * mm <= max);
-    if !within(c.air_speed, MAX_AIR_MM_PER_S) {
+    if !within(c.air_speed, MAX_AIR_MM_PER_S) || c.air_speed.is_some_and(|v| v * mm < 0.01) {
         err(
             "/air_speed",
-            format!("the air speed must be positive, at most {MAX_AIR_MM_PER_S} mm/s"),
+            format!("the air speed must be 0.01–{MAX_AIR_MM_PER_S} mm/s"),
         );
     }
     if !within(c.clearance, MAX_MM) {
@@ -70,6 +167,14 @@ pub fn check(job: &JobFields<'_>, mm: f64, errors: &mut Vec<JobError>) {
                 c.heat.signal
             ),
         );
+    } else if TAKEN.iter().any(|t| t.eq_ignore_ascii_case(&c.heat.signal)) {
+        err(
+            "/heat/signal",
+            format!(
+                "{:?} is a RAPID word or a name the programs use",
+                c.heat.signal
+            ),
+        );
     }
     if !(0.0..=600.0).contains(&c.heat.preheat_s) {
         err(
@@ -80,95 +185,99 @@ pub fn check(job: &JobFields<'_>, mm: f64, errors: &mut Vec<JobError>) {
     if c.block_carrier.is_some() {
         err("/block_carrier", "a robot carrying the block is not supported yet: leave block_carrier out, the blocks are cut at the fixture".into());
     }
-    let near = |p: (f64, f64, f64)| {
-        [p.0, p.1, p.2]
-            .iter()
-            .all(|v| v.is_finite() && (v * mm).abs() <= MAX_MM)
-    };
-    let finite = |f: &crate::spec::FrameSpec| {
-        near(f.origin)
-            && [f.rotation.0, f.rotation.1, f.rotation.2]
-                .iter()
-                .all(|v| v.is_finite() && v.abs() <= 720.0)
-    };
-    let frame_msg =
-        format!("a frame's origin must lie within {MAX_MM} mm, its angles within ±720°");
-    if c.fixture.as_ref().is_some_and(|f| !finite(f)) {
-        err("/fixture", frame_msg.clone());
+    if c.fixture.as_ref().is_some_and(|f| !frame_ok(f, mm)) {
+        err("/fixture", frame_message());
     }
-    let robots = c.robots.as_ref().map_or(2, Vec::len);
-    if let Some(rs) = &c.robots {
-        if rs.len() < 2 || rs.len() > 3 {
-            err(
-                "/robots",
-                format!(
-                    "the cell needs 2 robots (3 with a block carrier), got {}",
-                    rs.len()
-                ),
-            );
+}
+
+/// The robots; returns how many the cell has.
+fn check_robots(c: &CellSpec, mm: f64, err: Report<'_>) -> usize {
+    let Some(rs) = &c.robots else { return 2 };
+    if rs.len() < 2 || rs.len() > 3 {
+        err(
+            "/robots",
+            format!(
+                "the cell needs 2 robots (3 with a block carrier), got {}",
+                rs.len()
+            ),
+        );
+    }
+    for (i, r) in rs.iter().enumerate() {
+        if !frame_ok(&r.base, mm) {
+            err(&format!("/robots/{i}/base"), frame_message());
         }
-        for (i, r) in rs.iter().enumerate() {
-            if !finite(&r.base) {
-                err(&format!("/robots/{i}/base"), frame_msg.clone());
+        if let crate::spec::ModelSpec::Custom(c) = &r.model {
+            let printable = |s: &str| {
+                !s.is_empty()
+                    && s.len() <= 40
+                    && s.chars().all(|c| c.is_ascii_graphic() || c == ' ')
+            };
+            if !printable(&c.name) {
+                err(&format!("/robots/{i}/model/Custom/name"), "the name must be 1–40 printable ASCII characters (it is written into the programs' comments)".into());
             }
-            if let crate::spec::ModelSpec::Custom(c) = &r.model {
-                let six = |n: Option<usize>| n.is_none_or(|n| n == 6);
-                if !six(Some(c.limits.len()))
-                    || !six(c.offsets.as_ref().map(Vec::len))
-                    || !six(c.signs.as_ref().map(Vec::len))
-                {
-                    err(
-                        &format!("/robots/{i}/model/Custom"),
-                        "limits, offsets and signs have one entry per axis: 6".into(),
-                    );
-                    continue;
-                }
-            }
-            if let Err(e) = resolve::model(&r.model, mm).check() {
-                err(&format!("/robots/{i}/model"), e.to_string());
+            let six = |n: Option<usize>| n.is_none_or(|n| n == 6);
+            if !six(Some(c.limits.len()))
+                || !six(c.offsets.as_ref().map(Vec::len))
+                || !six(c.signs.as_ref().map(Vec::len))
+            {
+                err(
+                    &format!("/robots/{i}/model/Custom"),
+                    "limits, offsets and signs have one entry per axis: 6".into(),
+                );
+                continue;
             }
         }
+        if let Err(e) = resolve::model(&r.model, mm).check() {
+            err(&format!("/robots/{i}/model"), e.to_string());
+        }
     }
-    if let Some(hs) = &c.blade_holders {
-        if hs.len() != 2 {
+    rs.len()
+}
+
+/// The blade holders of a cell of `robots` robots.
+fn check_holders(c: &CellSpec, robots: usize, mm: f64, err: Report<'_>) {
+    let Some(hs) = &c.blade_holders else {
+        if robots < 2 {
             err(
                 "/blade_holders",
-                format!("the blade has two ends: give 2 holders, got {}", hs.len()),
+                "give the holders of the blade's two ends".into(),
             );
         }
-        for (i, h) in hs.iter().enumerate() {
-            if h.robot >= robots {
-                err(
-                    &format!("/blade_holders/{i}/robot"),
-                    format!("robot {} does not exist (the cell has {robots})", h.robot),
-                );
-            }
-            if h.tcp.as_ref().is_some_and(|f| !finite(f)) {
-                err(&format!("/blade_holders/{i}/tcp"), frame_msg.clone());
-            }
-            if !h.mass.is_none_or(|m| m > 0.0 && m <= 1000.0) {
-                err(
-                    &format!("/blade_holders/{i}/mass"),
-                    "the mass must be positive, at most 1000 kg".into(),
-                );
-            }
-            if !h.cog.is_none_or(near) {
-                err(
-                    &format!("/blade_holders/{i}/cog"),
-                    format!("the centre of gravity must lie within {MAX_MM} mm"),
-                );
-            }
-        }
-        if hs.len() == 2 && hs[0].robot == hs[1].robot {
-            err(
-                "/blade_holders/1/robot",
-                "one robot cannot hold both ends of the blade".into(),
-            );
-        }
-    } else if c.robots.is_some() && robots < 2 {
+        return;
+    };
+    if hs.len() != 2 {
         err(
             "/blade_holders",
-            "give the holders of the blade's two ends".into(),
+            format!("the blade has two ends: give 2 holders, got {}", hs.len()),
+        );
+    }
+    for (i, h) in hs.iter().enumerate() {
+        if h.robot >= robots {
+            err(
+                &format!("/blade_holders/{i}/robot"),
+                format!("robot {} does not exist (the cell has {robots})", h.robot),
+            );
+        }
+        if h.tcp.as_ref().is_some_and(|f| !frame_ok(f, mm)) {
+            err(&format!("/blade_holders/{i}/tcp"), frame_message());
+        }
+        if !h.mass.is_none_or(|m| m > 0.0 && m <= 1000.0) {
+            err(
+                &format!("/blade_holders/{i}/mass"),
+                "the mass must be positive, at most 1000 kg".into(),
+            );
+        }
+        if !h.cog.is_none_or(|p| near(p, mm)) {
+            err(
+                &format!("/blade_holders/{i}/cog"),
+                format!("the centre of gravity must lie within {MAX_MM} mm"),
+            );
+        }
+    }
+    if hs.len() == 2 && hs[0].robot == hs[1].robot {
+        err(
+            "/blade_holders/1/robot",
+            "one robot cannot hold both ends of the blade".into(),
         );
     }
 }
