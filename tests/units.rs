@@ -104,6 +104,11 @@ fn with_defaults(job: &Job) -> Job {
     use hotcut::spec::{defaults as d, BladeSpec};
     let mut j = job.clone();
     let u = job.units.per_mm();
+    // the robot cell has a size of its own (an arm does not shrink with the job): no
+    // robot programs here; the mm/m test checks the cell
+    j.cell = None;
+    j.outputs
+        .retain(|o| !matches!(o, hotcut::spec::OutputSpec::Rapid));
     j.blade.get_or_insert(BladeSpec {
         length: d::BLADE_LENGTH_MM * u,
         max_curvature: d::BLADE_MAX_CURVATURE_PER_MM / u,
