@@ -268,6 +268,10 @@ fn scale_cell(c: &mut hotcut::spec::CellSpec, f: f64) {
     if let Some(fx) = c.fixture.as_mut() {
         frame(fx);
     }
+    if let Some(k) = c.block_carrier.as_mut() {
+        frame(&mut k.grip);
+        frame(&mut k.station);
+    }
     c.air_speed = c.air_speed.map(|v| v * f);
     c.clearance = c.clearance.map(|v| v * f);
 }

@@ -117,8 +117,8 @@ pub struct BlockCheck {
     pub block: usize,
     /// Moves from the travel to it through its rise.
     pub moves: usize,
-    /// Its robots, first end first.
-    pub robots: [RobotCheck; 2],
+    /// Its robots in task order: the first end's, the second end's (and the carrier's).
+    pub robots: Vec<RobotCheck>,
     /// Least height of the blade above the block while it travels to or from it, mm.
     pub air_clearance: f64,
 }
@@ -477,7 +477,24 @@ pub fn solve(cell: &FixtureCell, moves: &Moves) -> Result<CellProgram> {
         solutions[r] = sw.poses;
         flags[r] = sw.flags;
     }
-    let summary = moves
+    let blocks = summarize(moves, &solutions, &flags);
+    Ok(CellProgram {
+        steps: steps.clone(),
+        solutions,
+        flags,
+        blocks,
+    })
+}
+
+/// The per-block summary of robots' `solutions` and `flags` (one list per robot, by step)
+/// along `moves`.
+pub fn summarize(
+    moves: &Moves,
+    solutions: &[Vec<PoseSolution>],
+    flags: &[Vec<SweepFlag>],
+) -> Vec<BlockCheck> {
+    let steps = &moves.steps;
+    moves
         .clearances
         .iter()
         .map(|&(block, air)| {
@@ -517,15 +534,9 @@ pub fn solve(cell: &FixtureCell, moves: &Moves) -> Result<CellProgram> {
             BlockCheck {
                 block,
                 moves: idx.len(),
-                robots: [robot(0), robot(1)],
+                robots: (0..solutions.len()).map(robot).collect(),
                 air_clearance: air,
             }
         })
-        .collect();
-    Ok(CellProgram {
-        steps: steps.clone(),
-        solutions,
-        flags,
-        blocks: summary,
-    })
+        .collect()
 }

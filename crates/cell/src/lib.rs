@@ -14,6 +14,8 @@
 //! - [`blade`]: the blade between its two held ends, in its plane, interpolated, rebuilt.
 //! - [`fixture`]: the synchronized program of a cell that cuts blocks one at a time at a
 //!   fixture — descend, cut, retreat, rise, travel — with both robots' joints.
+//! - [`carrier`]: the same program in a three-robot cell where a robot carries the block
+//!   through a blade that stays at a station.
 //! - [`plan`]: a robot's sweep of tool poses solved in order, continuous from a start
 //!   posture, with every pose out of reach, configuration change and joint jump flagged.
 //!
@@ -35,6 +37,8 @@
 
 /// The hot blade between its held ends: poses, interpolation, shape.
 pub mod blade;
+/// The program of a three-robot cell whose third robot carries the block.
+pub mod carrier;
 /// ABB configuration data of a joint solution.
 pub mod conf;
 /// Errors of the robot cell.

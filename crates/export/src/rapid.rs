@@ -37,6 +37,19 @@ pub struct RapidTool {
     pub cog: [f64; 3],
 }
 
+/// A work object the program declares (`wobjdata`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RapidWobj {
+    /// Its name.
+    pub name: String,
+    /// The user frame: in the world frame when fixed, else in the frame of the mechanical
+    /// unit that moves it.
+    pub frame: RapidTarget,
+    /// The mechanical unit that moves it (coordinated motion, e.g. `ROB_3`), or `None`
+    /// for a fixed one.
+    pub held_by: Option<String>,
+}
+
 /// One move of the program.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RapidMove {
@@ -71,8 +84,8 @@ pub struct RapidProgram<'a> {
     pub master: bool,
     /// This robot's tool.
     pub tool: &'a RapidTool,
-    /// The work object's name and user frame in the world frame.
-    pub wobj: (&'a str, RapidTarget),
+    /// The work object the moves are in (`None`: the predefined `wobj0`, the world).
+    pub wobj: Option<&'a RapidWobj>,
     /// The blocks that stand in the work object in turn, `(number, size)`, mm along its
     /// axes from its origin (documentation for the operator and the replay).
     pub blocks: &'a [(usize, [f64; 3])],
@@ -151,11 +164,18 @@ fn declarations(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
         num(t.cog[1], 3),
         num(t.cog[2], 3)
     ));
-    line(format!(
-        "    PERS wobjdata {} := [FALSE,TRUE,\"\",{},[[0,0,0],[1,0,0,0]]];",
-        p.wobj.0,
-        pose(&p.wobj.1)
-    ));
+    if let Some(w) = p.wobj {
+        // [robhold, ufprog, ufmec, uframe, oframe]
+        let (prog, unit) = match &w.held_by {
+            Some(unit) => ("FALSE", unit.as_str()),
+            None => ("TRUE", ""),
+        };
+        line(format!(
+            "    PERS wobjdata {} := [FALSE,{prog},\"{unit}\",{},[[0,0,0],[1,0,0,0]]];",
+            w.name,
+            pose(&w.frame)
+        ));
+    }
     line(format!(
         "    CONST speeddata vCut := [{},30,200,15];",
         num(p.cut_speed, 3)
@@ -170,7 +190,7 @@ fn declarations(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
             num(size[0], 3),
             num(size[1], 3),
             num(size[2], 3),
-            p.wobj.0
+            wobj_name(p)
         ));
     }
     line(String::new());
@@ -184,8 +204,12 @@ fn declarations(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
     }
 }
 
+fn wobj_name<'a>(p: &'a RapidProgram<'_>) -> &'a str {
+    p.wobj.map_or("wobj0", |w| w.name.as_str())
+}
+
 fn body(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
-    let wobj = format!("{} \\WObj:={}", p.tool.name, p.wobj.0);
+    let wobj = format!("{} \\WObj:={}", p.tool.name, wobj_name(p));
     line("    PROC main()".into());
     line("        ConfJ \\On;".into());
     line("        ConfL \\On;".into());
@@ -230,14 +254,14 @@ fn body(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
         line(String::new());
         line("    PROC change_block(num remove, num place)".into());
         line(
-            "        ! the blade is cold and above the fixture: the operator changes blocks".into(),
+            "        ! the blade is cold and clear of the block: the operator changes blocks".into(),
         );
         line("        TPErase;".into());
         line("        IF remove > 0 TPWrite \"Remove block \" \\Num:=remove;".into());
         line("        TPWrite \"Place block \" \\Num:=place;".into());
         line(format!(
-            "        TPReadFK nAnswer, \"Block at the fixture ({}), blade clear?\", stEmpty, stEmpty, stEmpty, stEmpty, \"Go\";",
-            p.wobj.0
+            "        TPReadFK nAnswer, \"Block placed ({}), blade clear?\", stEmpty, stEmpty, stEmpty, stEmpty, \"Go\";",
+            wobj_name(p)
         ));
         line("    ENDPROC".into());
     }
@@ -246,15 +270,16 @@ fn body(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
 /// Writes the module of one robot task.
 ///
 /// ```
-/// use export::rapid::{write_module, RapidMove, RapidProgram, RapidTarget, RapidTool};
+/// use export::rapid::{write_module, RapidMove, RapidProgram, RapidTarget, RapidTool, RapidWobj};
 /// let t = RapidTarget { position: [0.0, 100.0, 50.0], rotation: [1.0, 0.0, 0.0, 0.0] };
 /// let tool = RapidTool { name: "tBlade1".into(), frame: t, mass: 2.0, cog: [0.0, 0.0, 75.0] };
 /// let mv = |name: &str, heat| RapidMove { name: name.into(), target: t, conf: [0, 0, 0, 1],
 ///     joints: Some([0.0; 6]), cut: heat, fine: true, heat, change: None };
 /// let moves = [mv("pB1_D", false), mv("pB1_C1", true)];
 /// let tasks = ["T_ROB1".to_string(), "T_ROB2".to_string()];
+/// let fixture = RapidWobj { name: "wFixture".into(), frame: t, held_by: None };
 /// let p = RapidProgram { name: "facade_T_ROB1", comment: &[], tasks: &tasks, master: true,
-///     tool: &tool, wobj: ("wFixture", t), blocks: &[(1, [600.0; 3])], cut_speed: 7.0,
+///     tool: &tool, wobj: Some(&fixture), blocks: &[(1, [600.0; 3])], cut_speed: 7.0,
 ///     air_speed: 100.0, heat_signal: "doBladeHeat", preheat_s: 2.0, moves: &moves };
 /// let mut out = Vec::new();
 /// write_module(&p, &mut out).unwrap();

@@ -1,13 +1,14 @@
 //! The robot files of every task that poses the blade: `targets.json` and `targets.csv`
 //! (every pose in job coordinates, [`export::robot`]), and from the cell's plan
-//! ([`crate::robot_cell`]) one ABB RAPID module and `.pgf` per blade robot
-//! ([`export::rapid`]) with `cell.csv`, every move's joints for both robots.
+//! ([`crate::robot_cell`]) one ABB RAPID module and `.pgf` per robot task
+//! ([`export::rapid`]) with `cell.csv`, every move's joints for every robot.
 
 use cell::fixture::{Phase, Step};
 use elastica::sweep::BladePose;
 use export::csv::Table;
 use export::rapid::{
     identifier, write_module, write_pgf, RapidMove, RapidProgram, RapidTarget, RapidTool,
+    RapidWobj,
 };
 use export::robot::TARGET_DIGITS;
 use export::robot::{targets_csv, EndPose, Pose, Targets, TargetsBlock};
@@ -74,9 +75,11 @@ fn names(steps: &[Step]) -> Vec<String> {
         .collect()
 }
 
-/// Robot `r`'s moves.
+/// Task `r`'s moves (0, 1: the blade's ends in the work object; 2: the carried block in
+/// the world).
 fn moves(plan: &CellPlan, r: usize) -> Vec<RapidMove> {
     let steps = &plan.program.steps;
+    let poses = plan.program.block_poses.as_deref().unwrap_or(&[]);
     let names = names(steps);
     steps
         .iter()
@@ -90,7 +93,7 @@ fn moves(plan: &CellPlan, r: usize) -> Vec<RapidMove> {
                 || !matches!(s.phase, Phase::Cut | Phase::Travel);
             RapidMove {
                 name: names[k].clone(),
-                target: target(&s.ends[r]),
+                target: target(if r < 2 { &s.ends[r] } else { &poses[k] }),
                 conf: c.map_or([0; 4], |c| [c.cf1, c.cf4, c.cf6, c.cfx]),
                 joints: sol.joints,
                 cut: matches!(s.phase, Phase::Cut | Phase::Retreat),
@@ -102,11 +105,15 @@ fn moves(plan: &CellPlan, r: usize) -> Vec<RapidMove> {
         .collect()
 }
 
-/// The header comment of robot `r`'s module.
+/// The header comment of task `r`'s module.
 fn comment(plan: &CellPlan, job: &str, r: usize) -> Vec<String> {
     let cell = &plan.cell;
-    let h = &cell.holders[r];
-    let robot = &cell.robots[h.robot];
+    let (index, role) = match (r, &cell.carrier) {
+        (2, Some(k)) => (k.robot, "carries the block (tool tGrip: the block's frame)"),
+        (0, _) => (cell.holders[0].robot, "holds the blade's first end"),
+        _ => (cell.holders[1].robot, "holds the blade's second end"),
+    };
+    let robot = &cell.robots[index];
     let base = FrameReport::of(&robot.base);
     let f = |v: &[f64]| {
         v.iter()
@@ -115,19 +122,70 @@ fn comment(plan: &CellPlan, job: &str, r: usize) -> Vec<String> {
             .join(", ")
     };
     let mut c = vec![
-        format!("hotcut job \"{job}\": hot-blade cut. Task T_ROB{} ({}) holds the blade's {} end.", r + 1, robot.model.name, if r == 0 { "first" } else { "second" }),
+        format!(
+            "hotcut job \"{job}\": hot-blade cut. Task T_ROB{} ({}) {role}.",
+            r + 1,
+            robot.model.name
+        ),
         format!("Its base frame in the world (set it in the controller): [{}] mm, q [{}].", f(&base.origin_mm), f(&base.rotation)),
-        "wFixture: where each block stands while it is cut (min corner; axes along the cut, across, up).".into(),
-        "The whole program is one synchronized motion: both ends move in step, the blade never stretches.".into(),
-        format!("Between blocks the blade retreats, rises {} mm clear of the block and waits, cold, for the block change.", export::fmt_float(cell.clearance, 1)),
-        format!("Heat: {} on before each approach (preheat {} s), off after each retreat.", cell.heat.0, export::fmt_float(cell.heat.1, 3)),
-        "Start with the blade mounted and both robots where the first move pB*_S1 can be reached in a straight line.".into(),
     ];
+    if cell.carrier.is_some() {
+        c.extend([
+            "T_ROB3 carries each block through the blade, which stays at the station; the blade's ends move".into(),
+            "in wCarried, the block's frame held by ROB_3 (coordinated motion; its user frame is the grip".into(),
+            "in ROB_3's flange frame: confirm that your system attaches it to the flange).".into(),
+            format!("Between blocks the carrier lowers the block {} mm clear under the blade, and waits for the block change.", export::fmt_float(cell.clearance, 1)),
+        ]);
+    } else {
+        c.extend([
+            "wFixture: where each block stands while it is cut (min corner; axes along the cut, across, up).".into(),
+            format!("Between blocks the blade retreats, rises {} mm clear of the block and waits, cold, for the block change.", export::fmt_float(cell.clearance, 1)),
+        ]);
+    }
+    c.extend([
+        "The whole program is one synchronized motion: all ends move in step, the blade never stretches.".into(),
+        format!("Heat: {} on before each approach (preheat {} s), off after each retreat.", cell.heat.0, export::fmt_float(cell.heat.1, 3)),
+        "Start with the blade mounted and the robots where the first move pB*_S1 can be reached in a straight line.".into(),
+    ]);
     if cell.assumed {
         c.push("WARNING: the robots' placement and tool data are hotcut's default cell, not yours: check the base".into());
         c.push("frames, tooldata and confdata on the controller before running (README, \"The robot cell\").".into());
     }
     c
+}
+
+/// Task `r`'s tool and work object.
+fn tool_and_wobj(plan: &CellPlan, r: usize) -> (RapidTool, Option<RapidWobj>) {
+    let cell = &plan.cell;
+    if let (2, Some(k)) = (r, &cell.carrier) {
+        let tool = RapidTool {
+            name: "tGrip".into(),
+            frame: target(&k.grip),
+            mass: k.mass,
+            cog: k.grip.translation.vector.into(),
+        };
+        return (tool, None);
+    }
+    let h = &cell.holders[r];
+    let tool = RapidTool {
+        name: format!("tBlade{}", r + 1),
+        frame: target(&h.tcp),
+        mass: h.mass,
+        cog: h.cog,
+    };
+    let wobj = match &cell.carrier {
+        Some(k) => RapidWobj {
+            name: "wCarried".into(),
+            frame: target(&k.grip),
+            held_by: Some("ROB_3".into()),
+        },
+        None => RapidWobj {
+            name: "wFixture".into(),
+            frame: target(&cell.fixture),
+            held_by: None,
+        },
+    };
+    (tool, Some(wobj))
 }
 
 /// Writes the robot files of output `kind`: `targets.json` and `targets.csv`
@@ -160,21 +218,16 @@ pub fn write(
                 .collect();
             if !unreached.is_empty() {
                 return Err(export::ExportError::Data(format!(
-                    "the robots cannot reach every move of block(s) {} (report: cell): no program is written; move the robots or the fixture (cell:), or leave Rapid out",
+                    "the robots cannot reach every move of block(s) {} (report: cell): no program is written; move the robots, the fixture or the station (cell:), or leave Rapid out",
                     unreached.join(", ")
                 )));
             }
-            let tasks = ["T_ROB1".to_string(), "T_ROB2".to_string()];
+            let n = plan.program.solutions.len();
+            let tasks: Vec<String> = (1..=n).map(|r| format!("T_ROB{r}")).collect();
             let stem = identifier(job, 25);
-            for r in 0..2 {
+            for r in 0..n {
                 let module = format!("{stem}_T_ROB{}", r + 1);
-                let h = &plan.cell.holders[r];
-                let tool = RapidTool {
-                    name: format!("tBlade{}", r + 1),
-                    frame: target(&h.tcp),
-                    mass: h.mass,
-                    cog: h.cog,
-                };
+                let (tool, wobj) = tool_and_wobj(plan, r);
                 let moves = moves(plan, r);
                 let comment = comment(plan, job, r);
                 let program = RapidProgram {
@@ -183,7 +236,7 @@ pub fn write(
                     tasks: &tasks,
                     master: r == 0,
                     tool: &tool,
-                    wobj: ("wFixture", target(&plan.cell.fixture)),
+                    wobj: wobj.as_ref(),
                     blocks: &plan.blocks,
                     cut_speed: plan.cut_speed,
                     air_speed: plan.cell.air_speed,
@@ -208,8 +261,8 @@ fn cell_csv(plan: &CellPlan) -> String {
     );
     let f = Table::num;
     for (k, s) in plan.program.steps.iter().enumerate() {
-        for r in 0..2 {
-            let sol = &plan.program.solutions[r][k];
+        for (r, solutions) in plan.program.solutions.iter().enumerate() {
+            let sol = &solutions[k];
             let mut row = vec![
                 (k + 1).to_string(),
                 s.block.to_string(),

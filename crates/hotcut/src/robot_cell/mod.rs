@@ -8,16 +8,55 @@ pub mod report;
 /// The cell in millimetres, with its defaults.
 pub mod resolve;
 
-use cell::fixture::{BlockCut, CellProgram, FixtureCell};
+use cell::carrier::{CarriedProgram, CarrierCell};
+use cell::fixture::{BlockCheck, BlockCut, CellProgram, FixtureCell, Step};
+use cell::plan::PoseSolution;
 use export::robot::Targets;
-use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::Isometry3;
 use rayon::prelude::*;
 
 use crate::context::{Context, JobFields};
 use crate::error::{HotcutError, JobError, Result};
 use crate::spec::CellSpec;
 use report::CellReport;
-use resolve::{block_frame, defaults, HolderStyle, Layout, Resolved};
+use resolve::{block_frame, defaults, Carry, HolderStyle, Layout, Resolved};
+
+/// A planned program, at the fixture or with the block carried.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Program {
+    /// Every move, the blade's ends in the work object's frame (the block's at the
+    /// fixture, or the carried block's), in order.
+    pub steps: Vec<Step>,
+    /// With a carrier: the carried block's frame in the cell at each move.
+    pub block_poses: Option<Vec<Isometry3<f64>>>,
+    /// Each robot's solution at every move, in task order (first end's, second end's,
+    /// carrier's).
+    pub solutions: Vec<Vec<PoseSolution>>,
+    /// Per block.
+    pub blocks: Vec<BlockCheck>,
+}
+
+impl From<CellProgram> for Program {
+    fn from(p: CellProgram) -> Self {
+        Program {
+            steps: p.steps,
+            block_poses: None,
+            solutions: p.solutions.into(),
+            blocks: p.blocks,
+        }
+    }
+}
+
+impl From<CarriedProgram> for Program {
+    fn from(p: CarriedProgram) -> Self {
+        Program {
+            steps: p.moves.steps,
+            block_poses: Some(p.block_poses),
+            solutions: p.solutions.into(),
+            blocks: p.blocks,
+        }
+    }
+}
 
 /// What the robot files are written from.
 #[derive(Debug, Clone)]
@@ -25,7 +64,7 @@ pub struct CellPlan {
     /// The cell.
     pub cell: Resolved,
     /// The planned program.
-    pub program: CellProgram,
+    pub program: Program,
     /// Cutting speed, mm/s.
     pub cut_speed: f64,
     /// The blocks' sizes, mm, by block number, in cutting order.
@@ -84,6 +123,9 @@ const TAKEN: &[&str] = &[
     "wFixture",
     "tBlade1",
     "tBlade2",
+    "tGrip",
+    "wCarried",
+    "wobj0",
     "stEmpty",
     "remove",
     "place",
@@ -142,6 +184,63 @@ pub fn check(
     check_settings(c, mm, &mut err);
     let robots = check_robots(c, mm, &mut err);
     check_holders(c, robots, mm, &mut err);
+    check_carrier(c, robots, mm, &mut err);
+}
+
+/// The block carrier, if any, in a cell of `robots` robots.
+fn check_carrier(c: &CellSpec, robots: usize, mm: f64, err: Report<'_>) {
+    let Some(k) = &c.block_carrier else {
+        if robots == 3 {
+            err(
+                "/robots",
+                "a third robot only carries the block: give block_carrier, or list 2 robots"
+                    .into(),
+            );
+        }
+        return;
+    };
+    if c.robots.is_none() {
+        err(
+            "/robots",
+            "a cell with a block carrier lists its three robots".into(),
+        );
+    } else if robots != 3 {
+        err(
+            "/block_carrier",
+            format!("a block carrier is the cell's third robot: list 3 robots, got {robots}"),
+        );
+    }
+    if c.fixture.is_some() {
+        err(
+            "/fixture",
+            "a carried block has no fixture: leave fixture out (the carrier's station says where the blade cuts)".into(),
+        );
+    }
+    let holders: Vec<usize> = match &c.blade_holders {
+        Some(h) => h.iter().map(|h| h.robot).collect(),
+        None => vec![0, 1],
+    };
+    if k.robot >= robots.max(2) || holders.contains(&k.robot) {
+        err(
+            "/block_carrier/robot",
+            format!(
+                "robot {} cannot carry the block: it must exist and not hold the blade",
+                k.robot
+            ),
+        );
+    }
+    if !frame_ok(&k.grip, mm) {
+        err("/block_carrier/grip", frame_message());
+    }
+    if !frame_ok(&k.station, mm) {
+        err("/block_carrier/station", frame_message());
+    }
+    if !(k.mass > 0.0 && k.mass <= 2000.0) {
+        err(
+            "/block_carrier/mass",
+            "the mass must be positive, at most 2000 kg".into(),
+        );
+    }
 }
 
 /// Speeds, clearance, heat, fixture, carrier.
@@ -181,9 +280,6 @@ fn check_settings(c: &CellSpec, mm: f64, err: Report<'_>) {
             "/heat/preheat_s",
             format!("the preheat must be 0–600 s, got {}", c.heat.preheat_s),
         );
-    }
-    if c.block_carrier.is_some() {
-        err("/block_carrier", "a robot carrying the block is not supported yet: leave block_carrier out, the blocks are cut at the fixture".into());
     }
     if c.fixture.as_ref().is_some_and(|f| !frame_ok(f, mm)) {
         err("/fixture", frame_message());
@@ -282,13 +378,6 @@ fn check_holders(c: &CellSpec, robots: usize, mm: f64, err: Report<'_>) {
     }
 }
 
-fn isometry(p: [f64; 3], q: [f64; 4], mm: f64) -> Isometry3<f64> {
-    Isometry3::from_parts(
-        Translation3::from(Vector3::from(p) * mm),
-        UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3])),
-    )
-}
-
 /// The blocks of `t` in their own frames, mm, with their sizes.
 fn block_cuts(t: &Targets, sizes: &[[f64; 3]]) -> Vec<BlockCut> {
     let mm = 1.0 / t.per_mm;
@@ -303,10 +392,7 @@ fn block_cuts(t: &Targets, sizes: &[[f64; 3]]) -> Vec<BlockCut> {
                 poses: b
                     .poses
                     .iter()
-                    .map(|p| {
-                        p.ends
-                            .map(|e| to_block * isometry(e.position, e.rotation, mm))
-                    })
+                    .map(|p| p.ends.map(|e| to_block * resolve::end_frame(&e, mm)))
                     .collect(),
             }
         })
@@ -353,7 +439,7 @@ fn layouts(job: &Context) -> Vec<Layout> {
 
 /// How bad a program is: moves out of reach, then configuration changes and joint jumps,
 /// then the least joint margin (larger is better).
-fn score(p: &CellProgram) -> (usize, usize, f64) {
+fn score(p: &Program) -> (usize, usize, f64) {
     let (mut reach, mut flips, mut margin) = (0, 0, f64::INFINITY);
     for b in &p.blocks {
         for r in &b.robots {
@@ -387,13 +473,19 @@ fn fixture_cell(
     }
 }
 
+/// What every plan starts from: the blocks in their frames, the blade and the motion, in
+/// mm.
+struct Setup {
+    cuts: Vec<BlockCut>,
+    largest: [f64; 3],
+    blade: f64,
+    curvature: f64,
+    approach: f64,
+}
+
 /// Plans the cell's program for the poses `t` (blocks of `sizes`, job units, in the
-/// order of `t.blocks`), cutting at `speed` with `approach` (job units). What the job
-/// leaves to the default cell is laid out by trying the default table heights, standoffs,
-/// holder styles and wrist sides in order, in chunks of four, until a chunk holds a layout
-/// with every move reached, no flip and a joint margin of [`defaults::GOOD_MARGIN_DEG`];
-/// the first best is kept (fewest moves out of reach, then fewest flips, then the largest
-/// joint margin).
+/// order of `t.blocks`), cutting at `speed` with `approach` (job units): at the fixture
+/// ([`plan_fixture`]) or with the block carried ([`plan_carried`]).
 ///
 /// # Errors
 /// A plan that cannot be made (named), or with `strict: true`, any flag.
@@ -405,58 +497,24 @@ pub fn plan(
     approach: f64,
 ) -> Result<CellPlan> {
     let mm = 1.0 / t.per_mm;
-    let largest = sizes
-        .iter()
-        .fold([0.0f64; 3], |m, s| {
-            [m[0].max(s[0]), m[1].max(s[1]), m[2].max(s[2])]
-        })
-        .map(|v| v * mm);
-    let blade = t.blade_length * mm;
-    let cuts = block_cuts(t, sizes);
-    let fail = |e: cell::CellError| job.fail(format!("robot cell: {e}"));
-    let layouts = layouts(job);
-    let (curvature, approach) = (job.blade.max_curvature / mm, approach * mm);
-    let start = defaults::STARTS_DEG[0];
-    let first = resolve::resolve(job.cell.as_ref(), t, blade, largest, layouts[0]);
-    // the fixture only moves up between layouts: the moves stay
-    let moves = cell::fixture::moves(
-        &fixture_cell(&first, blade, curvature, approach, start),
-        &cuts,
-    )
-    .map_err(fail)?;
-    let tries: Vec<(Layout, [f64; 6])> = layouts
-        .iter()
-        .flat_map(|l| defaults::STARTS_DEG.iter().map(move |s| (*l, *s)))
-        .collect();
-    // in chunks of a fixed size, in order, until one is good enough: the same result
-    // whatever the thread count
-    let mut best: Option<(Resolved, CellProgram)> = None;
-    for chunk in tries.chunks(4) {
-        let solved = chunk
-            .par_iter()
-            .map(|(layout, start)| {
-                let cell = resolve::resolve(job.cell.as_ref(), t, blade, largest, *layout);
-                let fc = fixture_cell(&cell, blade, curvature, approach, *start);
-                Ok((cell, cell::fixture::solve(&fc, &moves)?))
+    let setup = Setup {
+        cuts: block_cuts(t, sizes),
+        largest: sizes
+            .iter()
+            .fold([0.0f64; 3], |m, s| {
+                [m[0].max(s[0]), m[1].max(s[1]), m[2].max(s[2])]
             })
-            .collect::<std::result::Result<Vec<_>, cell::CellError>>()
-            .map_err(fail)?;
-        for (cell, program) in solved {
-            if best
-                .as_ref()
-                .is_none_or(|(_, b)| score(&program) < score(b))
-            {
-                best = Some((cell, program));
-            }
-        }
-        if best.as_ref().is_some_and(|(_, b)| {
-            let (reach, flips, margin) = score(b);
-            reach + flips == 0 && -margin >= defaults::GOOD_MARGIN_DEG
-        }) {
-            break;
-        }
-    }
-    let (cell, program) = best.ok_or_else(|| job.fail("robot cell: no layout"))?;
+            .map(|v| v * mm),
+        blade: t.blade_length * mm,
+        curvature: job.blade.max_curvature / mm,
+        approach: approach * mm,
+    };
+    let carried = job.cell.as_ref().is_some_and(|c| c.block_carrier.is_some());
+    let (cell, program) = if carried {
+        plan_carried(job, t, &setup)?
+    } else {
+        plan_fixture(job, t, &setup)?
+    };
     let report = report::report(&cell, &program, speed * mm);
     if cell.strict && !report.clean {
         return Err(HotcutError::Task {
@@ -466,7 +524,8 @@ pub fn plan(
     }
     Ok(CellPlan {
         cut_speed: speed * mm,
-        blocks: cuts
+        blocks: setup
+            .cuts
             .iter()
             .filter(|b| !b.poses.is_empty())
             .map(|b| (b.block, b.size))
@@ -475,4 +534,112 @@ pub fn plan(
         program,
         report,
     })
+}
+
+/// The program at the fixture. What the job leaves to the default cell is laid out by
+/// trying the default table heights, standoffs, holder styles and wrist sides in order, in
+/// chunks of four, until a chunk holds a layout with every move reached, no flip and a
+/// joint margin of [`defaults::GOOD_MARGIN_DEG`]; the first best is kept (fewest moves out
+/// of reach, then fewest flips, then the largest joint margin).
+fn plan_fixture(job: &Context, t: &Targets, s: &Setup) -> Result<(Resolved, Program)> {
+    let fail = |e: cell::CellError| job.fail(format!("robot cell: {e}"));
+    let layouts = layouts(job);
+    let fc = |cell: &Resolved, start: [f64; 6]| {
+        fixture_cell(cell, s.blade, s.curvature, s.approach, start)
+    };
+    let first = resolve::resolve(job.cell.as_ref(), t, s.blade, s.largest, layouts[0]);
+    // the fixture only moves up between layouts: the moves stay
+    let moves =
+        cell::fixture::moves(&fc(&first, defaults::STARTS_DEG[0]), &s.cuts).map_err(fail)?;
+    let tries: Vec<(Layout, [f64; 6])> = layouts
+        .iter()
+        .flat_map(|l| defaults::STARTS_DEG.iter().map(move |s| (*l, *s)))
+        .collect();
+    // in chunks of a fixed size, in order, until one is good enough: the same result
+    // whatever the thread count
+    let mut best: Option<(Resolved, Program)> = None;
+    for chunk in tries.chunks(4) {
+        let solved = chunk
+            .par_iter()
+            .map(|(layout, start)| {
+                let cell = resolve::resolve(job.cell.as_ref(), t, s.blade, s.largest, *layout);
+                let program = cell::fixture::solve(&fc(&cell, *start), &moves)?;
+                Ok((cell, Program::from(program)))
+            })
+            .collect::<std::result::Result<Vec<_>, cell::CellError>>()
+            .map_err(fail)?;
+        keep_best(&mut best, solved);
+        if good_enough(best.as_ref()) {
+            break;
+        }
+    }
+    best.ok_or_else(|| job.fail("robot cell: no layout"))
+}
+
+/// Keeps the best of `best` and `solved` (the first of equals).
+fn keep_best(best: &mut Option<(Resolved, Program)>, solved: Vec<(Resolved, Program)>) {
+    for (cell, program) in solved {
+        if best
+            .as_ref()
+            .is_none_or(|(_, b)| score(&program) < score(b))
+        {
+            *best = Some((cell, program));
+        }
+    }
+}
+
+/// Every move reached with no flip and a good joint margin.
+fn good_enough(best: Option<&(Resolved, Program)>) -> bool {
+    best.is_some_and(|(_, b)| {
+        let (reach, flips, margin) = score(b);
+        reach + flips == 0 && -margin >= defaults::GOOD_MARGIN_DEG
+    })
+}
+
+/// The program with the block carried through the blade at the station: the job gives
+/// the robots; the wrist sides of the blade robots and of the carrier are tried (four
+/// plans), the best kept.
+fn plan_carried(job: &Context, t: &Targets, s: &Setup) -> Result<(Resolved, Program)> {
+    let fail = |e: cell::CellError| job.fail(format!("robot cell: {e}"));
+    let layout = layouts(job)[0];
+    let cell = resolve::resolve(job.cell.as_ref(), t, s.blade, s.largest, layout);
+    let Some(Carry { robot, grip, .. }) = cell.carrier.clone() else {
+        return Err(job.fail("robot cell: no block carrier"));
+    };
+    let carrier_cell = |blade: [f64; 6], carrier: [f64; 6]| CarrierCell {
+        holders: [cell.holder(0), cell.holder(1)],
+        carrier: cell.arm(robot, grip),
+        station: cell.carrier.as_ref().map_or(Isometry3::identity(), |k| k.station),
+        blade_length: s.blade,
+        max_curvature: Some(s.curvature),
+        approach: s.approach,
+        clearance: cell.clearance,
+        travel_step: (
+            defaults::TRAVEL_STEP_MM,
+            defaults::TRAVEL_TURN_DEG.to_radians(),
+        ),
+        start: [
+            blade.map(f64::to_radians),
+            blade.map(f64::to_radians),
+            carrier.map(f64::to_radians),
+        ],
+    };
+    let starts = defaults::STARTS_DEG;
+    let (moves, poses) =
+        cell::carrier::moves(&carrier_cell(starts[0], starts[0]), &s.cuts).map_err(fail)?;
+    let tries: Vec<([f64; 6], [f64; 6])> = starts
+        .iter()
+        .flat_map(|a| starts.iter().map(move |b| (*a, *b)))
+        .collect();
+    let solved = tries
+        .par_iter()
+        .map(|(a, b)| {
+            let program = cell::carrier::solve(&carrier_cell(*a, *b), &moves, &poses)?;
+            Ok((cell.clone(), Program::from(program)))
+        })
+        .collect::<std::result::Result<Vec<_>, cell::CellError>>()
+        .map_err(fail)?;
+    let mut best = None;
+    keep_best(&mut best, solved);
+    best.ok_or_else(|| job.fail("robot cell: no plan"))
 }

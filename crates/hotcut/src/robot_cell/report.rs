@@ -2,12 +2,13 @@
 //! job's units, so a replay can rebuild every robot) and, per block, what the robots
 //! reach.
 
-use cell::fixture::{BlockCheck, CellProgram};
+use cell::fixture::BlockCheck;
 use nalgebra::Isometry3;
 use schemars::JsonSchema;
 use serde::Serialize;
 
 use super::resolve::Resolved;
+use super::Program;
 
 /// A frame: origin (mm) and orientation `[w, x, y, z]`.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
@@ -62,6 +63,19 @@ pub struct HolderReport {
     pub cog_mm: [f64; 3],
 }
 
+/// The block carrier as planned.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct CarrierReport {
+    /// Index of its robot.
+    pub robot: usize,
+    /// The block's frame in the flange's frame.
+    pub grip: FrameReport,
+    /// Mass of the gripper with a block, kg.
+    pub mass_kg: f64,
+    /// Where the blade cuts, in the cell's frame.
+    pub station: FrameReport,
+}
+
 /// The `cell` section.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct CellReport {
@@ -71,8 +85,10 @@ pub struct CellReport {
     pub robots: Vec<RobotReport>,
     /// The holders of the blade's first and second end.
     pub holders: Vec<HolderReport>,
-    /// A block's frame at the fixture, in the cell's frame.
-    pub fixture: FrameReport,
+    /// A block's frame at the fixture, in the cell's frame (`None` with a carrier).
+    pub fixture: Option<FrameReport>,
+    /// The robot carrying the block, if any.
+    pub carrier: Option<CarrierReport>,
     /// Height of the blade above the blocks between them, mm.
     pub clearance_mm: f64,
     /// Cutting speed, mm/s.
@@ -134,7 +150,15 @@ impl CellReport {
 }
 
 /// The report of a planned cell.
-pub fn report(cell: &Resolved, program: &CellProgram, cut_speed: f64) -> CellReport {
+pub fn report(cell: &Resolved, program: &Program, cut_speed: f64) -> CellReport {
+    // the holder of end e is task T_ROB<e+1>, the carrier T_ROB3
+    let task = |i: usize| {
+        let n = match cell.holders.iter().position(|h| h.robot == i) {
+            Some(e) => e + 1,
+            None => 3,
+        };
+        format!("T_ROB{n}")
+    };
     let robots = cell
         .robots
         .iter()
@@ -142,7 +166,7 @@ pub fn report(cell: &Resolved, program: &CellProgram, cut_speed: f64) -> CellRep
         .map(|(i, r)| {
             let o = &r.model.opw;
             RobotReport {
-                task: format!("T_ROB{}", i + 1),
+                task: task(i),
                 model: r.model.name.clone(),
                 opw_mm: [o.a1, o.a2, o.b, o.c1, o.c2, o.c3, o.c4],
                 offsets_deg: o.offsets.map(f64::to_degrees),
@@ -170,7 +194,16 @@ pub fn report(cell: &Resolved, program: &CellProgram, cut_speed: f64) -> CellRep
         assumed: cell.assumed,
         robots,
         holders,
-        fixture: FrameReport::of(&cell.fixture),
+        fixture: cell
+            .carrier
+            .is_none()
+            .then(|| FrameReport::of(&cell.fixture)),
+        carrier: cell.carrier.as_ref().map(|k| CarrierReport {
+            robot: k.robot,
+            grip: FrameReport::of(&k.grip),
+            mass_kg: k.mass,
+            station: FrameReport::of(&k.station),
+        }),
         clearance_mm: cell.clearance,
         cut_speed_mm_s: cut_speed,
         air_speed_mm_s: cell.air_speed,

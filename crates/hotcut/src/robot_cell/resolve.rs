@@ -63,6 +63,19 @@ pub struct Hold {
     pub cog: [f64; 3],
 }
 
+/// The block carrier of the resolved cell.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Carry {
+    /// Index of its robot.
+    pub robot: usize,
+    /// The block's frame in the flange's frame (mm).
+    pub grip: Isometry3<f64>,
+    /// Mass of the gripper with a block, kg.
+    pub mass: f64,
+    /// Where the blade cuts, in the cell's frame (mm).
+    pub station: Isometry3<f64>,
+}
+
 /// The cell in millimetres.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Resolved {
@@ -72,8 +85,10 @@ pub struct Resolved {
     pub robots: Vec<Robot>,
     /// The holders of the blade's first and second end.
     pub holders: [Hold; 2],
-    /// A block's frame at the fixture, in the cell's frame (mm).
+    /// A block's frame at the fixture, in the cell's frame (mm); unused with a carrier.
     pub fixture: Isometry3<f64>,
+    /// The robot that carries the block, if any.
+    pub carrier: Option<Carry>,
     /// Air speed, mm/s.
     pub air_speed: f64,
     /// Clearance above the blocks, mm.
@@ -88,11 +103,16 @@ impl Resolved {
     /// The holder of end `e` as the planner takes it.
     pub fn holder(&self, e: usize) -> Holder {
         let h = &self.holders[e];
-        let r = &self.robots[h.robot];
+        self.arm(h.robot, h.tcp)
+    }
+
+    /// Robot `r` with tool `tool` as the planner takes it.
+    pub fn arm(&self, r: usize, tool: Isometry3<f64>) -> Holder {
+        let robot = &self.robots[r];
         Holder {
-            model: r.model.clone(),
-            base: r.base,
-            tool: h.tcp,
+            model: robot.model.clone(),
+            base: robot.base,
+            tool,
         }
     }
 }
@@ -188,18 +208,47 @@ fn default_tcp(
     )
 }
 
-/// The blade's mean pose at the fixture: the chords' mean midpoint, their mean horizontal
-/// direction, and each end's mean tool orientation (cell frame, mm).
+/// Where a blade pose of the job is in the cell: at the fixture, or at the carrier's
+/// station.
+fn placement(
+    b: &export::robot::TargetsBlock,
+    p: &export::robot::Pose,
+    fixture: &Isometry3<f64>,
+    station: Option<&Isometry3<f64>>,
+    mm: f64,
+) -> Isometry3<f64> {
+    let to_block = block_frame(b, mm).inverse();
+    let Some(s) = station else {
+        return fixture * to_block;
+    };
+    let ends = p.ends.map(|e| to_block * end_frame(&e, mm));
+    // a pose that holds no blade is refused by the planner; here any frame will do
+    cell::carrier::block_pose(s, &ends).unwrap_or(*s) * to_block
+}
+
+/// An end's tool frame in job coordinates, mm.
+pub fn end_frame(e: &export::robot::EndPose, mm: f64) -> Isometry3<f64> {
+    let q = e.rotation;
+    Isometry3::from_parts(
+        Translation3::from(Vector3::from(e.position) * mm),
+        UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3])),
+    )
+}
+
+/// The blade's mean pose in the cell (at the fixture, or at the carrier's `station`): the
+/// chords' mean midpoint, their mean horizontal direction, and each end's mean tool
+/// orientation (cell frame, mm).
 fn mean_pose(
     t: &Targets,
     fixture: &Isometry3<f64>,
+    station: Option<&Isometry3<f64>>,
 ) -> (Vector3<f64>, Vector3<f64>, [UnitQuaternion<f64>; 2]) {
     let mm = 1.0 / t.per_mm;
     let (mut chord, mut mid, mut n) = (Vector3::zeros(), Vector3::zeros(), 0.0);
     let mut q = [nalgebra::Vector4::zeros(); 2];
     for b in &t.blocks {
-        let to_cell = fixture * block_frame(b, mm).inverse();
         for p in &b.poses {
+            let to_cell = placement(b, p, fixture, station, mm);
             let e =
                 |k: usize| to_cell * nalgebra::Point3::from(Vector3::from(p.ends[k].position) * mm);
             chord += e(1) - e(0);
@@ -313,7 +362,13 @@ pub fn resolve(
         .fixture
         .as_ref()
         .map_or_else(|| default_fixture(block_mm, layout.table), |f| frame(f, mm));
-    let (mid, dir, mean) = mean_pose(t, &fixture);
+    let carrier = s.block_carrier.as_ref().map(|k| Carry {
+        robot: k.robot,
+        grip: frame(&k.grip, mm),
+        mass: k.mass,
+        station: frame(&k.station, mm),
+    });
+    let (mid, dir, mean) = mean_pose(t, &fixture, carrier.as_ref().map(|k| &k.station));
     let hs = s.blade_holders.as_deref();
     let holders = [0, 1].map(|e| {
         let toward = if e == 0 { dir } else { -dir };
@@ -339,6 +394,7 @@ pub fn resolve(
         robots,
         holders,
         fixture,
+        carrier,
         air_speed: s.air_speed.map_or(defaults::AIR_SPEED_MM_PER_S, |v| v * mm),
         clearance: s.clearance.map_or(defaults::CLEARANCE_MM, |v| v * mm),
         heat: (s.heat.signal.clone(), s.heat.preheat_s),

@@ -6,9 +6,10 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-/// The robot cell that cuts the blocks with the hot blade. Blocks are cut one at a time at
-/// a fixture: after each block the blade retreats, rises in its cutting plane above the
-/// block, and the program waits for the operator to change blocks.
+/// The robot cell that cuts the blocks with the hot blade. Blocks are cut one at a time,
+/// at a fixture or carried by a third robot: after each block the blade retreats, rises in
+/// its cutting plane above the block (or the carrier lowers the block under it), and the
+/// program waits for the operator to change blocks.
 ///
 /// Without `cell:` the default cell is used: two IRB 2600-12/1.65 facing each other across
 /// the fixture, laid out by the rule in the README ("The robot cell"), with holders 150 mm
@@ -26,6 +27,7 @@ pub struct CellSpec {
     pub blade_holders: Option<Vec<HolderSpec>>,
     /// A third robot that carries the block through the blade (the pilot cell of
     /// "Robotic Hot-Blade Cutting" §4). Default: none, blocks stand at the fixture.
+    /// With a carrier, `robots` lists all three and `fixture` is left out.
     #[serde(default)]
     pub block_carrier: Option<CarrierSpec>,
     /// Where a block stands while it is cut: its frame (min corner; axes along the cut,
@@ -144,16 +146,25 @@ pub struct HolderSpec {
     pub cog: Option<(f64, f64, f64)>,
 }
 
-/// A robot that carries the block.
+/// A robot that carries the block through the blade, which stays at a station (the
+/// pilot cell of "Robotic Hot-Blade Cutting" §4): `Carrier(robot, grip, mass, station)`.
+/// The cell then has three robots and no fixture; the blade's robots move in a work
+/// object that the carrier holds (RAPID coordinated motion).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, rename = "Carrier")]
 pub struct CarrierSpec {
-    /// Index of the robot in `robots`.
+    /// Index of the robot in `robots` (not one that holds the blade).
     pub robot: usize,
-    /// The block's frame in the carrier's flange frame (the gripper).
+    /// The block's frame (min corner; axes along the cut, across it, up) in the carrier's
+    /// flange frame: where the gripper holds the block.
     pub grip: FrameSpec,
-    /// Mass of the gripper with the block, kg.
+    /// Mass of the gripper with a block, kg (> 0); its centre of gravity is taken at the
+    /// grip's origin.
     pub mass: f64,
+    /// Where the blade cuts, in the cell's frame: origin at the blade's chord midpoint, x
+    /// along the chord (from the first end to the second), z the cutting plane's normal
+    /// (the way the blade advances through the block).
+    pub station: FrameSpec,
 }
 
 /// The heat of the blade.

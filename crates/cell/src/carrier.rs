@@ -1,0 +1,162 @@
+//! The program of a three-robot cell in which a third robot carries the block through the
+//! blade, like a conveyor (the pilot cell of "Robotic Hot-Blade Cutting" §4).
+//!
+//! The blade works at a *station*: a frame of the cell whose origin is the blade's chord
+//! midpoint, whose x-axis is the chord (first end to second) and whose z-axis is the
+//! cutting plane's normal. The blade never leaves it: its two robots only change its shape
+//! (chord length and end angles). Everything else is the block's motion.
+//!
+//! The program is the fixture's ([`crate::fixture::moves`]) seen from the block: the same
+//! moves of the blade relative to the block — descend to the approach, cut, retreat, rise
+//! above the block, travel to the next block, with the same clearances and the same
+//! admissible blade shapes — and, for each, the block's pose that puts the blade at the
+//! station. A relative pose with chord frame `F` (chord midpoint, chord, normal, in the
+//! block's frame) puts the block at `S · F⁻¹`; the blade's ends are then at
+//! `S · F⁻¹ · end`. So where the fixture's blade rises above the block, here the block
+//! goes down under the blade; where the fixture's blade travels to the next block, here
+//! the next block comes under the blade. Blocks are changed in the carrier's gripper at
+//! the same points of the program as at the fixture: the first before its descent, each
+//! next one while the cut block is down under the risen blade.
+
+use nalgebra::{Isometry3, Translation3};
+
+use crate::blade::{planar, BladePose};
+use crate::error::Result;
+use crate::fixture::{moves as relative_moves, summarize, BlockCheck, BlockCut, FixtureCell, Moves};
+use crate::kinematics::Joints;
+use crate::plan::{sweep, Holder, PoseSolution, SweepFlag};
+
+/// The cell and how the blade and the block move in it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CarrierCell {
+    /// The robots holding the blade's first and second end.
+    pub holders: [Holder; 2],
+    /// The robot carrying the block; its tool frame is the block's frame (min corner; axes
+    /// along the cut, across it, up) in its flange's frame: the grip.
+    pub carrier: Holder,
+    /// Where the blade cuts, in the cell's frame (mm): origin at the chord's midpoint, x
+    /// along the chord, z the cutting plane's normal.
+    pub station: Isometry3<f64>,
+    /// The blade's length, mm.
+    pub blade_length: f64,
+    /// The largest curvature the blade may take between blocks, 1/mm (`None`: any).
+    pub max_curvature: Option<f64>,
+    /// Approach and retreat distance along the cutting plane's normal, mm (> 0).
+    pub approach: f64,
+    /// Distance of the whole blade from a block while the block passes under it, mm.
+    pub clearance: f64,
+    /// Largest step of a relative travel, mm, and of a rotation or end angle, radians.
+    pub travel_step: (f64, f64),
+    /// The postures the robots start from: first end's, second end's, carrier's.
+    pub start: [Joints; 3],
+}
+
+/// The planned program.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CarriedProgram {
+    /// Every move of the blade relative to the block it is at (its ends in the block's
+    /// frame, mm), in order.
+    pub moves: Moves,
+    /// The carried block's frame in the cell's frame at each move, mm.
+    pub block_poses: Vec<Isometry3<f64>>,
+    /// Each robot's solution at every move: first end's, second end's, carrier's.
+    pub solutions: [Vec<PoseSolution>; 3],
+    /// Each robot's flags, by move.
+    pub flags: [Vec<SweepFlag>; 3],
+    /// Per block, robots in the same order.
+    pub blocks: Vec<BlockCheck>,
+}
+
+impl CarriedProgram {
+    /// The blade's ends in the cell's frame at move `k`.
+    pub fn blade(&self, k: usize) -> BladePose {
+        let b = &self.block_poses[k];
+        self.moves.steps[k].ends.map(|e| b * e)
+    }
+}
+
+/// The block's frame in the cell that puts the blade of relative pose `ends` (in the
+/// block's frame) at `station`.
+///
+/// # Errors
+/// [`crate::CellError::Blade`] when the ends coincide or the normal lies along the chord.
+pub fn block_pose(station: &Isometry3<f64>, ends: &BladePose) -> Result<Isometry3<f64>> {
+    let q = planar(ends)?;
+    let chord = Isometry3::from_parts(Translation3::from(q.mid), q.frame);
+    Ok(station * chord.inverse())
+}
+
+/// The relative moves through `blocks` (in cutting order; blocks without poses are
+/// skipped) and the block's pose at each.
+///
+/// # Errors
+/// Those of [`crate::fixture::moves`] and [`block_pose`].
+pub fn moves(cell: &CarrierCell, blocks: &[BlockCut]) -> Result<(Moves, Vec<Isometry3<f64>>)> {
+    // the fixture's planner in the block's own frame: "up" is the block's z
+    let relative = FixtureCell {
+        holders: cell.holders.clone(),
+        fixture: Isometry3::identity(),
+        blade_length: cell.blade_length,
+        max_curvature: cell.max_curvature,
+        approach: cell.approach,
+        clearance: cell.clearance,
+        travel_step: cell.travel_step,
+        start: [cell.start[0], cell.start[1]],
+    };
+    let m = relative_moves(&relative, blocks)?;
+    let poses = m
+        .steps
+        .iter()
+        .map(|s| block_pose(&cell.station, &s.ends))
+        .collect::<Result<Vec<_>>>()?;
+    Ok((m, poses))
+}
+
+/// All three robots' joints along `moves` with the block at `poses`, and the summary.
+///
+/// # Errors
+/// The errors of [`sweep`].
+pub fn solve(
+    cell: &CarrierCell,
+    moves: &Moves,
+    poses: &[Isometry3<f64>],
+) -> Result<CarriedProgram> {
+    let mut solutions: [Vec<PoseSolution>; 3] = Default::default();
+    let mut flags: [Vec<SweepFlag>; 3] = Default::default();
+    for r in 0..3 {
+        let tcp: Vec<Isometry3<f64>> = match r {
+            2 => poses.to_vec(),
+            e => moves
+                .steps
+                .iter()
+                .zip(poses)
+                .map(|(s, b)| b * s.ends[e])
+                .collect(),
+        };
+        let holder = if r == 2 {
+            &cell.carrier
+        } else {
+            &cell.holders[r]
+        };
+        let sw = sweep(holder, &tcp, &cell.start[r])?;
+        solutions[r] = sw.poses;
+        flags[r] = sw.flags;
+    }
+    let blocks = summarize(moves, &solutions, &flags);
+    Ok(CarriedProgram {
+        moves: moves.clone(),
+        block_poses: poses.to_vec(),
+        solutions,
+        flags,
+        blocks,
+    })
+}
+
+/// Plans the program of `blocks` (in cutting order): [`moves`], then [`solve`].
+///
+/// # Errors
+/// As [`moves`] and [`solve`].
+pub fn plan(cell: &CarrierCell, blocks: &[BlockCut]) -> Result<CarriedProgram> {
+    let (m, poses) = moves(cell, blocks)?;
+    solve(cell, &m, &poses)
+}
