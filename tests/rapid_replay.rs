@@ -48,14 +48,16 @@ fn jobs(prefix: &str) -> Vec<PathBuf> {
 /// What a job's run wrote that the replay reads.
 #[derive(Clone)]
 struct Cell {
-    /// The two modules, T_ROB1 first.
-    modules: [String; 2],
+    /// The modules, T_ROB1 first (two, or three with a block carrier).
+    modules: Vec<String>,
     /// Blade length, mm.
     blade: f64,
     /// The robot of each task.
-    robots: [Robot; 2],
+    robots: Vec<Robot>,
     /// The heat's output.
     signal: String,
+    /// With a carrier: the block's frame in its flange's frame, from the report.
+    grip: Option<Isometry3<f64>>,
 }
 
 fn run(path: &Path) -> Cell {
@@ -70,9 +72,8 @@ fn run(path: &Path) -> Cell {
     let module = |task: &str| {
         let f = files
             .iter()
-            .find(|f| f.to_string_lossy().ends_with(&format!("_{task}.mod")))
-            .unwrap_or_else(|| panic!("{}: no {task} module", path.display()));
-        std::fs::read_to_string(f).unwrap()
+            .find(|f| f.to_string_lossy().ends_with(&format!("_{task}.mod")))?;
+        Some(std::fs::read_to_string(f).unwrap())
     };
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(outcome.dir.join("report.json")).unwrap())
@@ -84,15 +85,24 @@ fn run(path: &Path) -> Cell {
     };
     let blade = report["settings"]["blade_length"].as_f64().unwrap() / per_mm;
     let cell = &report["cell"];
-    let robot = |e: usize| {
-        let r = cell["holders"][e]["robot"].as_u64().unwrap() as usize;
-        Robot::from_report(&cell["robots"][r])
-    };
+    let robot = |r: &serde_json::Value| Robot::from_report(&cell["robots"][r.as_u64().unwrap() as usize]);
+    let mut modules: Vec<String> = ["T_ROB1", "T_ROB2"]
+        .iter()
+        .map(|t| module(t).unwrap_or_else(|| panic!("{}: no {t} module", path.display())))
+        .collect();
+    let mut robots = vec![robot(&cell["holders"][0]["robot"]), robot(&cell["holders"][1]["robot"])];
+    let carrier = &cell["carrier"];
+    let grip = (!carrier.is_null()).then(|| {
+        modules.push(module("T_ROB3").expect("a carrier's module"));
+        robots.push(robot(&carrier["robot"]));
+        robot::frame(&carrier["grip"])
+    });
     Cell {
-        modules: [module("T_ROB1"), module("T_ROB2")],
+        modules,
         blade,
-        robots: [robot(0), robot(1)],
+        robots,
         signal: cell["heat_signal"].as_str().unwrap().to_string(),
+        grip,
     }
 }
 
@@ -112,9 +122,15 @@ struct Replay {
 const FK_MM: f64 = 3.0 * 0.0005 * 1.733 + 6.0 * 3000.0 * (0.5e-6 * std::f64::consts::PI / 180.0);
 const FK_RAD: f64 = 3.0 * 2.0 * 0.5e-7 * 2.0 + 6.0 * (0.5e-6 * std::f64::consts::PI / 180.0);
 
-/// Every robtarget of task `t` reached by its stated joints.
-fn check_joints(moves: &[reader::Move], robot: &Robot, r: &mut Replay) -> Result<(), String> {
-    for m in moves {
+/// Every robtarget of a task reached by its stated joints; `parents[k]` is the frame
+/// move `k`'s pose is in (the world, or the carrier's flange).
+fn check_joints(
+    moves: &[reader::Move],
+    parents: &[Isometry3<f64>],
+    robot: &Robot,
+    r: &mut Replay,
+) -> Result<(), String> {
+    for (m, parent) in moves.iter().zip(parents) {
         let j = m
             .joints
             .ok_or(format!("{}: no joints stated (out of reach)", m.target))?;
@@ -130,8 +146,9 @@ fn check_joints(moves: &[reader::Move], robot: &Robot, r: &mut Replay) -> Result
         }
         let (flange, _) = robot.flange(&j);
         let tcp = flange * m.tool;
-        let d = (tcp.translation.vector - m.pose.translation.vector).norm();
-        let a = tcp.rotation.angle_to(&m.pose.rotation);
+        let pose = parent * m.pose;
+        let d = (tcp.translation.vector - pose.translation.vector).norm();
+        let a = tcp.rotation.angle_to(&pose.rotation);
         if d > FK_MM || a > FK_RAD {
             return Err(format!(
                 "{}: the stated joints reach {d:.6} mm / {a:.2e} rad away",
@@ -254,26 +271,81 @@ fn check_blade(
     Ok(())
 }
 
-/// What is wrong with a cell's program.
-fn check(cell: &Cell) -> Result<Replay, String> {
-    let (a, b) = (
-        reader::read(&cell.modules[0])?,
-        reader::read(&cell.modules[1])?,
-    );
-    if a.segments != b.segments {
-        return Err("the tasks' synchronized segments differ".into());
+/// The tasks' MultiMove rules: the same synchronized segments, increasing `\ID`s, every
+/// move synchronized, as many moves in each.
+fn check_sync(tasks: &[reader::Task]) -> Result<(), String> {
+    let a = &tasks[0];
+    for t in &tasks[1..] {
+        if t.segments != a.segments {
+            return Err("the tasks' synchronized segments differ".into());
+        }
+        if t.moves.len() != a.moves.len() {
+            return Err("different numbers of synchronized moves".into());
+        }
     }
     for s in &a.segments {
         if !s.windows(2).all(|w| w[0] < w[1]) {
             return Err(format!("\\IDs not increasing: {s:?}"));
         }
     }
-    if let Some(m) = a.moves.iter().chain(&b.moves).find(|m| !m.synced) {
+    if let Some(m) = tasks.iter().flat_map(|t| &t.moves).find(|m| !m.synced) {
         return Err(format!("{}: a move outside synchronized motion", m.target));
     }
-    if a.moves.len() != b.moves.len() || a.moves.is_empty() {
-        return Err("different numbers of synchronized moves".into());
+    if a.moves.is_empty() {
+        return Err("no move".into());
     }
+    Ok(())
+}
+
+/// With a carrier (task 3): its moves are in the world with the block's frame as its
+/// tool (the report's grip), and the blade's tasks move in a work object it holds.
+/// Returns, per move, the frame the blade tasks' poses are in: the carrier's flange by
+/// forward kinematics of its stated joints (the identity without a carrier); and puts
+/// the block's frame (the grip, in that flange frame) in the blade tasks' moves.
+fn carried(cell: &Cell, tasks: &mut [reader::Task]) -> Result<Vec<Isometry3<f64>>, String> {
+    let n = tasks[0].moves.len();
+    let Some(grip) = cell.grip else {
+        if let Some(m) = tasks.iter().flat_map(|t| &t.moves).find(|m| m.held_by.is_some()) {
+            return Err(format!("{}: a moving work object without a carrier", m.target));
+        }
+        return Ok(vec![Isometry3::identity(); n]);
+    };
+    let (blade, carrier) = tasks.split_at_mut(2);
+    let carrier = &carrier[0];
+    let mut parents = Vec::with_capacity(n);
+    for m in &carrier.moves {
+        if m.held_by.is_some() || m.wobj != Isometry3::identity() {
+            return Err(format!("{}: the carrier moves in a work object", m.target));
+        }
+        if m.tool.translation.vector.metric_distance(&grip.translation.vector) > 1e-3
+            || m.tool.rotation.angle_to(&grip.rotation) > 1e-6
+        {
+            return Err(format!("{}: the carrier's tool is not the grip", m.target));
+        }
+        let j = m.joints.ok_or(format!("{}: no joints stated", m.target))?;
+        parents.push(cell.robots[2].flange(&j).0);
+    }
+    for t in blade {
+        for m in &mut t.moves {
+            if m.held_by.as_deref() != Some("ROB_3") {
+                return Err(format!("{}: the blade does not move with the carried block", m.target));
+            }
+            m.wobj = grip;
+        }
+    }
+    Ok(parents)
+}
+
+/// What is wrong with a cell's program.
+fn check(cell: &Cell) -> Result<Replay, String> {
+    let mut tasks = cell
+        .modules
+        .iter()
+        .map(|m| reader::read(m))
+        .collect::<Result<Vec<_>, _>>()?;
+    check_sync(&tasks)?;
+    let parents = carried(cell, &mut tasks)?;
+    let (a, b) = (&tasks[0], &tasks[1]);
     // positions are written to 0.001 mm: both ends' rounding
     let slack = 2e-3;
     for (ma, mb) in a.moves.iter().zip(&b.moves) {
@@ -286,11 +358,12 @@ fn check(cell: &Cell) -> Result<Replay, String> {
         }
     }
     // one task switches the heat, the report's output, and asks the operator to change
-    if !b.signals.is_empty() || a.signals.iter().any(|s| *s != cell.signal) || a.signals.is_empty()
+    let others: Vec<&String> = tasks[1..].iter().flat_map(|t| &t.signals).collect();
+    if !others.is_empty() || a.signals.iter().any(|s| *s != cell.signal) || a.signals.is_empty()
     {
         return Err(format!(
-            "heat outputs {:?} / {:?}, the cell's is {}",
-            a.signals, b.signals, cell.signal
+            "heat outputs {:?} / {others:?}, the cell's is {}",
+            a.signals, cell.signal
         ));
     }
     if !a.heat_at_changes.is_empty() && !a.asks_operator {
@@ -300,9 +373,12 @@ fn check(cell: &Cell) -> Result<Replay, String> {
         moves: a.moves.len(),
         ..Replay::default()
     };
-    check_blade(&a, &b, cell.blade, &mut r)?;
-    check_joints(&a.moves, &cell.robots[0], &mut r)?;
-    check_joints(&b.moves, &cell.robots[1], &mut r)?;
+    check_blade(a, b, cell.blade, &mut r)?;
+    let world = vec![Isometry3::identity(); parents.len()];
+    for (k, t) in tasks.iter().enumerate() {
+        let frames = if k < 2 { &parents } else { &world };
+        check_joints(&t.moves, frames, &cell.robots[k], &mut r)?;
+    }
     Ok(r)
 }
 
@@ -349,10 +425,10 @@ fn the_check_fails_on_programs_made_unsafe_on_purpose() {
     let good = check(&cell).unwrap();
     assert!(good.cuts == 8 && good.heated > 8 * 51, "{good:?}");
     let with = |r1: String, r2: String| Cell {
-        modules: [r1, r2],
+        modules: vec![r1, r2],
         ..cell.clone()
     };
-    let [r1, r2] = cell.modules.clone();
+    let (r1, r2) = (cell.modules[0].clone(), cell.modules[1].clone());
     // robot 2's third cutting target of block 1 moved 100 mm away along the blade: stretched
     let e = check(&with(r1.clone(), shifted(&r2, "pB1_C3", [0.0, 100.0, 0.0]))).unwrap_err();
     assert!(e.contains("pB1_C3") && e.contains("apart"), "{e}");
@@ -419,4 +495,44 @@ fn the_check_fails_on_programs_made_unsafe_on_purpose() {
         1,
     );
     assert!(check(&with(r1, hot)).unwrap_err().contains("heat outputs"));
+}
+
+#[test]
+fn the_check_fails_on_carried_programs_made_unsafe_on_purpose() {
+    let cell = run(&Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs/hot-blade-carried.ron"));
+    assert_eq!(cell.modules.len(), 3);
+    let good = check(&cell).unwrap();
+    assert!(good.cuts == 2 && good.worst_fk_mm < FK_MM, "{good:?}");
+    let with = |k: usize, m: String| {
+        let mut c = cell.clone();
+        c.modules[k] = m;
+        c
+    };
+    let [r1, r2, r3] = [0, 1, 2].map(|k| cell.modules[k].clone());
+    // a travel to block 2 lowered by 500 mm in the block's frame by both blade tasks:
+    // through the carried block, cold
+    let mut low = cell.clone();
+    low.modules[0] = shifted(&r1, "pB2_T3", [0.0, 0.0, -500.0]);
+    low.modules[1] = shifted(&r2, "pB2_T3", [0.0, 0.0, -500.0]);
+    let e = check(&low).unwrap_err();
+    assert!(e.contains("inside block"), "{e}");
+    // the carrier's target moved: its stated joints no longer reach it
+    let e = check(&with(2, shifted(&r3, "pB1_C4", [0.0, 0.0, 5.0]))).unwrap_err();
+    assert!(e.contains("stated joints"), "{e}");
+    // the blade's ends in a fixed work object instead of the carried one
+    let fixed = r1.replace("[FALSE,FALSE,\"ROB_3\",", "[FALSE,TRUE,\"\",");
+    assert_ne!(fixed, r1);
+    let e = check(&with(0, fixed)).unwrap_err();
+    assert!(e.contains("carried block"), "{e}");
+    // the carrier's tool is not the block's frame
+    let line = r3.lines().find(|l| l.contains("tooldata tGrip")).unwrap();
+    let at = line.find("[TRUE,[[").unwrap() + 8;
+    let end = at + line[at..].find(',').unwrap();
+    let x: f64 = line[at..end].parse().unwrap();
+    let moved = format!("{}{}{}", &line[..at], x + 10.0, &line[end..]);
+    let e = check(&with(2, r3.replace(line, &moved))).unwrap_err();
+    assert!(e.contains("grip"), "{e}");
+    // the carrier leaves the synchronized motion for one move
+    let off = r3.replacen(" \\ID:=40,", ",", 1);
+    assert!(check(&with(2, off)).unwrap_err().contains("\\ID"));
 }

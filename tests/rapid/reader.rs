@@ -17,10 +17,13 @@ pub struct Move {
     pub linear: bool,
     /// The target's name.
     pub target: String,
-    /// The TCP pose in the world frame: work object × target.
+    /// The TCP pose in the work object's parent frame (see `wobj`): work object × target.
     pub pose: Isometry3<f64>,
-    /// The work object's frame in the world.
+    /// The work object's frame: in the world, or for a work object held by another
+    /// mechanical unit (coordinated motion), in that unit's flange frame.
     pub wobj: Isometry3<f64>,
+    /// The mechanical unit holding the work object (`None`: fixed in the world).
+    pub held_by: Option<String>,
     /// The TCP in the flange's frame (the move's tooldata).
     pub tool: Isometry3<f64>,
     /// `\ID`, when given.
@@ -105,26 +108,50 @@ fn joints(comment: &str) -> Option<[f64; 6]> {
 type Target = (Isometry3<f64>, [i32; 4], Option<[f64; 6]>);
 
 /// What a module declares.
-#[derive(Default)]
 struct Data {
-    wobj: HashMap<String, Isometry3<f64>>,
+    wobj: HashMap<String, (Isometry3<f64>, Option<String>)>,
     tools: HashMap<String, Isometry3<f64>>,
     targets: HashMap<String, Target>,
     blocks: HashMap<usize, [f64; 3]>,
 }
 
+impl Default for Data {
+    fn default() -> Self {
+        // wobj0, the world, is predefined
+        let wobj = HashMap::from([("wobj0".to_string(), (Isometry3::identity(), None))]);
+        Data {
+            wobj,
+            tools: HashMap::new(),
+            targets: HashMap::new(),
+            blocks: HashMap::new(),
+        }
+    }
+}
+
 fn declare(raw: &str, line: &str, d: &mut Data) -> Result<bool, String> {
     if let Some((name, value)) = declaration(line, "wobjdata") {
-        // [robhold, ufprog, ufmec, uframe, oframe]: the object frame in the user frame; a
-        // fixture is not held by the robot and is fixed (ufprog TRUE)
-        if !value.starts_with("[FALSE,TRUE,") {
-            return Err(format!("wobjdata {name}: not a fixed work object: {value}"));
-        }
+        // [robhold, ufprog, ufmec, uframe, oframe]: the object frame in the user frame; not
+        // held by this robot; fixed (ufprog TRUE, no unit) or moved by the unit ufmec
+        let held_by = if value.starts_with("[FALSE,TRUE,\"\",") {
+            None
+        } else if let Some(rest) = value.strip_prefix("[FALSE,FALSE,\"") {
+            let unit = rest.split('"').next().unwrap_or("");
+            if unit.is_empty() {
+                return Err(format!("wobjdata {name}: moved by no unit: {value}"));
+            }
+            Some(unit.to_string())
+        } else {
+            return Err(format!("wobjdata {name}: neither fixed nor held by a unit: {value}"));
+        };
         let v = numbers(value)?;
         if v.len() != 14 {
             return Err(format!("wobjdata {name}: {} numbers", v.len()));
         }
-        d.wobj.insert(name.into(), pose(&v[..7])? * pose(&v[7..])?);
+        if name == "wobj0" {
+            return Err("wobj0 is predefined".into());
+        }
+        d.wobj
+            .insert(name.into(), (pose(&v[..7])? * pose(&v[7..])?, held_by));
     } else if let Some((name, value)) = declaration(line, "tooldata") {
         // [robhold, tframe, tload]: tload = [mass, cog, aom, ix, iy, iz]; the robot holds it
         if !value.starts_with("[TRUE,") {
@@ -298,7 +325,7 @@ fn step(line: &str, d: &Data, s: &mut State) -> Result<(), String> {
                 .split_once("\\WObj:=")
                 .map(|(t, w)| (t.trim(), w.trim()))
                 .ok_or(format!("{line}: no work object"))?;
-            let w = d.wobj.get(frame).ok_or(format!("no wobjdata {frame}"))?;
+            let (w, held_by) = d.wobj.get(frame).ok_or(format!("no wobjdata {frame}"))?;
             let tool = d.tools.get(tool).ok_or(format!("no tooldata {tool}"))?;
             let (t, conf, joints) = d
                 .targets
@@ -318,6 +345,7 @@ fn step(line: &str, d: &Data, s: &mut State) -> Result<(), String> {
                 target: target.into(),
                 pose: w * t,
                 wobj: *w,
+                held_by: held_by.clone(),
                 tool: *tool,
                 id,
                 synced: s.synced,

@@ -21,7 +21,8 @@ pub struct Robot {
     pub base: Isometry3<f64>,
 }
 
-fn frame(v: &serde_json::Value) -> Isometry3<f64> {
+/// A frame of the report: `origin_mm` and `rotation` `[w, x, y, z]`.
+pub fn frame(v: &serde_json::Value) -> Isometry3<f64> {
     let o: Vec<f64> = v["origin_mm"]
         .as_array()
         .unwrap()

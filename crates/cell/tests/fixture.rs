@@ -4,7 +4,10 @@
 //! into a block to the retreat, the blade clears the blocks between them, and the program
 //! does not change when the whole cell is moved rigidly.
 
-use cell::blade::{from_planar, planar, shape, BladePose, PlanarPose};
+mod common;
+
+use cell::blade::{planar, shape, BladePose};
+use common::{blocks, rotation, BLADE};
 use cell::conf::conf;
 use cell::fixture::{plan, BlockCut, CellProgram, FixtureCell, Phase};
 use cell::kinematics::{forward, pose_distance};
@@ -12,37 +15,6 @@ use cell::model::RobotModel;
 use cell::plan::{Holder, SweepFlag};
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
-
-const BLADE: f64 = 800.0;
-
-fn rotation(x: Vector3<f64>, z: Vector3<f64>) -> UnitQuaternion<f64> {
-    UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(Matrix3::from_columns(
-        &[x, z.cross(&x), z],
-    )))
-}
-
-/// Poses through a 600 mm block along x: arches of the blade with ends turned by `turn`
-/// against the chord, the chord tilted by `tilt` about x, its midpoint at `height`.
-fn block(number: usize, turn: f64, tilt: f64, height: f64, n: usize) -> BlockCut {
-    let chord = BLADE * turn.sin() / turn * 0.98;
-    let x = Vector3::new(0.0, tilt.cos(), tilt.sin());
-    let poses = (0..n)
-        .map(|k| {
-            let along = 600.0 * k as f64 / (n - 1) as f64;
-            from_planar(&PlanarPose {
-                mid: Vector3::new(along, 300.0, height),
-                frame: rotation(x, Vector3::x()),
-                chord,
-                angles: [turn, -turn],
-            })
-        })
-        .collect();
-    BlockCut {
-        block: number,
-        size: [600.0, 600.0, 600.0],
-        poses,
-    }
-}
 
 /// Two IRB 2600 facing each other across a fixture 200 mm up, holders facing along the
 /// cut with the blade 150 mm in front of the flange.
@@ -80,14 +52,6 @@ fn cell() -> FixtureCell {
         travel_step: (100.0, 5f64.to_radians()),
         start: [[0.0, 0.0, 0.0, 0.0, 0.5, 0.0]; 2],
     }
-}
-
-fn blocks(turn: f64, tilt: f64) -> Vec<BlockCut> {
-    vec![
-        block(1, turn, tilt, 350.0, 9),
-        block(2, 0.6 * turn, -tilt, 300.0, 9),
-        block(3, turn, 0.5 * tilt, 380.0, 9),
-    ]
 }
 
 /// Every check of the module's doc on one program. A move out of reach must be flagged;

@@ -615,3 +615,44 @@ fn hot_blade_jobs_are_checked() {
         &["/cutting/curve", "not used by task Analyze"],
     );
 }
+
+#[test]
+fn bad_block_carriers_are_rejected_with_their_pointer() {
+    let job = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs/hot-blade-carried.ron"),
+    )
+    .unwrap();
+    // the carrier must be a third robot that does not hold the blade
+    expect_invalid(
+        &job.replace("robot: 2,\n            grip", "robot: 1,\n            grip"),
+        &["/cell/block_carrier/robot", "not hold the blade"],
+    );
+    expect_invalid(
+        &job.replace("robot: 2,\n            grip", "robot: 7,\n            grip"),
+        &["/cell/block_carrier/robot"],
+    );
+    // three robots with no carrier; a carrier with two robots
+    let third = "            Robot(model: Irb4600, base: Frame(origin: (-1300, 0, 0))),\n";
+    assert!(job.contains(third));
+    let start = job.find("        block_carrier:").unwrap();
+    let end = start + job[start..].find("        ),\n").unwrap() + 11;
+    expect_invalid(
+        &format!("{}{}", &job[..start], &job[end..]),
+        &["/cell/robots", "third robot"],
+    );
+    expect_invalid(&job.replace(third, ""), &["/cell/block_carrier", "3 robots"]);
+    // no fixture with a carrier; a real mass; frames within the room
+    expect_invalid(
+        &job.replace("heat:", "fixture: Frame(origin: (0, 0, 0)),\n        heat:"),
+        &["/cell/fixture", "carried"],
+    );
+    expect_invalid(&job.replace("mass: 40", "mass: 0"), &["/cell/block_carrier/mass"]);
+    expect_invalid(
+        &job.replace("origin: (0, 0, 1000), rotation: (90, 0, 90)", "origin: (0, 0, 1e9), rotation: (90, 0, 90)"),
+        &["/cell/block_carrier/station"],
+    );
+    expect_invalid(
+        &job.replace("rotation: (0, -75, 0)", "rotation: (0, NaN, 0)"),
+        &["/cell/block_carrier/grip"],
+    );
+}

@@ -104,6 +104,18 @@ fn bases() -> Vec<Base> {
             vec![],
         ),
         (
+            "carried",
+            job(
+                "HotBlade(targets_per_block: 5, samples: 30, refine: 1)",
+                "Report, Rapid",
+            )
+            .replace(
+                "task:",
+                r#"cell: Cell(robots: [Robot(model: Irb2600, base: Frame(origin: (0, -1100, 0), rotation: (90, 0, 0))), Robot(model: Irb2600, base: Frame(origin: (0, 1100, 0), rotation: (-90, 0, 0))), Robot(model: Irb4600, base: Frame(origin: (-1200, 0, 0)))], block_carrier: Carrier(robot: 2, grip: Frame(origin: (-150, -225, -200), rotation: (0, -75, 0)), mass: 30, station: Frame(origin: (0, 0, 1000), rotation: (90, 0, 90)))), task:"#,
+            ),
+            vec![],
+        ),
+        (
             "precut",
             r#"Job(name: "h", surface: HeightField(z: "100 + 80*exp(-((x/200)^2 + (y/200)^2))", x: (-300, 300), y: (-300, 300)), block: Block(size: (600, 600, 300), origin: (-300, -300, 0)), wire: Wire(tower_distance: 900, kerf: 1.5, speed: 300, lead: 20, clearance: 50), task: PreCut(legs: 2, directions: [X], sections: 8, samples: 8, controls: 5), outputs: [Report, GCode, Csv])"#.to_string(),
             vec![],

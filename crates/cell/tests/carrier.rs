@@ -1,0 +1,153 @@
+//! The carried-block cell's program: the blade never leaves the station (its chord's
+//! midpoint at the station's origin, its chord along the station's x, its plane the
+//! station's), the blade's motion relative to the block is the fixture program's, every
+//! reached move's joints land on the target through forward kinematics (1e-6 mm, 1e-9
+//! rad) — the carrier's on the block's frame, the holders' on the blade's ends — with
+//! the stated configuration data, and moving the whole cell rigidly (any rotation: the
+//! carried cell has no "up" of its own) changes no joint.
+
+mod common;
+
+use cell::blade::planar;
+use cell::carrier::{plan, CarriedProgram, CarrierCell};
+use cell::conf::conf;
+use cell::fixture::{moves, BlockCut, FixtureCell};
+use cell::kinematics::{forward, pose_distance};
+use cell::model::RobotModel;
+use cell::plan::{Holder, SweepFlag};
+use common::{blocks, rotation, BLADE};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use proptest::prelude::*;
+
+/// The pilot cell: two IRB 2600 holding the blade across a station 1 m up (chord along
+/// y, plane facing +x), an IRB 4600 behind it carrying the block from below, its flange
+/// 200 mm under the floor's middle and tilted 75° towards the blade.
+fn cell() -> CarrierCell {
+    let robot = |x: f64, y: f64, yaw: f64| {
+        Isometry3::from_parts(
+            Translation3::new(x, y, 0.0),
+            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+        )
+    };
+    let holder = |base| Holder {
+        model: RobotModel::irb2600_12_165(),
+        base,
+        tool: Isometry3::from_parts(
+            Translation3::new(0.0, 0.0, 150.0),
+            rotation(-Vector3::z(), Vector3::x()).inverse() * rotation(Vector3::y(), Vector3::x()),
+        ),
+    };
+    let tilt = UnitQuaternion::from_axis_angle(&Vector3::y_axis(), 75f64.to_radians());
+    let flange = Isometry3::from_parts(Translation3::new(300.0, 300.0, -200.0), tilt);
+    CarrierCell {
+        holders: [
+            holder(robot(0.0, -1200.0, std::f64::consts::FRAC_PI_2)),
+            holder(robot(0.0, 1200.0, -std::f64::consts::FRAC_PI_2)),
+        ],
+        carrier: Holder {
+            model: RobotModel::irb4600_60_205(),
+            base: robot(-1300.0, 0.0, 0.0),
+            tool: flange.inverse(),
+        },
+        station: Isometry3::from_parts(
+            Translation3::new(0.0, 0.0, 1000.0),
+            rotation(Vector3::y(), Vector3::x()),
+        ),
+        blade_length: BLADE,
+        max_curvature: None,
+        approach: 50.0,
+        clearance: 100.0,
+        travel_step: (100.0, 5f64.to_radians()),
+        start: [[0.0, 0.0, 0.0, 0.0, 0.5, 0.0]; 3],
+    }
+}
+
+/// Every check of the module's doc on one program.
+fn check(cell: &CarrierCell, blocks: &[BlockCut], p: &CarriedProgram) {
+    let relative = FixtureCell {
+        holders: cell.holders.clone(),
+        fixture: Isometry3::identity(),
+        blade_length: cell.blade_length,
+        max_curvature: cell.max_curvature,
+        approach: cell.approach,
+        clearance: cell.clearance,
+        travel_step: cell.travel_step,
+        start: [cell.start[0], cell.start[1]],
+    };
+    assert_eq!(p.moves, moves(&relative, blocks).unwrap());
+    let s = &cell.station;
+    for k in 0..p.moves.steps.len() {
+        let world = p.blade(k);
+        let q = planar(&world).unwrap();
+        assert!((q.mid - s.translation.vector).norm() < 1e-9, "move {k}");
+        let along = |v: Vector3<f64>| (q.frame * v - s.rotation * v).norm();
+        assert!(along(Vector3::x()) < 1e-9 && along(Vector3::z()) < 1e-9, "move {k}");
+        let targets = [world[0], world[1], p.block_poses[k]];
+        let arms = [&cell.holders[0], &cell.holders[1], &cell.carrier];
+        for (r, (h, target)) in arms.iter().zip(&targets).enumerate() {
+            let sol = &p.solutions[r][k];
+            let Some(joints) = sol.joints else {
+                assert!(p.flags[r].contains(&SweepFlag::OutOfReach(k)), "move {k} robot {r}");
+                continue;
+            };
+            let joints = joints.map(f64::to_radians);
+            let tcp = h.base * forward(&h.model, &joints).unwrap() * h.tool;
+            let (dp, da) = pose_distance(&tcp, target);
+            assert!(dp < 1e-6 && da < 1e-9, "move {k} robot {r}: {dp} mm, {da} rad");
+            assert_eq!(sol.conf, Some(conf(&h.model, &joints)));
+        }
+    }
+}
+
+#[test]
+fn the_blade_stays_at_the_station_and_every_joint_reaches_its_target() {
+    let (cell, blocks) = (cell(), blocks(0.35, 0.2));
+    let p = plan(&cell, &blocks).unwrap();
+    check(&cell, &blocks, &p);
+    // this cell reaches every move of these blocks without a flip
+    assert!(p.flags.iter().all(Vec::is_empty), "{:?}", p.flags);
+    assert!(p.blocks.iter().all(|b| b.is_clean() && b.robots.len() == 3));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 6, ..ProptestConfig::default() })]
+
+    #[test]
+    fn moving_the_whole_carried_cell_changes_nothing(
+        turn in 0.15f64..0.45, tilt in -0.25f64..0.25,
+        shift in proptest::array::uniform3(-2000.0f64..2000.0),
+        axis in proptest::array::uniform3(-1.0f64..1.0), angle in -3.1f64..3.1,
+    ) {
+        let (cell, blocks) = (cell(), blocks(turn, tilt));
+        let p = plan(&cell, &blocks).unwrap();
+        check(&cell, &blocks, &p);
+        let axis = Vector3::from(axis);
+        prop_assume!(axis.norm() > 0.1);
+        let g = Isometry3::from_parts(
+            Translation3::new(shift[0], shift[1], shift[2]),
+            UnitQuaternion::from_scaled_axis(axis.normalize() * angle),
+        );
+        let mut moved = cell.clone();
+        moved.station = g * cell.station;
+        for h in moved.holders.iter_mut().chain([&mut moved.carrier]) {
+            h.base = g * h.base;
+        }
+        let q = plan(&moved, &blocks).unwrap();
+        prop_assert_eq!(&p.moves, &q.moves);
+        for r in 0..3 {
+            let key = |f: &SweepFlag| match f {
+                SweepFlag::OutOfReach(i) => (0, *i, 0),
+                SweepFlag::ConfigurationChange(i) => (1, *i, 0),
+                SweepFlag::JointJump { pose, axis, .. } => (2, *pose, *axis),
+            };
+            let keys = |v: &[SweepFlag]| v.iter().map(key).collect::<Vec<_>>();
+            prop_assert_eq!(keys(&p.flags[r]), keys(&q.flags[r]));
+            for (a, b) in p.solutions[r].iter().zip(&q.solutions[r]) {
+                match (a.joints, b.joints) {
+                    (Some(a), Some(b)) => prop_assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-6), "{:?} {:?}", a, b),
+                    (a, b) => prop_assert_eq!(a, b),
+                }
+            }
+        }
+    }
+}
