@@ -1,14 +1,18 @@
 //! Replays the RAPID modules of every job of `jobs/` that writes them, with an independent
 //! reader (`tests/rapid/reader.rs`) and an independent rebuild of the robots and the blade
 //! (`tests/rapid/robot.rs`, from the report's cell), and checks what the program would do:
-//! - MultiMove: every move of both tasks is synchronized, with the same `\ID`s,
-//!   increasing; no move outside synchronized motion;
+//! - MultiMove: every move of every task (two, or three with a block carrier) is
+//!   synchronized, with the same `\ID`s, increasing; no move outside synchronized motion;
 //! - the blade: in every move, the distance between the two held ends stays within the
 //!   blade's length (both TCPs move linearly over the same time, so the distance is convex
 //!   along a move: its ends bound it); along every move, sampled, the blade rebuilt from
 //!   its ends never enters the block at the fixture unless it is heated, and in each heated
 //!   run the blade's plane passes through the block: the heat is on exactly during cuts;
 //! - the operator changes blocks only with the heat off, and the program ends cold;
+//! - with a carrier: its task moves the grip (the report's) in the world; the blade's
+//!   tasks move in the work object it holds, so the blade is checked in the carried
+//!   block's frame, and their targets reach the world through forward kinematics of the
+//!   carrier's stated joints;
 //! - every robtarget is reached: forward kinematics of the joints stated with it, through
 //!   the robot's base and the tool, lands on it (to the precision the file prints), the
 //!   joints are within the robot's limits, and its configuration data are theirs.
@@ -85,12 +89,16 @@ fn run(path: &Path) -> Cell {
     };
     let blade = report["settings"]["blade_length"].as_f64().unwrap() / per_mm;
     let cell = &report["cell"];
-    let robot = |r: &serde_json::Value| Robot::from_report(&cell["robots"][r.as_u64().unwrap() as usize]);
+    let robot =
+        |r: &serde_json::Value| Robot::from_report(&cell["robots"][r.as_u64().unwrap() as usize]);
     let mut modules: Vec<String> = ["T_ROB1", "T_ROB2"]
         .iter()
         .map(|t| module(t).unwrap_or_else(|| panic!("{}: no {t} module", path.display())))
         .collect();
-    let mut robots = vec![robot(&cell["holders"][0]["robot"]), robot(&cell["holders"][1]["robot"])];
+    let mut robots = vec![
+        robot(&cell["holders"][0]["robot"]),
+        robot(&cell["holders"][1]["robot"]),
+    ];
     let carrier = &cell["carrier"];
     let grip = (!carrier.is_null()).then(|| {
         modules.push(module("T_ROB3").expect("a carrier's module"));
@@ -305,8 +313,15 @@ fn check_sync(tasks: &[reader::Task]) -> Result<(), String> {
 fn carried(cell: &Cell, tasks: &mut [reader::Task]) -> Result<Vec<Isometry3<f64>>, String> {
     let n = tasks[0].moves.len();
     let Some(grip) = cell.grip else {
-        if let Some(m) = tasks.iter().flat_map(|t| &t.moves).find(|m| m.held_by.is_some()) {
-            return Err(format!("{}: a moving work object without a carrier", m.target));
+        if let Some(m) = tasks
+            .iter()
+            .flat_map(|t| &t.moves)
+            .find(|m| m.held_by.is_some())
+        {
+            return Err(format!(
+                "{}: a moving work object without a carrier",
+                m.target
+            ));
         }
         return Ok(vec![Isometry3::identity(); n]);
     };
@@ -317,7 +332,11 @@ fn carried(cell: &Cell, tasks: &mut [reader::Task]) -> Result<Vec<Isometry3<f64>
         if m.held_by.is_some() || m.wobj != Isometry3::identity() {
             return Err(format!("{}: the carrier moves in a work object", m.target));
         }
-        if m.tool.translation.vector.metric_distance(&grip.translation.vector) > 1e-3
+        if m.tool
+            .translation
+            .vector
+            .metric_distance(&grip.translation.vector)
+            > 1e-3
             || m.tool.rotation.angle_to(&grip.rotation) > 1e-6
         {
             return Err(format!("{}: the carrier's tool is not the grip", m.target));
@@ -328,7 +347,10 @@ fn carried(cell: &Cell, tasks: &mut [reader::Task]) -> Result<Vec<Isometry3<f64>
     for t in blade {
         for m in &mut t.moves {
             if m.held_by.as_deref() != Some("ROB_3") {
-                return Err(format!("{}: the blade does not move with the carried block", m.target));
+                return Err(format!(
+                    "{}: the blade does not move with the carried block",
+                    m.target
+                ));
             }
             m.wobj = grip;
         }
@@ -359,8 +381,7 @@ fn check(cell: &Cell) -> Result<Replay, String> {
     }
     // one task switches the heat, the report's output, and asks the operator to change
     let others: Vec<&String> = tasks[1..].iter().flat_map(|t| &t.signals).collect();
-    if !others.is_empty() || a.signals.iter().any(|s| *s != cell.signal) || a.signals.is_empty()
-    {
+    if !others.is_empty() || a.signals.iter().any(|s| *s != cell.signal) || a.signals.is_empty() {
         return Err(format!(
             "heat outputs {:?} / {others:?}, the cell's is {}",
             a.signals, cell.signal

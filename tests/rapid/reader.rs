@@ -141,7 +141,9 @@ fn declare(raw: &str, line: &str, d: &mut Data) -> Result<bool, String> {
             }
             Some(unit.to_string())
         } else {
-            return Err(format!("wobjdata {name}: neither fixed nor held by a unit: {value}"));
+            return Err(format!(
+                "wobjdata {name}: neither fixed nor held by a unit: {value}"
+            ));
         };
         let v = numbers(value)?;
         if v.len() != 14 {

@@ -22,7 +22,9 @@ use nalgebra::{Isometry3, Translation3};
 
 use crate::blade::{planar, BladePose};
 use crate::error::Result;
-use crate::fixture::{moves as relative_moves, summarize, BlockCheck, BlockCut, FixtureCell, Moves};
+use crate::fixture::{
+    moves as relative_moves, summarize, BlockCheck, BlockCut, FixtureCell, Moves,
+};
 use crate::kinematics::Joints;
 use crate::plan::{sweep, Holder, PoseSolution, SweepFlag};
 

@@ -81,19 +81,28 @@ fn check(cell: &CarrierCell, blocks: &[BlockCut], p: &CarriedProgram) {
         let q = planar(&world).unwrap();
         assert!((q.mid - s.translation.vector).norm() < 1e-9, "move {k}");
         let along = |v: Vector3<f64>| (q.frame * v - s.rotation * v).norm();
-        assert!(along(Vector3::x()) < 1e-9 && along(Vector3::z()) < 1e-9, "move {k}");
+        assert!(
+            along(Vector3::x()) < 1e-9 && along(Vector3::z()) < 1e-9,
+            "move {k}"
+        );
         let targets = [world[0], world[1], p.block_poses[k]];
         let arms = [&cell.holders[0], &cell.holders[1], &cell.carrier];
         for (r, (h, target)) in arms.iter().zip(&targets).enumerate() {
             let sol = &p.solutions[r][k];
             let Some(joints) = sol.joints else {
-                assert!(p.flags[r].contains(&SweepFlag::OutOfReach(k)), "move {k} robot {r}");
+                assert!(
+                    p.flags[r].contains(&SweepFlag::OutOfReach(k)),
+                    "move {k} robot {r}"
+                );
                 continue;
             };
             let joints = joints.map(f64::to_radians);
             let tcp = h.base * forward(&h.model, &joints).unwrap() * h.tool;
             let (dp, da) = pose_distance(&tcp, target);
-            assert!(dp < 1e-6 && da < 1e-9, "move {k} robot {r}: {dp} mm, {da} rad");
+            assert!(
+                dp < 1e-6 && da < 1e-9,
+                "move {k} robot {r}: {dp} mm, {da} rad"
+            );
             assert_eq!(sol.conf, Some(conf(&h.model, &joints)));
         }
     }

@@ -7,12 +7,12 @@
 mod common;
 
 use cell::blade::{planar, shape, BladePose};
-use common::{blocks, rotation, BLADE};
 use cell::conf::conf;
 use cell::fixture::{plan, BlockCut, CellProgram, FixtureCell, Phase};
 use cell::kinematics::{forward, pose_distance};
 use cell::model::RobotModel;
 use cell::plan::{Holder, SweepFlag};
+use common::{blocks, rotation, BLADE};
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 

@@ -86,8 +86,8 @@ pub struct RapidProgram<'a> {
     pub tool: &'a RapidTool,
     /// The work object the moves are in (`None`: the predefined `wobj0`, the world).
     pub wobj: Option<&'a RapidWobj>,
-    /// The blocks that stand in the work object in turn, `(number, size)`, mm along its
-    /// axes from its origin (documentation for the operator and the replay).
+    /// The blocks cut in turn, `(number, size)`, mm along their axes from their min
+    /// corner, the work object's origin (documentation for the operator and the replay).
     pub blocks: &'a [(usize, [f64; 3])],
     /// Cutting speed, mm/s.
     pub cut_speed: f64,
@@ -186,11 +186,10 @@ fn declarations(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
     ));
     for (b, size) in p.blocks {
         line(format!(
-            "    CONST pos posBlock{b} := [{},{},{}]; ! block {b}'s size in {}",
+            "    CONST pos posBlock{b} := [{},{},{}]; ! block {b}'s size along its own axes",
             num(size[0], 3),
             num(size[1], 3),
             num(size[2], 3),
-            wobj_name(p)
         ));
     }
     line(String::new());
@@ -254,7 +253,8 @@ fn body(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
         line(String::new());
         line("    PROC change_block(num remove, num place)".into());
         line(
-            "        ! the blade is cold and clear of the block: the operator changes blocks".into(),
+            "        ! the blade is cold and clear of the block: the operator changes blocks"
+                .into(),
         );
         line("        TPErase;".into());
         line("        IF remove > 0 TPWrite \"Remove block \" \\Num:=remove;".into());

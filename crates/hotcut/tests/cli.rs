@@ -640,15 +640,24 @@ fn bad_block_carriers_are_rejected_with_their_pointer() {
         &format!("{}{}", &job[..start], &job[end..]),
         &["/cell/robots", "third robot"],
     );
-    expect_invalid(&job.replace(third, ""), &["/cell/block_carrier", "3 robots"]);
+    expect_invalid(
+        &job.replace(third, ""),
+        &["/cell/block_carrier", "3 robots"],
+    );
     // no fixture with a carrier; a real mass; frames within the room
     expect_invalid(
         &job.replace("heat:", "fixture: Frame(origin: (0, 0, 0)),\n        heat:"),
         &["/cell/fixture", "carried"],
     );
-    expect_invalid(&job.replace("mass: 40", "mass: 0"), &["/cell/block_carrier/mass"]);
     expect_invalid(
-        &job.replace("origin: (0, 0, 1000), rotation: (90, 0, 90)", "origin: (0, 0, 1e9), rotation: (90, 0, 90)"),
+        &job.replace("mass: 40", "mass: 0"),
+        &["/cell/block_carrier/mass"],
+    );
+    expect_invalid(
+        &job.replace(
+            "origin: (0, 0, 1000), rotation: (90, 0, 90)",
+            "origin: (0, 0, 1e9), rotation: (90, 0, 90)",
+        ),
         &["/cell/block_carrier/station"],
     );
     expect_invalid(

@@ -45,4 +45,3 @@ pub fn blocks(turn: f64, tilt: f64) -> Vec<BlockCut> {
         block(3, turn, 0.5 * tilt, 380.0, 9),
     ]
 }
-

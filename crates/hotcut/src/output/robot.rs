@@ -7,8 +7,7 @@ use cell::fixture::{Phase, Step};
 use elastica::sweep::BladePose;
 use export::csv::Table;
 use export::rapid::{
-    identifier, write_module, write_pgf, RapidMove, RapidProgram, RapidTarget, RapidTool,
-    RapidWobj,
+    identifier, write_module, write_pgf, RapidMove, RapidProgram, RapidTarget, RapidTool, RapidWobj,
 };
 use export::robot::TARGET_DIGITS;
 use export::robot::{targets_csv, EndPose, Pose, Targets, TargetsBlock};
@@ -127,7 +126,11 @@ fn comment(plan: &CellPlan, job: &str, r: usize) -> Vec<String> {
             r + 1,
             robot.model.name
         ),
-        format!("Its base frame in the world (set it in the controller): [{}] mm, q [{}].", f(&base.origin_mm), f(&base.rotation)),
+        format!(
+            "Its base frame in the world (set it in the controller): [{}] mm, q [{}].",
+            f(&base.origin_mm),
+            f(&base.rotation)
+        ),
     ];
     if cell.carrier.is_some() {
         c.extend([

@@ -193,8 +193,7 @@ fn check_carrier(c: &CellSpec, robots: usize, mm: f64, err: Report<'_>) {
         if robots == 3 {
             err(
                 "/robots",
-                "a third robot only carries the block: give block_carrier, or list 2 robots"
-                    .into(),
+                "a third robot only carries the block: give block_carrier, or list 2 robots".into(),
             );
         }
         return;
@@ -609,7 +608,10 @@ fn plan_carried(job: &Context, t: &Targets, s: &Setup) -> Result<(Resolved, Prog
     let carrier_cell = |blade: [f64; 6], carrier: [f64; 6]| CarrierCell {
         holders: [cell.holder(0), cell.holder(1)],
         carrier: cell.arm(robot, grip),
-        station: cell.carrier.as_ref().map_or(Isometry3::identity(), |k| k.station),
+        station: cell
+            .carrier
+            .as_ref()
+            .map_or(Isometry3::identity(), |k| k.station),
         blade_length: s.blade,
         max_curvature: Some(s.curvature),
         approach: s.approach,
