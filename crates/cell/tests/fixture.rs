@@ -13,7 +13,7 @@ use cell::kinematics::{forward, pose_distance};
 use cell::model::RobotModel;
 use cell::plan::{Holder, SweepFlag};
 use common::{blocks, rotation, BLADE};
-use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 
 /// Two IRB 2600 facing each other across a fixture 200 mm up, holders facing along the
