@@ -219,9 +219,12 @@ fn check_blade(
             .blocks
             .get(&block)
             .ok_or(format!("no size of block {block}"))?;
-        // the first move starts wherever the operator left the robots: only its target
+        // the first move starts wherever the operator left the robots: only its target;
+        // a block placed before a move is checked from the move's start
         let fractions: &[f64] = if k == 0 {
             &[1.0]
+        } else if ma[k - 1].block != ma[k].block {
+            &[0.0, 0.25, 0.5, 0.75, 1.0]
         } else {
             &[0.25, 0.5, 0.75, 1.0]
         };
@@ -345,12 +348,19 @@ fn carried(cell: &Cell, tasks: &mut [reader::Task]) -> Result<Vec<Isometry3<f64>
         parents.push(cell.robots[2].flange(&j).0);
     }
     for t in blade {
-        for m in &mut t.moves {
-            if m.held_by.as_deref() != Some("ROB_3") {
-                return Err(format!(
-                    "{}: the blade does not move with the carried block",
-                    m.target
-                ));
+        for (k, m) in t.moves.iter_mut().enumerate() {
+            match m.held_by.as_deref() {
+                Some("ROB_3") => {}
+                // the first move comes from wherever the robots stand: in the world
+                None if k == 0 && m.wobj == Isometry3::identity() => {
+                    m.pose = parents[k].inverse() * m.pose;
+                }
+                _ => {
+                    return Err(format!(
+                        "{}: the blade does not move with the carried block",
+                        m.target
+                    ))
+                }
             }
             m.wobj = grip;
         }

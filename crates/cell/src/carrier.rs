@@ -25,8 +25,8 @@ use crate::error::Result;
 use crate::fixture::{
     moves as relative_moves, summarize, BlockCheck, BlockCut, FixtureCell, Moves,
 };
-use crate::kinematics::Joints;
-use crate::plan::{sweep, Holder, PoseSolution, SweepFlag};
+use crate::kinematics::{pose_distance, Joints};
+use crate::plan::{sweep, Holder, PoseSolution, Sweep, SweepFlag, PIECE_MM, PIECE_RAD};
 
 /// The cell and how the blade and the block move in it.
 #[derive(Debug, Clone, PartialEq)]
@@ -114,7 +114,96 @@ pub fn moves(cell: &CarrierCell, blocks: &[BlockCut]) -> Result<(Moves, Vec<Isom
     Ok((m, poses))
 }
 
-/// All three robots' joints along `moves` with the block at `poses`, and the summary.
+/// The pose a fraction `w` of the way from `a` to `b` as the controller moves a TCP: the
+/// position linearly, the orientation by spherical interpolation.
+fn lerp(a: &Isometry3<f64>, b: &Isometry3<f64>, w: f64) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        a.translation.vector.lerp(&b.translation.vector, w).into(),
+        a.rotation.slerp(&b.rotation, w),
+    )
+}
+
+/// The world path of blade end `e`'s TCP: in coordinated motion the end moves linearly in
+/// the block's frame while the block moves linearly in the world, so between two moves
+/// the end follows `block(w) · end(w)`, sampled in pieces no longer than the planner's
+/// ([`PIECE_MM`], [`PIECE_RAD`]) for either factor. Returns the sampled poses and, for
+/// each, the move it belongs to (a move's own pose last).
+fn coordinated_path(
+    moves: &Moves,
+    poses: &[Isometry3<f64>],
+    e: usize,
+) -> (Vec<Isometry3<f64>>, Vec<usize>) {
+    let steps = &moves.steps;
+    let (mut path, mut owner) = (Vec::new(), Vec::new());
+    for k in 0..steps.len() {
+        if k > 0 {
+            let (a, b) = (&poses[k - 1], &poses[k]);
+            let (ra, rb) = (&steps[k - 1].ends[e], &steps[k].ends[e]);
+            let (d1, t1) = pose_distance(a, b);
+            let (d2, t2) = pose_distance(ra, rb);
+            let n = (d1.max(d2) / PIECE_MM)
+                .max(t1.max(t2) / PIECE_RAD)
+                .ceil()
+                .clamp(1.0, 100_000.0) as usize;
+            for j in 1..n {
+                let w = j as f64 / n as f64;
+                path.push(lerp(a, b, w) * lerp(ra, rb, w));
+                owner.push(k);
+            }
+        }
+        path.push(poses[k] * steps[k].ends[e]);
+        owner.push(k);
+    }
+    (path, owner)
+}
+
+/// A sweep along a sampled path, reduced to the moves: each move's solution at its own
+/// pose, each flag on the move its sample belongs to (once per kind and axis).
+fn per_move(sw: Sweep, owner: &[usize]) -> Sweep {
+    let mut poses = Vec::new();
+    for (i, p) in sw.poses.into_iter().enumerate() {
+        if owner.get(i + 1) != owner.get(i) {
+            poses.push(p);
+        }
+    }
+    let mut flags: Vec<SweepFlag> = Vec::new();
+    for f in sw.flags {
+        let f = match f {
+            SweepFlag::OutOfReach(i) => SweepFlag::OutOfReach(owner[i]),
+            SweepFlag::ConfigurationChange(i) => SweepFlag::ConfigurationChange(owner[i]),
+            SweepFlag::JointJump {
+                pose,
+                axis,
+                degrees,
+            } => SweepFlag::JointJump {
+                pose: owner[pose],
+                axis,
+                degrees,
+            },
+        };
+        let same = |g: &SweepFlag| match (g, &f) {
+            (
+                SweepFlag::JointJump {
+                    pose: a, axis: x, ..
+                },
+                SweepFlag::JointJump {
+                    pose: b, axis: y, ..
+                },
+            ) => a == b && x == y,
+            (g, f) => g == f,
+        };
+        if !flags.iter().any(same) {
+            flags.push(f);
+        }
+    }
+    Sweep { poses, flags }
+}
+
+/// All three robots' joints along `moves` with the block at `poses`, and the summary. The
+/// carrier's TCP (the block's frame) moves linearly in the world; each blade end moves
+/// linearly in the block's frame (coordinated motion), and its robot is followed along
+/// that composed path. The first move is the exception: it starts from wherever the robots
+/// stand, and the blade's robots make it in the world.
 ///
 /// # Errors
 /// The errors of [`sweep`].
@@ -126,21 +215,12 @@ pub fn solve(
     let mut solutions: [Vec<PoseSolution>; 3] = Default::default();
     let mut flags: [Vec<SweepFlag>; 3] = Default::default();
     for r in 0..3 {
-        let tcp: Vec<Isometry3<f64>> = match r {
-            2 => poses.to_vec(),
-            e => moves
-                .steps
-                .iter()
-                .zip(poses)
-                .map(|(s, b)| b * s.ends[e])
-                .collect(),
-        };
-        let holder = if r == 2 {
-            &cell.carrier
+        let sw = if r == 2 {
+            sweep(&cell.carrier, poses, &cell.start[2])?
         } else {
-            &cell.holders[r]
+            let (path, owner) = coordinated_path(moves, poses, r);
+            per_move(sweep(&cell.holders[r], &path, &cell.start[r])?, &owner)
         };
-        let sw = sweep(holder, &tcp, &cell.start[r])?;
         solutions[r] = sw.poses;
         flags[r] = sw.flags;
     }

@@ -1,6 +1,7 @@
 //! The carried-block cell's program: the blade never leaves the station (its chord's
 //! midpoint at the station's origin, its chord along the station's x, its plane the
-//! station's), the blade's motion relative to the block is the fixture program's, every
+//! station's), the blade clears the block between blocks and never passes under its floor
+//! (where the gripper holds it), every
 //! reached move's joints land on the target through forward kinematics (1e-6 mm, 1e-9
 //! rad) — the carrier's on the block's frame, the holders' on the blade's ends — with
 //! the stated configuration data, and moving the whole cell rigidly (any rotation: the
@@ -8,10 +9,10 @@
 
 mod common;
 
-use cell::blade::planar;
+use cell::blade::{planar, shape};
 use cell::carrier::{plan, CarriedProgram, CarrierCell};
 use cell::conf::conf;
-use cell::fixture::{moves, BlockCut, FixtureCell};
+use cell::fixture::{BlockCut, Phase};
 use cell::kinematics::{forward, pose_distance};
 use cell::model::RobotModel;
 use cell::plan::{Holder, SweepFlag};
@@ -64,17 +65,23 @@ fn cell() -> CarrierCell {
 
 /// Every check of the module's doc on one program.
 fn check(cell: &CarrierCell, blocks: &[BlockCut], p: &CarriedProgram) {
-    let relative = FixtureCell {
-        holders: cell.holders.clone(),
-        fixture: Isometry3::identity(),
-        blade_length: cell.blade_length,
-        max_curvature: cell.max_curvature,
-        approach: cell.approach,
-        clearance: cell.clearance,
-        travel_step: cell.travel_step,
-        start: [cell.start[0], cell.start[1]],
-    };
-    assert_eq!(p.moves, moves(&relative, blocks).unwrap());
+    // the blade against the block, in the block's frame: above it by the clearance
+    // between blocks, and never under its floor within its footprint (where the gripper
+    // holds it)
+    for (k, st) in p.moves.steps.iter().enumerate() {
+        let size = blocks.iter().find(|b| b.block == st.block).unwrap().size;
+        let blade = shape(&st.ends, BLADE).unwrap();
+        if matches!(st.phase, Phase::Rise | Phase::Travel | Phase::Start) {
+            assert!(
+                blade.lowest() >= size[2] + cell.clearance - 1e-6,
+                "move {k}"
+            );
+        }
+        let under = blade.points.iter().any(|q| {
+            q[2] < 0.0 && (0.0..=size[0]).contains(&q[0]) && (0.0..=size[1]).contains(&q[1])
+        });
+        assert!(!under, "move {k}: the blade passes under the block's floor");
+    }
     let s = &cell.station;
     for k in 0..p.moves.steps.len() {
         let world = p.blade(k);

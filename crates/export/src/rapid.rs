@@ -42,8 +42,9 @@ pub struct RapidTool {
 pub struct RapidWobj {
     /// Its name.
     pub name: String,
-    /// The user frame: in the world frame when fixed, else in the frame of the mechanical
-    /// unit that moves it.
+    /// Where the work object is: for a fixed one its user frame in the world; for a moving
+    /// one its object frame in the user frame, which the system attaches to the
+    /// mechanical unit that moves it.
     pub frame: RapidTarget,
     /// The mechanical unit that moves it (coordinated motion, e.g. `ROB_3`), or `None`
     /// for a fixed one.
@@ -69,6 +70,10 @@ pub struct RapidMove {
     pub heat: bool,
     /// Before the move, the operator removes a block (if any) and places one.
     pub change: Option<(Option<usize>, usize)>,
+    /// The target is in the world (`wobj0`), not in the program's work object: the first
+    /// move of a task that then moves with a carried work object, so that it goes there
+    /// in a straight line in the world from wherever it stands.
+    pub world: bool,
 }
 
 /// What a module needs to know.
@@ -165,15 +170,16 @@ fn declarations(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
         num(t.cog[2], 3)
     ));
     if let Some(w) = p.wobj {
-        // [robhold, ufprog, ufmec, uframe, oframe]
-        let (prog, unit) = match &w.held_by {
-            Some(unit) => ("FALSE", unit.as_str()),
-            None => ("TRUE", ""),
+        // [robhold, ufprog, ufmec, uframe, oframe]: a moving user frame is defined by the
+        // system from the unit's position, so the offset goes into the object frame
+        let identity = "[[0,0,0],[1,0,0,0]]";
+        let (prog, unit, user, object) = match &w.held_by {
+            Some(unit) => ("FALSE", unit.as_str(), identity.to_string(), pose(&w.frame)),
+            None => ("TRUE", "", pose(&w.frame), identity.to_string()),
         };
         line(format!(
-            "    PERS wobjdata {} := [FALSE,{prog},\"{unit}\",{},[[0,0,0],[1,0,0,0]]];",
-            w.name,
-            pose(&w.frame)
+            "    PERS wobjdata {} := [FALSE,{prog},\"{unit}\",{user},{object}];",
+            w.name
         ));
     }
     line(format!(
@@ -208,7 +214,7 @@ fn wobj_name<'a>(p: &'a RapidProgram<'_>) -> &'a str {
 }
 
 fn body(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
-    let wobj = format!("{} \\WObj:={}", p.tool.name, wobj_name(p));
+    let tool = &p.tool.name;
     line("    PROC main()".into());
     line("        ConfJ \\On;".into());
     line("        ConfL \\On;".into());
@@ -236,11 +242,12 @@ fn body(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
         }
         heat = m.heat;
         line(format!(
-            "        MoveL {} \\ID:={}, {}, {}, {wobj};",
+            "        MoveL {} \\ID:={}, {}, {}, {tool} \\WObj:={};",
             m.name,
             10 * (k + 1),
             if m.cut { "vCut" } else { "vAir" },
-            if m.fine { "fine" } else { "z1" }
+            if m.fine { "fine" } else { "z1" },
+            if m.world { "wobj0" } else { wobj_name(p) }
         ));
     }
     if p.master && heat {
@@ -274,7 +281,7 @@ fn body(p: &RapidProgram<'_>, line: &mut dyn FnMut(String)) {
 /// let t = RapidTarget { position: [0.0, 100.0, 50.0], rotation: [1.0, 0.0, 0.0, 0.0] };
 /// let tool = RapidTool { name: "tBlade1".into(), frame: t, mass: 2.0, cog: [0.0, 0.0, 75.0] };
 /// let mv = |name: &str, heat| RapidMove { name: name.into(), target: t, conf: [0, 0, 0, 1],
-///     joints: Some([0.0; 6]), cut: heat, fine: true, heat, change: None };
+///     joints: Some([0.0; 6]), cut: heat, fine: true, heat, change: None, world: false };
 /// let moves = [mv("pB1_D", false), mv("pB1_C1", true)];
 /// let tasks = ["T_ROB1".to_string(), "T_ROB2".to_string()];
 /// let fixture = RapidWobj { name: "wFixture".into(), frame: t, held_by: None };

@@ -92,13 +92,19 @@ fn moves(plan: &CellPlan, r: usize) -> Vec<RapidMove> {
                 || !matches!(s.phase, Phase::Cut | Phase::Travel);
             RapidMove {
                 name: names[k].clone(),
-                target: target(if r < 2 { &s.ends[r] } else { &poses[k] }),
+                target: target(&match (r, poses.get(k)) {
+                    (2, Some(b)) => *b,
+                    // the blade's first move, in the world, before the carried block leads
+                    (_, Some(b)) if k == 0 => b * s.ends[r],
+                    _ => s.ends[r],
+                }),
                 conf: c.map_or([0; 4], |c| [c.cf1, c.cf4, c.cf6, c.cfx]),
                 joints: sol.joints,
                 cut: matches!(s.phase, Phase::Cut | Phase::Retreat),
                 fine,
                 heat: s.heat,
                 change: s.change,
+                world: r < 2 && k == 0 && !poses.is_empty(),
             }
         })
         .collect()
@@ -134,9 +140,11 @@ fn comment(plan: &CellPlan, job: &str, r: usize) -> Vec<String> {
     ];
     if cell.carrier.is_some() {
         c.extend([
-            "T_ROB3 carries each block through the blade, which stays at the station; the blade's ends move".into(),
-            "in wCarried, the block's frame held by ROB_3 (coordinated motion; its user frame is the grip".into(),
-            "in ROB_3's flange frame: confirm that your system attaches it to the flange).".into(),
+            "T_ROB3 carries each block through the blade, which stays at the station; after their first move".into(),
+            "(in wobj0) the blade's ends move in wCarried, the block's frame held by ROB_3 (coordinated motion;".into(),
+            "its object frame is the grip in ROB_3's flange frame: confirm that your system attaches the user".into(),
+            "frame of a work object moved by ROB_3 to its flange, tool0). The cut runs at vCut relative to the".into(),
+            "block, slower where the carrier's own move is longer (the slowest task sets the pace).".into(),
             format!("Between blocks the carrier lowers the block {} mm clear under the blade, and waits for the block change.", export::fmt_float(cell.clearance, 1)),
         ]);
     } else {
@@ -161,11 +169,16 @@ fn comment(plan: &CellPlan, job: &str, r: usize) -> Vec<String> {
 fn tool_and_wobj(plan: &CellPlan, r: usize) -> (RapidTool, Option<RapidWobj>) {
     let cell = &plan.cell;
     if let (2, Some(k)) = (r, &cell.carrier) {
+        // the load's centre at the middle of the largest block
+        let largest = plan.blocks.iter().fold([0.0f64; 3], |m, (_, s)| {
+            [m[0].max(s[0]), m[1].max(s[1]), m[2].max(s[2])]
+        });
+        let middle = nalgebra::Point3::from(nalgebra::Vector3::from(largest) * 0.5);
         let tool = RapidTool {
             name: "tGrip".into(),
             frame: target(&k.grip),
             mass: k.mass,
-            cog: k.grip.translation.vector.into(),
+            cog: (k.grip * middle).coords.into(),
         };
         return (tool, None);
     }

@@ -159,7 +159,7 @@ pub struct CarrierSpec {
     /// flange frame: where the gripper holds the block.
     pub grip: FrameSpec,
     /// Mass of the gripper with a block, kg (> 0); its centre of gravity is taken at the
-    /// grip's origin.
+    /// middle of the largest block.
     pub mass: f64,
     /// Where the blade cuts, in the cell's frame: origin at the blade's chord midpoint, x
     /// along the chord (from the first end to the second), z the cutting plane's normal
