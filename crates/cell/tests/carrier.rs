@@ -11,12 +11,10 @@ mod common;
 
 use cell::blade::{planar, shape};
 use cell::carrier::{plan, CarriedProgram, CarrierCell};
-use cell::conf::conf;
 use cell::fixture::{BlockCut, Phase};
-use cell::kinematics::{forward, pose_distance};
 use cell::model::RobotModel;
-use cell::plan::{Holder, SweepFlag};
-use common::{blocks, rotation, BLADE};
+use cell::plan::Holder;
+use common::{blocks, reaches, rotation, same_robot, BLADE};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 
@@ -95,22 +93,7 @@ fn check(cell: &CarrierCell, blocks: &[BlockCut], p: &CarriedProgram) {
         let targets = [world[0], world[1], p.block_poses[k]];
         let arms = [&cell.holders[0], &cell.holders[1], &cell.carrier];
         for (r, (h, target)) in arms.iter().zip(&targets).enumerate() {
-            let sol = &p.solutions[r][k];
-            let Some(joints) = sol.joints else {
-                assert!(
-                    p.flags[r].contains(&SweepFlag::OutOfReach(k)),
-                    "move {k} robot {r}"
-                );
-                continue;
-            };
-            let joints = joints.map(f64::to_radians);
-            let tcp = h.base * forward(&h.model, &joints).unwrap() * h.tool;
-            let (dp, da) = pose_distance(&tcp, target);
-            assert!(
-                dp < 1e-6 && da < 1e-9,
-                "move {k} robot {r}: {dp} mm, {da} rad"
-            );
-            assert_eq!(sol.conf, Some(conf(&h.model, &joints)));
+            reaches(h, &p.solutions[r][k], &p.flags[r], target, (k, r));
         }
     }
 }
@@ -151,19 +134,10 @@ proptest! {
         let q = plan(&moved, &blocks).unwrap();
         prop_assert_eq!(&p.moves, &q.moves);
         for r in 0..3 {
-            let key = |f: &SweepFlag| match f {
-                SweepFlag::OutOfReach(i) => (0, *i, 0),
-                SweepFlag::ConfigurationChange(i) => (1, *i, 0),
-                SweepFlag::JointJump { pose, axis, .. } => (2, *pose, *axis),
-            };
-            let keys = |v: &[SweepFlag]| v.iter().map(key).collect::<Vec<_>>();
-            prop_assert_eq!(keys(&p.flags[r]), keys(&q.flags[r]));
-            for (a, b) in p.solutions[r].iter().zip(&q.solutions[r]) {
-                match (a.joints, b.joints) {
-                    (Some(a), Some(b)) => prop_assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-6), "{:?} {:?}", a, b),
-                    (a, b) => prop_assert_eq!(a, b),
-                }
-            }
+            same_robot(
+                (&p.solutions[r], &p.flags[r]),
+                (&q.solutions[r], &q.flags[r]),
+            )?;
         }
     }
 }

@@ -1,8 +1,12 @@
 //! Blocks of arched blade poses shared by the cell's tests.
 
 use cell::blade::{from_planar, PlanarPose};
+use cell::conf::conf;
 use cell::fixture::BlockCut;
-use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+use cell::kinematics::{forward, pose_distance};
+use cell::plan::{Holder, PoseSolution, SweepFlag};
+use nalgebra::{Isometry3, Matrix3, Rotation3, UnitQuaternion, Vector3};
+use proptest::prelude::*;
 
 /// The blade's length, mm.
 pub const BLADE: f64 = 800.0;
@@ -44,4 +48,61 @@ pub fn blocks(turn: f64, tilt: f64) -> Vec<BlockCut> {
         block(2, 0.6 * turn, -tilt, 300.0, 9),
         block(3, turn, 0.5 * tilt, 380.0, 9),
     ]
+}
+
+/// Checks robot `r`'s solution at move `k`: reached, its joints land on `target` through
+/// forward kinematics (1e-6 mm, 1e-9 rad) with the stated configuration data and a
+/// margin ≥ 0; or flagged out of reach. Returns whether it was reached.
+pub fn reaches(
+    h: &Holder,
+    sol: &PoseSolution,
+    flags: &[SweepFlag],
+    target: &Isometry3<f64>,
+    (k, r): (usize, usize),
+) -> bool {
+    let Some(joints) = sol.joints else {
+        assert!(
+            flags.contains(&SweepFlag::OutOfReach(k)),
+            "move {k} robot {r}: not flagged"
+        );
+        return false;
+    };
+    let joints = joints.map(f64::to_radians);
+    let tcp = h.base * forward(&h.model, &joints).unwrap() * h.tool;
+    let (dp, da) = pose_distance(&tcp, target);
+    assert!(
+        dp < 1e-6 && da < 1e-9,
+        "move {k} robot {r}: {dp} mm, {da} rad"
+    );
+    assert_eq!(sol.conf, Some(conf(&h.model, &joints)));
+    assert!(sol.margin.unwrap() >= 0.0);
+    true
+}
+
+/// Two plans of one robot agree: the same flags (kind, move, axis) and the same joints to
+/// 1e-6°.
+pub fn same_robot(
+    (a, fa): (&[PoseSolution], &[SweepFlag]),
+    (b, fb): (&[PoseSolution], &[SweepFlag]),
+) -> Result<(), TestCaseError> {
+    let key = |f: &SweepFlag| match f {
+        SweepFlag::OutOfReach(i) => (0, *i, 0),
+        SweepFlag::ConfigurationChange(i) => (1, *i, 0),
+        SweepFlag::JointJump { pose, axis, .. } => (2, *pose, *axis),
+    };
+    let keys = |v: &[SweepFlag]| v.iter().map(key).collect::<Vec<_>>();
+    prop_assert_eq!(keys(fa), keys(fb));
+    prop_assert_eq!(a.len(), b.len());
+    for (a, b) in a.iter().zip(b) {
+        match (a.joints, b.joints) {
+            (Some(a), Some(b)) => prop_assert!(
+                a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-6),
+                "{:?} {:?}",
+                a,
+                b
+            ),
+            (a, b) => prop_assert_eq!(a, b),
+        }
+    }
+    Ok(())
 }
