@@ -484,7 +484,7 @@ struct Setup {
 
 /// Plans the cell's program for the poses `t` (blocks of `sizes`, job units, in the
 /// order of `t.blocks`), cutting at `speed` with `approach` (job units): at the fixture
-/// ([`plan_fixture`]) or with the block carried ([`plan_carried`]).
+/// (`plan_fixture`) or with the block carried (`plan_carried`).
 ///
 /// # Errors
 /// A plan that cannot be made (named), or with `strict: true`, any flag.
