@@ -1,0 +1,185 @@
+//! Planar cubic Bézier curves `B(t) = Σ bᵢ Bᵢ³(t)`, t ∈ [0, 1]: points, derivatives,
+//! curvature, arc length (composite Gauss–Legendre, exact to rounding for the smooth
+//! speed of a regular cubic), the end data an elastica must share with the curve, and the
+//! angles of the control polygon ("Designing for Robotic Hot-Blade Cutting" fig. 12).
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{DesignError, Result};
+
+/// A planar cubic Bézier curve by its four control points.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Bezier {
+    /// Control points b₀, b₁, b₂, b₃.
+    pub p: [[f64; 2]; 4],
+}
+
+/// Pieces and nodes of the arc-length quadrature.
+const PIECES: usize = 64;
+/// Gauss–Legendre nodes and weights on [−1, 1], 5 points.
+const GAUSS: [(f64, f64); 5] = [
+    (0.0, 0.568_888_888_888_888_9),
+    (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+    (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+    (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
+    (0.906_179_845_938_664, 0.236_926_885_056_189_1),
+];
+
+fn lerp(a: [f64; 2], b: [f64; 2], t: f64) -> [f64; 2] {
+    [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t]
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+impl Bezier {
+    /// The point at `t` (de Casteljau).
+    pub fn point(&self, t: f64) -> [f64; 2] {
+        let [a, b, c, d] = self.p;
+        let (ab, bc, cd) = (lerp(a, b, t), lerp(b, c, t), lerp(c, d, t));
+        lerp(lerp(ab, bc, t), lerp(bc, cd, t), t)
+    }
+
+    /// The first derivative at `t`.
+    pub fn d1(&self, t: f64) -> [f64; 2] {
+        let [a, b, c, d] = self.p;
+        let (u, v, w) = (sub(b, a), sub(c, b), sub(d, c));
+        let q = lerp(lerp(u, v, t), lerp(v, w, t), t);
+        [3.0 * q[0], 3.0 * q[1]]
+    }
+
+    /// The second derivative at `t`.
+    pub fn d2(&self, t: f64) -> [f64; 2] {
+        let [a, b, c, d] = self.p;
+        let u = [a[0] - 2.0 * b[0] + c[0], a[1] - 2.0 * b[1] + c[1]];
+        let v = [b[0] - 2.0 * c[0] + d[0], b[1] - 2.0 * c[1] + d[1]];
+        let q = lerp(u, v, t);
+        [6.0 * q[0], 6.0 * q[1]]
+    }
+
+    /// The signed curvature at `t` (positive turns left); `NaN` where the speed vanishes.
+    pub fn curvature(&self, t: f64) -> f64 {
+        let (d, dd) = (self.d1(t), self.d2(t));
+        let speed = d[0].hypot(d[1]);
+        (d[0] * dd[1] - d[1] * dd[0]) / (speed * speed * speed)
+    }
+
+    /// Arc length from 0 to `t`.
+    pub fn length_to(&self, t: f64) -> f64 {
+        let n = ((PIECES as f64 * t.abs()).ceil() as usize).max(1);
+        let h = t / n as f64;
+        let mut s = 0.0;
+        for i in 0..n {
+            let mid = (i as f64 + 0.5) * h;
+            for (x, w) in GAUSS {
+                let d = self.d1(mid + 0.5 * h * x);
+                s += w * d[0].hypot(d[1]);
+            }
+        }
+        0.5 * h * s
+    }
+
+    /// The whole length.
+    pub fn length(&self) -> f64 {
+        self.length_to(1.0)
+    }
+
+    /// The parameter at arc length `s` from the start (Newton on the length, bisection
+    /// safeguarded; `s` clamped to the curve).
+    pub fn at_length(&self, s: f64) -> f64 {
+        let total = self.length();
+        let s = s.clamp(0.0, total);
+        let (mut lo, mut hi, mut t) = (0.0f64, 1.0f64, s / total.max(f64::MIN_POSITIVE));
+        for _ in 0..60 {
+            let f = self.length_to(t) - s;
+            if f.abs() <= 1e-14 * total {
+                break;
+            }
+            if f > 0.0 {
+                hi = t;
+            } else {
+                lo = t;
+            }
+            let d = self.d1(t);
+            let next = t - f / d[0].hypot(d[1]);
+            t = if next > lo && next < hi {
+                next
+            } else {
+                0.5 * (lo + hi)
+            };
+        }
+        t
+    }
+
+    /// Tangent angle at the start: the direction of the first leg (or of the next nonzero
+    /// one when legs collapse).
+    ///
+    /// # Errors
+    /// [`DesignError::Invalid`] when all control points coincide.
+    pub fn start_angle(&self) -> Result<f64> {
+        let [a, b, c, d] = self.p;
+        first_direction(&[sub(b, a), sub(c, a), sub(d, a)])
+    }
+
+    /// Tangent angle at the end: the direction of the last leg (or of the previous nonzero
+    /// one).
+    ///
+    /// # Errors
+    /// [`DesignError::Invalid`] when all control points coincide.
+    pub fn end_angle(&self) -> Result<f64> {
+        let [a, b, c, d] = self.p;
+        first_direction(&[sub(d, c), sub(d, b), sub(d, a)])
+    }
+
+    /// The end tangent angle unwrapped along the curve: the start angle plus the total
+    /// turning ∫κ ds, so that a curve turning by more than π keeps its true turn.
+    ///
+    /// # Errors
+    /// As [`Bezier::start_angle`].
+    pub fn end_angle_unwrapped(&self) -> Result<f64> {
+        let (a0, a1) = (self.start_angle()?, self.end_angle()?);
+        let n = 256;
+        let mut turn = 0.0;
+        let mut previous = a0;
+        for i in 1..=n {
+            let t = i as f64 / n as f64;
+            let d = self.d1(t);
+            let a = if i == n || d[0].hypot(d[1]) == 0.0 {
+                a1
+            } else {
+                d[1].atan2(d[0])
+            };
+            turn += wrap(a - previous);
+            previous = a;
+        }
+        Ok(a0 + turn)
+    }
+
+    /// The interior angles of the control polygon at b₁ and b₂, radians in [0, π] (π: the
+    /// legs in line; small: an acute, folded polygon); `NaN` at a collapsed leg.
+    pub fn polygon_angles(&self) -> [f64; 2] {
+        let [a, b, c, d] = self.p;
+        let angle = |u: [f64; 2], v: [f64; 2]| {
+            let (nu, nv) = (u[0].hypot(u[1]), v[0].hypot(v[1]));
+            ((u[0] * v[0] + u[1] * v[1]) / (nu * nv))
+                .clamp(-1.0, 1.0)
+                .acos()
+        };
+        [angle(sub(a, b), sub(c, b)), angle(sub(b, c), sub(d, c))]
+    }
+}
+
+/// The angle of the first vector in `v` that is not zero.
+fn first_direction(v: &[[f64; 2]]) -> Result<f64> {
+    v.iter()
+        .find(|d| d[0].hypot(d[1]) > 0.0)
+        .map(|d| d[1].atan2(d[0]))
+        .ok_or_else(|| DesignError::Invalid("the Bézier's control points coincide".into()))
+}
+
+/// An angle in (−π, π].
+pub fn wrap(a: f64) -> f64 {
+    let pi = std::f64::consts::PI;
+    pi - (pi - a).rem_euclid(2.0 * pi)
+}

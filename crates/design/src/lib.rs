@@ -1,0 +1,37 @@
+//! # design — designing for the hot blade
+//!
+//! The road of "Designing for Robotic Hot-Blade Cutting" (§4): a surface defined so that
+//! it can be cut, by planar design curves with one cubic piece per block, each replaced by
+//! the elastica with the same end points, end tangents and length.
+//!
+//! - [`bezier`]: planar cubic Bézier curves: points, derivatives, curvature, arc length,
+//!   end data, the angles of the control polygon.
+//! - [`bvp`]: the elastica with given end points, end tangent angles and length, in
+//!   closed form, started from and cross-checked by the discrete elastica.
+//! - [`proxy`]: how close a Bézier is to its elastica: deviation, length, curvature,
+//!   inflections, and the residual of the affine curvature law κ = λ₂x − λ₁y + α
+//!   ("Hot Blade Cuttings" eq. 11), which predicts the deviation cheaply.
+//!
+//! Like the other algorithm crates it does no I/O. It is unit-free: every result scales
+//! with the input.
+//!
+//! ```
+//! use design::bezier::Bezier;
+//! use design::proxy::proxy;
+//! // a gentle arch 600 long
+//! let b = Bezier { p: [[0.0, 0.0], [200.0, 60.0], [400.0, 60.0], [600.0, 0.0]] };
+//! let r = proxy(&b).unwrap();
+//! assert!(r.end_point_error < 1e-9 * r.length);
+//! assert!(r.max_deviation < 0.01 * r.length); // a well-behaved polygon: close to an elastica
+//! ```
+
+/// Planar cubic Bézier curves.
+pub mod bezier;
+/// The elastica with given end points, end tangents and length.
+pub mod bvp;
+/// Errors of the design crate.
+pub mod error;
+/// How close a Bézier is to its elastica.
+pub mod proxy;
+
+pub use error::{DesignError, Result};
