@@ -6,6 +6,8 @@
 //!
 //! - [`bezier`]: planar cubic Bézier curves: points, derivatives, curvature, arc length,
 //!   end data, the angles of the control polygon.
+//! - [`chain`]: design curves over several blocks, one Bézier per block joined G¹, and
+//!   their elastica.
 //! - [`bvp`]: the elastica with given end points, end tangent angles and length, in
 //!   closed form, started from and cross-checked by the discrete elastica.
 //! - [`proxy`]: how close a Bézier is to its elastica: deviation, length, curvature,
@@ -29,6 +31,8 @@
 pub mod bezier;
 /// The elastica with given end points, end tangents and length.
 pub mod bvp;
+/// Design curves over several blocks, joined G¹.
+pub mod chain;
 /// Errors of the design crate.
 pub mod error;
 /// How close a Bézier is to its elastica.
