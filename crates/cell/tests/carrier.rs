@@ -14,7 +14,7 @@ use cell::carrier::{plan, CarriedProgram, CarrierCell};
 use cell::fixture::{BlockCut, Phase};
 use cell::model::RobotModel;
 use cell::plan::Holder;
-use common::{blocks, reaches, rotation, same_robot, BLADE};
+use common::{base, blade_holders, blocks, reaches, rotation, same_robot, BLADE};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 
@@ -22,30 +22,13 @@ use proptest::prelude::*;
 /// y, plane facing +x), an IRB 4600 behind it carrying the block from below, its flange
 /// 200 mm under the floor's middle and tilted 75° towards the blade.
 fn cell() -> CarrierCell {
-    let robot = |x: f64, y: f64, yaw: f64| {
-        Isometry3::from_parts(
-            Translation3::new(x, y, 0.0),
-            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
-        )
-    };
-    let holder = |base| Holder {
-        model: RobotModel::irb2600_12_165(),
-        base,
-        tool: Isometry3::from_parts(
-            Translation3::new(0.0, 0.0, 150.0),
-            rotation(-Vector3::z(), Vector3::x()).inverse() * rotation(Vector3::y(), Vector3::x()),
-        ),
-    };
     let tilt = UnitQuaternion::from_axis_angle(&Vector3::y_axis(), 75f64.to_radians());
     let flange = Isometry3::from_parts(Translation3::new(300.0, 300.0, -200.0), tilt);
     CarrierCell {
-        holders: [
-            holder(robot(0.0, -1200.0, std::f64::consts::FRAC_PI_2)),
-            holder(robot(0.0, 1200.0, -std::f64::consts::FRAC_PI_2)),
-        ],
+        holders: blade_holders(),
         carrier: Holder {
             model: RobotModel::irb4600_60_205(),
-            base: robot(-1300.0, 0.0, 0.0),
+            base: base(-1300.0, 0.0, 0.0),
             tool: flange.inverse(),
         },
         station: Isometry3::from_parts(

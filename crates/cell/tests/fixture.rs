@@ -8,40 +8,15 @@ mod common;
 
 use cell::blade::{planar, shape, BladePose};
 use cell::fixture::{plan, BlockCut, CellProgram, FixtureCell, Phase};
-use cell::model::RobotModel;
-use cell::plan::Holder;
-use common::{blocks, reaches, rotation, same_robot, BLADE};
+use common::{blade_holders, blocks, reaches, same_robot, BLADE};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 
 /// Two IRB 2600 facing each other across a fixture 200 mm up, holders facing along the
 /// cut with the blade 150 mm in front of the flange.
 fn cell() -> FixtureCell {
-    let robot = |y: f64, yaw: f64| {
-        Isometry3::from_parts(
-            Translation3::new(0.0, y, 0.0),
-            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
-        )
-    };
-    let holder = |base| {
-        // at the mean pose: flange z along the cut (x), flange x down; the blade's
-        // tangent along y at both ends
-        let tool = Vector3::y();
-        let flange = rotation(-Vector3::z(), Vector3::x());
-        Holder {
-            model: RobotModel::irb2600_12_165(),
-            base,
-            tool: Isometry3::from_parts(
-                Translation3::new(0.0, 0.0, 150.0),
-                flange.inverse() * rotation(tool, Vector3::x()),
-            ),
-        }
-    };
     FixtureCell {
-        holders: [
-            holder(robot(-1200.0, std::f64::consts::FRAC_PI_2)),
-            holder(robot(1200.0, -std::f64::consts::FRAC_PI_2)),
-        ],
+        holders: blade_holders(),
         fixture: Isometry3::translation(-300.0, -300.0, 200.0),
         blade_length: BLADE,
         max_curvature: None,

@@ -4,8 +4,9 @@ use cell::blade::{from_planar, PlanarPose};
 use cell::conf::conf;
 use cell::fixture::BlockCut;
 use cell::kinematics::{forward, pose_distance};
+use cell::model::RobotModel;
 use cell::plan::{Holder, PoseSolution, SweepFlag};
-use nalgebra::{Isometry3, Matrix3, Rotation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 
 /// The blade's length, mm.
@@ -105,4 +106,30 @@ pub fn same_robot(
         }
     }
     Ok(())
+}
+
+/// A robot's base on the floor at (`x`, `y`), turned by `yaw` about z.
+pub fn base(x: f64, y: f64, yaw: f64) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::new(x, y, 0.0),
+        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+    )
+}
+
+/// Two IRB 2600 facing each other across the cut, 1200 mm either side of x's axis, each
+/// holding its blade end 150 mm in front of its flange: at the mean pose the flange's z
+/// along the cut (x), its x down, the blade's tangent along y at both ends.
+pub fn blade_holders() -> [Holder; 2] {
+    let holder = |base| Holder {
+        model: RobotModel::irb2600_12_165(),
+        base,
+        tool: Isometry3::from_parts(
+            Translation3::new(0.0, 0.0, 150.0),
+            rotation(-Vector3::z(), Vector3::x()).inverse() * rotation(Vector3::y(), Vector3::x()),
+        ),
+    };
+    [
+        holder(base(0.0, -1200.0, std::f64::consts::FRAC_PI_2)),
+        holder(base(0.0, 1200.0, -std::f64::consts::FRAC_PI_2)),
+    ]
 }
