@@ -433,6 +433,11 @@ fn facade_programs_keep_the_multimove_rules_the_blade_and_the_robots() {
     replay_all("seg-");
 }
 
+#[test]
+fn design_programs_keep_the_multimove_rules_the_blade_and_the_robots() {
+    replay_all("design-");
+}
+
 /// The line declaring robtarget `name` with its position shifted by `d`.
 fn shifted(module: &str, name: &str, d: [f64; 3]) -> String {
     let line = module

@@ -10,6 +10,11 @@
 //!   their elastica.
 //! - [`bvp`]: the elastica with given end points, end tangent angles and length, in
 //!   closed form, started from and cross-checked by the discrete elastica.
+//! - [`spline`]: design curves over several blocks as one cubic B-spline, C², its knots
+//!   on the block faces, each piece handed on as a Bézier.
+//! - [`loft`]: curves at stations along the cut lofted with √chord ("tight") spacing.
+//! - [`cut`]: one designed cut through a row of blocks: its curves on every station and
+//!   cutting plane, their elastica, the blade extended to its length and posed in 3D.
 //! - [`proxy`]: how close a Bézier is to its elastica: deviation, length, curvature,
 //!   inflections, and the residual of the affine curvature law κ = λ₂x − λ₁y + α
 //!   ("Hot Blade Cuttings" eq. 11), which predicts the deviation cheaply.
@@ -33,9 +38,15 @@ pub mod bezier;
 pub mod bvp;
 /// Design curves over several blocks, joined G¹.
 pub mod chain;
+/// One designed cut through a row of blocks.
+pub mod cut;
 /// Errors of the design crate.
 pub mod error;
+/// Lofting design curves along the cut.
+pub mod loft;
 /// How close a Bézier is to its elastica.
 pub mod proxy;
+/// Design curves as one C² cubic B-spline over the blocks.
+pub mod spline;
 
 pub use error::{DesignError, Result};

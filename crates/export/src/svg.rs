@@ -125,6 +125,29 @@ impl SvgDoc {
         self.close("polyline", title)
     }
 
+    /// A dashed polyline through page points: dashes and gaps of `dash` page units.
+    pub fn dashed_polyline(
+        &mut self,
+        pts: &[(f64, f64)],
+        stroke: &str,
+        width: f64,
+        dash: f64,
+        title: Option<&str>,
+    ) -> &mut Self {
+        if pts.len() < 2 {
+            return self;
+        }
+        self.body.push_str(&format!(
+            "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-dasharray=\"{} {}\" stroke-linejoin=\"round\">",
+            points(pts),
+            esc(stroke),
+            n(width),
+            n(dash),
+            n(dash)
+        ));
+        self.close("polyline", title)
+    }
+
     /// A closed polygon through page points, filled with `fill` (e.g. `#ff000080`) and
     /// outlined with `stroke` (`none` for no outline).
     pub fn polygon(

@@ -13,6 +13,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::analyze::Analyze;
 use crate::block_segmentation::BlockSegmentation;
+use crate::design_task::Design;
 use crate::facade_segmentation::FacadeSegmentation;
 use crate::fit_curves::FitCurves;
 use crate::hot_blade::HotBlade;
@@ -92,6 +93,8 @@ pub enum TaskSpec {
     BlockSegmentation(BlockSegmentation),
     /// Hot-wire pre-cuts removing the bulk above a design surface.
     PreCut(PreCut),
+    /// A surface designed for the hot blade: design curves per block, their elastica.
+    Design(Design),
 }
 
 impl TaskSpec {
@@ -104,6 +107,7 @@ impl TaskSpec {
             Self::FacadeSegmentation(t) => v.visit(t),
             Self::BlockSegmentation(t) => v.visit(t),
             Self::PreCut(t) => v.visit(t),
+            Self::Design(t) => v.visit(t),
         }
     }
 
@@ -116,6 +120,7 @@ impl TaskSpec {
         v.visit::<FacadeSegmentation>();
         v.visit::<BlockSegmentation>();
         v.visit::<PreCut>();
+        v.visit::<Design>();
     }
 
     /// Name as written in job files.

@@ -28,6 +28,8 @@ pub mod analyze;
 pub mod block_segmentation;
 /// What a task sees of its job: the common fields as written and resolved.
 pub mod context;
+/// The `Design` task: designs made for the hot blade, their elastica, robot data.
+pub mod design_task;
 /// Error types.
 pub mod error;
 /// The `FacadeSegmentation` task: facade-seg algorithms, pieces rationalized, robot data.
@@ -79,7 +81,8 @@ pub fn job_schema_json() -> String {
 /// One schema file of `schemas/`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SchemaFile {
-    /// The task whose report it describes (`None`: the job file).
+    /// The task whose report it describes (`None`: an input file, the job file or the
+    /// design file).
     pub task: Option<&'static str>,
     /// File name.
     pub file: &'static str,
@@ -97,7 +100,7 @@ fn report_schema<T: Task>() -> SchemaFile {
     }
 }
 
-/// Every schema file of `schemas/`: the job file's, then one per task's report, in the
+/// Every schema file of `schemas/`: the job file's, the design file's, then one per task's report, in the
 /// order of [`job::TaskSpec`].
 pub fn schema_files() -> Vec<SchemaFile> {
     struct Reports(Vec<SchemaFile>);
@@ -111,6 +114,11 @@ pub fn schema_files() -> Vec<SchemaFile> {
         file: "job.schema.json",
         text: job_schema_json(),
     }]);
+    files.0.push(SchemaFile {
+        task: None,
+        file: "design.schema.json",
+        text: pretty(&design_task::file::design_schema()),
+    });
     job::TaskSpec::each(&mut files);
     files.0
 }

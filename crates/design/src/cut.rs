@@ -1,0 +1,399 @@
+//! One designed cut through a row of blocks ("Designing for Robotic Hot-Blade Cutting"
+//! §3.2–§3.4, §5): design curves across the cut at stations along it (at least the
+//! entry and exit faces), one cubic piece per block — Béziers joined G¹ or one C² spline
+//! — lofted along the cut ([`crate::loft`]). On every station and every cutting plane each
+//! piece is replaced by its elastica ([`crate::proxy`]), which is extended to the blade's
+//! length by its closed form and posed in 3D for the robots.
+//!
+//! The curves are lofted in a form that keeps their construction on every plane: a G¹
+//! chain by its joints (points, tangent angles, leg lengths), a spline by its control
+//! points (whose knot images then stay on the faces). So the elastica of every plane
+//! still share points and tangents across the faces.
+
+use elastica::blade::{extend_to_blade, Blade, BladeParams};
+use elastica::sweep::{blade_pose, BladePose};
+use geom::slice::PlaneFrame;
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::bezier::{wrap, Bezier};
+use crate::chain::g1_breaks;
+use crate::error::{DesignError, Result};
+use crate::loft::Loft;
+use crate::proxy::{proxy, Proxy};
+use crate::spline::BSpline;
+
+/// Relative tolerance (to the cut's width) of a piece's end or a knot image on its face.
+pub const FACE_TOLERANCE: f64 = 1e-6;
+
+/// A design curve at one station: in plane coordinates (across, height) of the cutting
+/// plane.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub enum DesignCurve {
+    /// One cubic Bézier per block, joined G¹ on the faces (fig. 14).
+    Bezier(Vec<Bezier>),
+    /// One cubic B-spline with a piece per block, C² (fig. 15).
+    Spline(BSpline),
+}
+
+/// Which construction a curve follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Form {
+    /// G¹ Béziers.
+    Bezier,
+    /// C² spline.
+    Spline,
+}
+
+impl DesignCurve {
+    /// The construction.
+    pub fn form(&self) -> Form {
+        match self {
+            Self::Bezier(_) => Form::Bezier,
+            Self::Spline(_) => Form::Spline,
+        }
+    }
+
+    /// The pieces, one Bézier per block.
+    pub fn pieces(&self) -> Vec<Bezier> {
+        match self {
+            Self::Bezier(p) => p.clone(),
+            Self::Spline(s) => s.pieces(),
+        }
+    }
+
+    /// Where the curve breaks its construction on `faces` (the blocks' faces across the
+    /// cut, increasing): one message per problem, naming the face. Empty when it holds.
+    pub fn problems(&self, faces: &[f64]) -> Vec<String> {
+        let width = faces.last().unwrap_or(&0.0) - faces.first().unwrap_or(&0.0);
+        let tol = FACE_TOLERANCE * width.abs();
+        let mut out = Vec::new();
+        match self {
+            Self::Bezier(pieces) => {
+                if pieces.len() + 1 != faces.len() {
+                    out.push(format!(
+                        "{} Bézier piece(s) for {} block(s): give one per block",
+                        pieces.len(),
+                        faces.len().saturating_sub(1)
+                    ));
+                    return out;
+                }
+                for (i, b) in pieces.iter().enumerate() {
+                    for (end, point, face) in [(0, b.p[0], i), (3, b.p[3], i + 1)] {
+                        let off = point[0] - faces[face];
+                        if !(off.abs() <= tol) {
+                            out.push(format!(
+                                "piece {} point b{end} is {off:.3e} across from face {face} (at {}): the ends of a piece lie on its block's faces",
+                                i, faces[face]
+                            ));
+                        }
+                    }
+                }
+                match g1_breaks(pieces) {
+                    Ok(breaks) => out.extend(breaks.iter().map(|b| {
+                        format!(
+                            "the pieces break the tangent-continuous construction at face {}: gap {:.3e}, legs at {:.3e} rad (the last leg of one piece and the first of the next must lie on one line)",
+                            b.face + 1, b.gap, b.angle
+                        )
+                    })),
+                    Err(e) => out.push(e.to_string()),
+                }
+            }
+            Self::Spline(s) => {
+                if s.faces.len() != faces.len()
+                    || s.faces.iter().zip(faces).any(|(a, b)| (a - b).abs() > tol)
+                {
+                    out.push("the spline's knots are not the blocks' faces".into());
+                    return out;
+                }
+                for (face, off) in s.off_faces(tol) {
+                    out.push(format!(
+                        "the knot image at face {face} is {off:.3e} across from the face (at {}): place the control points at the Greville abscissae, or move them so the curve meets the face",
+                        faces[face]
+                    ));
+                }
+            }
+        }
+        out
+    }
+
+    /// The parameters lofted along the cut (see the module's doc).
+    fn loft_params(&self) -> Result<Vec<f64>> {
+        match self {
+            Self::Spline(s) => Ok(s.control.iter().flatten().copied().collect()),
+            Self::Bezier(pieces) => {
+                let n = pieces.len();
+                let mut points = Vec::with_capacity(2 * n + 2);
+                let mut angles = Vec::with_capacity(n + 1);
+                let mut legs = Vec::with_capacity(2 * n);
+                for (i, b) in pieces.iter().enumerate() {
+                    points.extend(b.p[0]);
+                    angles.push(b.start_angle()?);
+                    legs.push((b.p[1][0] - b.p[0][0]).hypot(b.p[1][1] - b.p[0][1]));
+                    legs.push((b.p[3][0] - b.p[2][0]).hypot(b.p[3][1] - b.p[2][1]));
+                    if i + 1 == n {
+                        points.extend(b.p[3]);
+                        angles.push(b.end_angle()?);
+                    }
+                }
+                // unwrap along the curve so that neighbouring joints' angles are close
+                for k in 1..angles.len() {
+                    angles[k] = angles[k - 1] + wrap(angles[k] - angles[k - 1]);
+                }
+                Ok(points.into_iter().chain(angles).chain(legs).collect())
+            }
+        }
+    }
+
+    /// The curve of this construction with lofted parameters `p` (the inverse of
+    /// [`Self::loft_params`]).
+    fn with_params(&self, p: &[f64]) -> Result<Self> {
+        match self {
+            Self::Spline(s) => BSpline::new(
+                s.faces.clone(),
+                p.chunks_exact(2).map(|c| [c[0], c[1]]).collect(),
+            )
+            .map(Self::Spline),
+            Self::Bezier(pieces) => {
+                let n = pieces.len();
+                let point = |k: usize| [p[2 * k], p[2 * k + 1]];
+                let angle = |k: usize| p[2 * n + 2 + k];
+                let leg = |k: usize| p[3 * n + 3 + k];
+                let dir = |a: f64| [a.cos(), a.sin()];
+                Ok(Self::Bezier(
+                    (0..n)
+                        .map(|i| {
+                            let (a, b) = (point(i), point(i + 1));
+                            let (ta, tb) = (dir(angle(i)), dir(angle(i + 1)));
+                            let (la, lb) = (leg(2 * i), leg(2 * i + 1));
+                            Bezier {
+                                p: [
+                                    a,
+                                    [a[0] + la * ta[0], a[1] + la * ta[1]],
+                                    [b[0] - lb * tb[0], b[1] - lb * tb[1]],
+                                    b,
+                                ],
+                            }
+                        })
+                        .collect(),
+                ))
+            }
+        }
+    }
+}
+
+/// A design curve at an offset along the cut.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Station {
+    /// Offset of its plane along the cut (the frame's normal).
+    pub offset: f64,
+    /// The curve.
+    pub curve: DesignCurve,
+}
+
+/// One designed cut.
+#[derive(Debug, Clone)]
+pub struct CutParams {
+    /// The cutting planes' frame: normal = cut direction, (u, v) = (across, up).
+    pub frame: PlaneFrame,
+    /// The blocks' faces across the cut (u), increasing: block i lies between faces i and
+    /// i + 1.
+    pub faces: Vec<f64>,
+    /// The stations, offsets increasing; the first at the blocks' entry face, the last at
+    /// their exit face. All of one form.
+    pub stations: Vec<Station>,
+    /// The blade.
+    pub blade: BladeParams,
+    /// Cutting planes from the entry face to the exit face (≥ 2), equally spaced.
+    pub planes: usize,
+}
+
+/// One piece of a curve and its elastica.
+#[derive(Debug, Clone, Serialize)]
+pub struct PieceResult {
+    /// The design piece.
+    pub design: Bezier,
+    /// Its elastica and how close they are.
+    pub proxy: Proxy,
+    /// The elastica extended to the blade's length, with its checks.
+    pub blade: Blade,
+    /// The blade's pose in 3D.
+    pub pose: BladePose,
+}
+
+/// Where two neighbouring pieces' elastica meet on a face.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Joint {
+    /// The face (1 … n − 1).
+    pub face: usize,
+    /// Distance between the two elastica's ends.
+    pub gap: f64,
+    /// Tangent angle of the next minus that of the previous, radians.
+    pub tangent_jump: f64,
+    /// Curvature of the next minus that of the previous.
+    pub curvature_jump: f64,
+}
+
+/// A curve on one plane and the elastica of its pieces.
+#[derive(Debug, Clone, Serialize)]
+pub struct CurveResult {
+    /// Offset along the cut.
+    pub offset: f64,
+    /// Per block.
+    pub pieces: Vec<PieceResult>,
+    /// Per interior face.
+    pub joints: Vec<Joint>,
+}
+
+/// A designed cut and its elastica.
+#[derive(Debug, Clone, Serialize)]
+pub struct CutResult {
+    /// The construction.
+    pub form: Form,
+    /// The curves at the stations.
+    pub stations: Vec<CurveResult>,
+    /// The curves on the cutting planes, entry to exit.
+    pub planes: Vec<CurveResult>,
+}
+
+fn chord(a: &[Bezier], b: &[Bezier], ds: f64) -> f64 {
+    let (mut sum, mut n) = (0.0, 0.0f64);
+    for (p, q) in a.iter().zip(b) {
+        for (x, y) in p.p.iter().zip(&q.p) {
+            sum += (x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2);
+            n += 1.0;
+        }
+    }
+    (ds * ds + sum / n.max(1.0)).sqrt()
+}
+
+fn elastica_err(e: impl ToString) -> DesignError {
+    DesignError::Elastica(e.to_string())
+}
+
+/// The elastica of every piece of `curve` at `offset`.
+fn solve_curve(curve: &DesignCurve, offset: f64, p: &CutParams) -> Result<CurveResult> {
+    let pieces = curve
+        .pieces()
+        .into_iter()
+        .enumerate()
+        .map(|(i, design)| {
+            let proxy = proxy(&design)
+                .map_err(|e| DesignError::Invalid(format!("block {i} of the cut: {e}")))?;
+            let blade = extend_to_blade(&proxy.elastica, &p.blade)
+                .map_err(|e| DesignError::Invalid(format!("block {i} of the cut: {e}")))?;
+            let pose = blade_pose(&p.frame, offset, &blade);
+            Ok(PieceResult {
+                design,
+                proxy,
+                blade,
+                pose,
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let mut joints = Vec::new();
+    for (k, w) in pieces.windows(2).enumerate() {
+        let a = w[0].proxy.elastica.evaluator().map_err(elastica_err)?;
+        let b = w[1].proxy.elastica.evaluator().map_err(elastica_err)?;
+        let (ea, sb) = (a.eval(1.0), b.eval(0.0));
+        joints.push(Joint {
+            face: k + 1,
+            gap: (ea.p[0] - sb.p[0]).hypot(ea.p[1] - sb.p[1]),
+            tangent_jump: wrap(sb.angle - ea.angle),
+            curvature_jump: sb.curvature - ea.curvature,
+        });
+    }
+    Ok(CurveResult {
+        offset,
+        pieces,
+        joints,
+    })
+}
+
+/// The problems of a cut's parameters, one message each (empty when it can be run).
+pub fn problems(p: &CutParams) -> Vec<String> {
+    let mut out = Vec::new();
+    if p.planes < 2 {
+        out.push(format!("a cut needs at least 2 planes, not {}", p.planes));
+    }
+    if p.faces.len() < 2 || p.faces.windows(2).any(|w| !(w[1] > w[0])) {
+        out.push("the blocks' faces across the cut must increase".into());
+        return out;
+    }
+    if p.stations.len() < 2 {
+        out.push("a cut needs design curves at its entry and exit faces at least".into());
+    }
+    if let Some(first) = p.stations.first() {
+        let form = first.curve.form();
+        for (i, s) in p.stations.iter().enumerate() {
+            if s.curve.form() != form {
+                out.push(format!(
+                    "station {i} is a {:?} curve but station 0 is a {form:?} curve: a cut keeps one construction",
+                    s.curve.form()
+                ));
+            }
+            out.extend(
+                s.curve
+                    .problems(&p.faces)
+                    .into_iter()
+                    .map(|m| format!("station {i}: {m}")),
+            );
+        }
+    }
+    out
+}
+
+/// The elastica of a designed cut on its stations and on every cutting plane, with the
+/// blade poses; `tick` is called once per curve solved.
+///
+/// # Errors
+/// [`DesignError::Invalid`] with the first of [`problems`], or naming the station or
+/// plane and block whose elastica cannot be found or is longer than the blade.
+pub fn solve(p: &CutParams, tick: &(dyn Fn() + Sync)) -> Result<CutResult> {
+    if let Some(m) = problems(p).into_iter().next() {
+        return Err(DesignError::Invalid(m));
+    }
+    let form = p.stations[0].curve.form();
+    let pieces: Vec<Vec<Bezier>> = p.stations.iter().map(|s| s.curve.pieces()).collect();
+    let lofted = p
+        .stations
+        .iter()
+        .map(|s| Ok((s.offset, s.curve.loft_params()?)))
+        .collect::<Result<Vec<_>>>()?;
+    let loft = Loft::new(&lofted, |i| {
+        chord(
+            &pieces[i - 1],
+            &pieces[i],
+            p.stations[i].offset - p.stations[i - 1].offset,
+        )
+    })?;
+    let stations = p
+        .stations
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            tick();
+            solve_curve(&s.curve, s.offset, p)
+                .map_err(|e| DesignError::Invalid(format!("station {i}: {e}")))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let (entry, exit) = (
+        p.stations[0].offset,
+        p.stations[p.stations.len() - 1].offset,
+    );
+    let planes = (0..p.planes)
+        .into_par_iter()
+        .map(|j| {
+            tick();
+            let offset = entry + (exit - entry) * j as f64 / (p.planes - 1) as f64;
+            let curve = p.stations[0].curve.with_params(&loft.at_offset(offset))?;
+            solve_curve(&curve, offset, p)
+                .map_err(|e| DesignError::Invalid(format!("plane {} of {}: {e}", j + 1, p.planes)))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(CutResult {
+        form,
+        stations,
+        planes,
+    })
+}

@@ -1,0 +1,393 @@
+//! The `Design` task: a surface designed so that a hot blade can cut it ("Designing for
+//! Robotic Hot-Blade Cutting" §3–§5). A design file gives blocks and, per cut, design
+//! curves at stations along it — Béziers joined G¹ or one C² spline, a piece per block;
+//! the [`design`] crate replaces every piece by its elastica in closed form on every
+//! station and cutting plane, extends it to the blade and poses it; this module reads the
+//! file, checks it, and reports and writes the result.
+
+/// The design file.
+pub mod file;
+/// Its files: SVG per block, glTF, robot targets, RAPID.
+mod outputs;
+/// Its report.
+pub mod report;
+
+use std::path::PathBuf;
+
+use design::cut::{CutParams, CutResult};
+use elastica::blade::BladeParams;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::context::{blade_of, Context, JobFields};
+use crate::error::{JobError, Result};
+use crate::limits::Estimate;
+use crate::progress::Progress;
+use crate::robot_cell::{self, CellPlan};
+use crate::spec::defaults::{APPROACH_MM, BLADE_SPEED_MM_PER_S};
+use crate::spec::OutputKind;
+use crate::task::{Output, Task};
+use export::robot::Motion;
+use file::{read, resolve_cut, Block, DesignFile, ResolvedCut};
+use report::{cut_report, summary, BlockInfo, DesignReport, DesignSettings};
+
+/// A surface designed for the hot blade ("Designing for Robotic Hot-Blade Cutting"): the
+/// design file's curves, each block's piece replaced by its elastica, with the deviation,
+/// the blade's checks, robot poses and RAPID. Write
+/// `Design(design: "designs/arch.json")`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Design {
+    /// Design file, relative to the job file: JSON, schema `schemas/design.schema.json`
+    /// (README, "Designing for the hot blade"). Coordinates in job units.
+    #[schemars(length(min = 1))]
+    pub design: String,
+    /// Sampling density: `Design` (11 planes per cut, 60 points per curve and block, a
+    /// quick look) or `Production` (51 planes, 200 points: what the robot files need).
+    /// Default: `Production`.
+    #[serde(default)]
+    pub resolution: Resolution,
+    /// Cutting speed of the blade through the block (> 0), job units per second.
+    /// Default: 7 mm/s.
+    #[serde(default)]
+    pub speed: Option<f64>,
+    /// Approach and retreat distance of the blade before and after the block, along the
+    /// cut (≥ 0). Default: 50 mm.
+    #[serde(default)]
+    pub approach: Option<f64>,
+}
+
+/// Sampling density of a `Design` run ("Designing for Robotic Hot-Blade Cutting" §5.1).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+pub enum Resolution {
+    /// 11 planes per cut, 60 points per curve and block.
+    Design,
+    /// 51 planes per cut, 200 points per curve and block; robot files need it.
+    #[default]
+    Production,
+}
+
+impl Resolution {
+    /// Cutting planes per cut and points per curve and block.
+    pub fn density(self) -> (usize, usize) {
+        match self {
+            Self::Design => (11, 60),
+            Self::Production => (51, 200),
+        }
+    }
+}
+
+/// Parameters of a `Design` run.
+#[derive(Debug, Clone)]
+pub struct DesignParams {
+    /// The design file (resolved path, and as written).
+    pub file: (PathBuf, String),
+    /// The resolution.
+    pub resolution: Resolution,
+    /// Planes per cut.
+    pub planes: usize,
+    /// Points per curve and block.
+    pub points: usize,
+    /// The blade.
+    pub blade: BladeParams,
+    /// Cutting speed and approach distance of the robot programs.
+    pub motion: Motion,
+}
+
+/// What a `Design` run produced.
+#[derive(Debug, Clone)]
+pub struct DesignRun {
+    /// The design file.
+    pub design: DesignFile,
+    /// Its blocks.
+    pub blocks: Vec<Block>,
+    /// Per cut: resolved, and its elastica.
+    pub cuts: Vec<(ResolvedCut, CutResult)>,
+    /// The robot cell's plan (when the job writes RAPID or gives a cell).
+    pub cell: Option<CellPlan>,
+}
+
+const PTR: &str = "/task/Design";
+
+/// The design's problems beyond its schema: blocks, cuts, each construction, the blade's
+/// length, as `(pointer, message)`; and the resolved cuts when there are none.
+fn check_design(d: &DesignFile, blade: f64) -> (Vec<(String, String)>, Vec<ResolvedCut>) {
+    let mut errors = Vec::new();
+    let blocks = d.blocks();
+    for (i, b) in blocks.iter().enumerate() {
+        let at = match d.blocks {
+            file::BlocksSpec::List(_) => format!("/blocks/List/{i}"),
+            file::BlocksSpec::Grid(_) => "/blocks/Grid".to_string(),
+        };
+        if b.min.iter().chain(b.max.iter()).any(|v| !v.is_finite())
+            || (0..3).any(|k| !(b.max[k] > b.min[k]))
+        {
+            errors.push((
+                at.clone(),
+                format!("block `{}` must have max > min on every axis", b.id),
+            ));
+        }
+        if blocks[..i].iter().any(|c| c.id == b.id) {
+            errors.push((at, format!("block `{}` is named twice", b.id)));
+        }
+    }
+    let mut used: Vec<&str> = Vec::new();
+    let mut cuts = Vec::new();
+    for (i, c) in d.cuts.iter().enumerate() {
+        if d.cuts[..i].iter().any(|o| o.id == c.id) {
+            errors.push((
+                format!("/cuts/{i}/id"),
+                format!("cut `{}` is named twice", c.id),
+            ));
+        }
+        for (k, b) in c.blocks.iter().enumerate() {
+            if used.contains(&b.as_str()) {
+                errors.push((
+                    format!("/cuts/{i}/blocks/{k}"),
+                    format!("block `{b}` is already cut by an earlier cut: several cuts per block are not offered yet"),
+                ));
+            }
+        }
+        used.extend(c.blocks.iter().map(String::as_str));
+        match resolve_cut(c, &blocks) {
+            Ok(r) => {
+                for (s, st) in r.stations.iter().enumerate() {
+                    for (k, piece) in st.curve.pieces().iter().enumerate() {
+                        let length = piece.length();
+                        if length > blade {
+                            errors.push((
+                                format!("/cuts/{i}/stations/{s}/curve"),
+                                format!("the piece in block `{}` is {length:.3} long, longer than the blade ({blade:.3}): shorten it or lengthen blade.length", c.blocks[k]),
+                            ));
+                        }
+                    }
+                }
+                cuts.push(r);
+            }
+            Err(list) => errors.extend(
+                list.into_iter()
+                    .map(|(p, m)| (format!("/cuts/{i}{p}"), format!("cut `{}`: {m}", c.id))),
+            ),
+        }
+    }
+    (errors, cuts)
+}
+
+impl Design {
+    fn design_error(&self, job: &JobFields<'_>, pointer: &str, m: String) -> JobError {
+        job.error(
+            &format!("{PTR}/design"),
+            format!("{} {pointer}: {m}", self.design),
+        )
+    }
+}
+
+impl Task for Design {
+    const NAME: &'static str = "Design";
+    const REPORT_SCHEMA: &'static str = "design-report.schema.json";
+    const OUTPUTS: &'static [Output<Self>] = &[
+        Output::new(OutputKind::Svg, outputs::svg),
+        Output::new(OutputKind::Gltf, outputs::gltf),
+        Output::new(OutputKind::RobotTargets, outputs::robot),
+        Output::new(OutputKind::Rapid, outputs::robot),
+    ];
+    type Params = DesignParams;
+    type Run = DesignRun;
+    type Report = DesignReport;
+
+    fn check(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+        if job.surface.is_some() {
+            errors.push(job.error(
+                "/surface",
+                "task Design takes its geometry from the design file: leave surface out",
+            ));
+        }
+        if job.block.is_some() {
+            errors.push(job.error(
+                "/block",
+                "task Design takes its blocks from the design file: leave block out",
+            ));
+        }
+        job.check_motion(PTR, self.speed, self.approach, errors);
+        robot_cell::check(job, (PTR, self.speed, self.approach), errors);
+        if self.resolution == Resolution::Design {
+            for (i, o) in job.outputs.iter().enumerate() {
+                if matches!(o.kind(), OutputKind::RobotTargets | OutputKind::Rapid) {
+                    errors.push(job.error(
+                        &format!("/outputs/{i}"),
+                        format!("robot files are written at Production resolution: set the task's resolution to Production, or leave {} out", o.name()),
+                    ));
+                }
+            }
+        }
+        match read(&job.base.join(&self.design)) {
+            Err(m) => errors.push(job.error(&format!("{PTR}/design"), m)),
+            Ok(d) => {
+                let blade = blade_of(job.blade, job.units).length;
+                for (p, m) in check_design(&d, blade).0 {
+                    errors.push(self.design_error(job, &p, m));
+                }
+            }
+        }
+    }
+
+    fn params(&self, job: &Context) -> Result<DesignParams> {
+        let base = job.path.parent().unwrap_or(std::path::Path::new("."));
+        let (planes, points) = self.resolution.density();
+        let per_mm = job.per_mm();
+        Ok(DesignParams {
+            file: (base.join(&self.design), self.design.clone()),
+            resolution: self.resolution,
+            planes,
+            points,
+            blade: BladeParams {
+                length: job.blade.length,
+                lead_in_share: 0.5,
+                max_curvature: Some(job.blade.max_curvature),
+                max_inflections: Some(job.blade.max_inflections as usize),
+            },
+            motion: Motion {
+                speed: self.speed.unwrap_or(BLADE_SPEED_MM_PER_S * per_mm),
+                approach: self.approach.unwrap_or(APPROACH_MM * per_mm),
+            },
+        })
+    }
+
+    fn estimate(p: &DesignParams, _: &Context) -> Estimate {
+        let (cuts, pieces) = read(&p.file.0)
+            .map(|d| {
+                let pieces: usize = d.cuts.iter().map(|c| c.blocks.len()).sum();
+                (d.cuts.len(), pieces)
+            })
+            .unwrap_or((1, 1));
+        // a closed-form boundary-value solve with its discrete start: ~2·10⁵ steps
+        let solves = (pieces * (p.planes + 2)) as f64;
+        Estimate::new(
+            solves * (4e4 + 64.0 * p.points as f64) + cuts as f64 * 1e4 + 1e7,
+            solves * 2e5,
+            "/task/Design/resolution",
+            "use resolution Design, or split the design into fewer cuts and blocks",
+        )
+    }
+
+    fn run(params: &DesignParams, job: &Context, progress: &dyn Progress) -> Result<DesignRun> {
+        let design = read(&params.file.0)
+            .map_err(|m| JobError::semantic(&job.path, &format!("{PTR}/design"), m))?;
+        let (problems, resolved) = check_design(&design, params.blade.length);
+        if let Some((p, m)) = problems.into_iter().next() {
+            return Err(job.fail(format!("{} {p}: {m}", params.file.1)));
+        }
+        let blocks = design.blocks();
+        let total: usize = resolved
+            .iter()
+            .map(|c| c.stations.len() + params.planes)
+            .sum();
+        progress.start("solving the elastica of every curve", total as u64);
+        let tick = || progress.tick();
+        let cuts = resolved
+            .into_iter()
+            .zip(&design.cuts)
+            .map(|(r, spec)| {
+                let cp = CutParams {
+                    frame: r.frame,
+                    faces: r.faces.clone(),
+                    stations: r.stations.clone(),
+                    blade: params.blade.clone(),
+                    planes: params.planes,
+                };
+                design::cut::solve(&cp, &tick)
+                    .map(|res| (r, res))
+                    .map_err(|e| job.fail(format!("cut `{}`: {e}", spec.id)))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        progress.finish();
+        let cell = if job.rapid || job.cell.is_some() {
+            let (t, sizes) = outputs::targets(&blocks, &cuts, params.blade.length, job.units);
+            let m = &params.motion;
+            Some(robot_cell::plan(job, &t, &sizes, m.speed, m.approach)?)
+        } else {
+            None
+        };
+        Ok(DesignRun {
+            design,
+            blocks,
+            cuts,
+            cell,
+        })
+    }
+
+    fn nothing_to_cut(run: &DesignRun) -> Option<String> {
+        let poses: usize = run
+            .cuts
+            .iter()
+            .map(|(_, r)| r.planes.len() * r.planes.first().map_or(0, |p| p.pieces.len()))
+            .sum();
+        (poses == 0).then(|| "the design has no cut with a blade pose".to_string())
+    }
+
+    fn report(params: &DesignParams, run: &DesignRun, job: &Context) -> DesignReport {
+        let numbers = outputs::block_numbers(&run.blocks, &run.cuts);
+        let cuts: Vec<_> = run
+            .cuts
+            .iter()
+            .zip(&run.design.cuts)
+            .map(|((r, res), spec)| {
+                let blocks: Vec<&Block> = r.blocks.iter().map(|&k| &run.blocks[k]).collect();
+                cut_report(&spec.id, &blocks, &r.faces, res)
+            })
+            .collect();
+        DesignReport {
+            job: job.name.clone(),
+            task: Self::NAME.into(),
+            units: job.units,
+            design: params.file.1.clone(),
+            settings: DesignSettings {
+                resolution: params.resolution,
+                planes_per_block: params.planes,
+                points_per_curve: params.points,
+                blade_length: params.blade.length,
+                max_curvature: job.blade.max_curvature,
+                max_inflections: job.blade.max_inflections,
+                speed: params.motion.speed,
+                approach: params.motion.approach,
+            },
+            blocks: run
+                .blocks
+                .iter()
+                .zip(numbers)
+                .map(|(b, number)| BlockInfo {
+                    id: b.id.clone(),
+                    number,
+                    min: b.min.into(),
+                    max: b.max.into(),
+                })
+                .collect(),
+            summary: summary(&cuts),
+            cuts,
+            cell: run.cell.as_ref().map(|c| c.report.clone()),
+        }
+    }
+
+    fn summary(r: &DesignReport, job: &Context) -> String {
+        let units = job.units.symbol();
+        let s = &r.summary;
+        let verdict = if s.all_ok {
+            "  every blade within its curvature and inflection limits".to_string()
+        } else {
+            format!(
+                "  warning: blades breaking a limit — strain {}, inflections {}",
+                s.strain_flags, s.inflection_flags
+            )
+        };
+        let cell = r
+            .cell
+            .as_ref()
+            .map(|c| format!("\n{}", c.summary()))
+            .unwrap_or_default();
+        format!(
+            "{} (Design, {:?}, {}): {} cut(s), {} block(s), {} curve(s), {} blade pose(s)\n  design vs elastica: ≤ {:.3} % of the length; eq. (11) residual ≤ {:.3}; blade max |κ| {:.4e} /{units}\n{verdict}{cell}",
+            r.job, r.settings.resolution, r.design, s.cuts, r.blocks.len(), s.curves, s.poses,
+            s.max_deviation_percent, s.max_eq11_residual, s.blade_max_curvature,
+        )
+    }
+}

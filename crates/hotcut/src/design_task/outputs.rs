@@ -1,0 +1,331 @@
+//! The files of a `Design` run: an SVG per block (design curves, control polygons and
+//! their elastica dashed, like the paper's figs. 12/14/15), `model.gltf` (the blocks, the
+//! design surface and the elastica surface coloured by its deviation), and the robot files
+//! ([`crate::output::robot`]).
+
+use design::bezier::Bezier;
+use design::cut::{CurveResult, CutResult};
+use elastica::sweep::frame_quaternion;
+use export::gltf::{f32s, write_gltf, Material, Mesh};
+use export::robot::{Targets, TargetsBlock};
+use export::svg::{bounds, SvgDoc, Viewport};
+use nalgebra::{Vector2, Vector3};
+
+use super::file::{Block, ResolvedCut};
+use super::Design;
+use crate::output::robot;
+use crate::output::{block_material, Files};
+use crate::spec::{OutputSpec, Units};
+use crate::task::Finished;
+
+type Done<'a> = Finished<'a, Design>;
+
+/// The robot files' number of each block (1, 2, … in the order of the cuts and across
+/// each), `None` for a block no cut runs through.
+pub(super) fn block_numbers(
+    blocks: &[Block],
+    cuts: &[(ResolvedCut, CutResult)],
+) -> Vec<Option<usize>> {
+    let mut out = vec![None; blocks.len()];
+    let mut next = 1;
+    for (r, _) in cuts {
+        for &k in &r.blocks {
+            out[k] = Some(next);
+            next += 1;
+        }
+    }
+    out
+}
+
+/// The targets of a run: per cut and block (in robot-file order) the poses on every
+/// cutting plane, the block's frame having its x-axis along the cut; and the blocks' sizes
+/// in those frames.
+pub(super) fn targets(
+    blocks: &[Block],
+    cuts: &[(ResolvedCut, CutResult)],
+    blade_length: f64,
+    units: Units,
+) -> (Targets, Vec<[f64; 3]>) {
+    let numbers = block_numbers(blocks, cuts);
+    let (mut out, mut sizes) = (Vec::new(), Vec::new());
+    for (r, res) in cuts {
+        let f = &r.frame;
+        for (piece, &k) in r.blocks.iter().enumerate() {
+            let b = &blocks[k];
+            let (lo, hi) = (r.faces[piece], r.faces[piece + 1]);
+            let origin = f.to_world(r.span.0, &Vector2::new(lo, b.min.z));
+            out.push(TargetsBlock {
+                block: numbers[k].unwrap_or(0),
+                origin: origin.into(),
+                rotation: frame_quaternion(&f.normal, &f.v),
+                poses: res
+                    .planes
+                    .iter()
+                    .map(|p| robot::pose(&p.pieces[piece].pose))
+                    .collect(),
+            });
+            sizes.push([r.span.1 - r.span.0, hi - lo, b.max.z - b.min.z]);
+        }
+    }
+    (robot::targets(units, blade_length, out), sizes)
+}
+
+/// `targets.json` and `targets.csv`, or the RAPID modules.
+pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    let (t, _) = targets(
+        &done.run.blocks,
+        &done.run.cuts,
+        done.params.blade.length,
+        done.job.units,
+    );
+    robot::write(files, &t, done.run.cell.as_ref(), &done.job.name, o.kind())
+}
+
+/// `n` points of `b` equally spaced in arc length.
+fn design_points(b: &Bezier, n: usize) -> Vec<[f64; 2]> {
+    let length = b.length();
+    (0..n)
+        .map(|i| b.point(b.at_length(length * i as f64 / (n - 1) as f64)))
+        .collect()
+}
+
+/// Piece `k` of curve `c`: design and elastica at `n` equal arc-length fractions.
+fn sampled(c: &CurveResult, k: usize, n: usize) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
+    let p = &c.pieces[k];
+    let elastica = p
+        .proxy
+        .elastica
+        .evaluator()
+        .map(|e| {
+            (0..n)
+                .map(|i| e.eval(i as f64 / (n - 1) as f64).p)
+                .collect()
+        })
+        .unwrap_or_default();
+    (design_points(&p.design, n), elastica)
+}
+
+/// `block_<id>.svg`: per cut through the block, its piece at every station: design curve
+/// (black), control polygon (grey), elastica (red, dashed), blade extension (light grey),
+/// over the block's outline.
+pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    let units = done.job.units.symbol();
+    let n = done.params.points;
+    for (r, res) in &done.run.cuts {
+        for (piece, &k) in r.blocks.iter().enumerate() {
+            let b = &done.run.blocks[k];
+            let doc = block_svg(b, r, res, piece, n, units);
+            files.add(format!("block_{}.svg", file_name(&b.id)), |buf| {
+                doc.write(buf)
+            })?;
+        }
+    }
+    Ok(())
+}
+
+/// A block id as a file name: letters, digits, `-` and `_` kept, anything else `_`.
+fn file_name(id: &str) -> String {
+    id.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+const STATION_COLOURS: [&str; 4] = ["#000000", "#1f5fbf", "#2a8a2a", "#8a4a00"];
+
+fn block_svg(
+    b: &Block,
+    r: &ResolvedCut,
+    res: &CutResult,
+    piece: usize,
+    n: usize,
+    units: &str,
+) -> SvgDoc {
+    const W: f64 = 900.0;
+    const H: f64 = 600.0;
+    let mut doc = SvgDoc::new(W, H);
+    let (lo, hi) = (r.faces[piece], r.faces[piece + 1]);
+    let outline = [
+        [lo, b.min.z],
+        [hi, b.min.z],
+        [hi, b.max.z],
+        [lo, b.max.z],
+        [lo, b.min.z],
+    ];
+    let curves: Vec<_> = res.stations.iter().map(|c| sampled(c, piece, n)).collect();
+    let polygons: Vec<[[f64; 2]; 4]> = res
+        .stations
+        .iter()
+        .map(|c| c.pieces[piece].design.p)
+        .collect();
+    let (wlo, whi) = bounds(
+        outline
+            .iter()
+            .chain(curves.iter().flat_map(|(d, e)| d.iter().chain(e)))
+            .chain(polygons.iter().flatten())
+            .map(|p| (p[0], p[1])),
+    );
+    let vp = Viewport::fit(wlo, whi, (40.0, 90.0, W - 80.0, H - 150.0));
+    let map = |pts: &[[f64; 2]]| pts.iter().map(|p| vp.map(p[0], p[1])).collect::<Vec<_>>();
+    let worst = res
+        .stations
+        .iter()
+        .map(|c| &c.pieces[piece].proxy)
+        .fold((0.0f64, 0.0f64), |(d, e), p| {
+            (d.max(p.max_deviation), e.max(p.eq11_residual))
+        });
+    doc.text(
+        (30.0, 28.0),
+        16.0,
+        "black",
+        &format!(
+            "block {} — cut `{}` through {} block(s), piece {} of {}",
+            b.id,
+            r.id,
+            r.blocks.len(),
+            piece + 1,
+            r.blocks.len()
+        ),
+    );
+    doc.text(
+        (30.0, 50.0),
+        12.0,
+        "#444",
+        &format!(
+            "design vs elastica: max {:.4} {units} ({:.3} % of the length) · eq. (11) residual ≤ {:.3} · {} station(s), entry black",
+            worst.0,
+            100.0 * worst.0 / res.stations[0].pieces[piece].proxy.length.max(f64::MIN_POSITIVE),
+            worst.1,
+            res.stations.len()
+        ),
+    );
+    doc.text(
+        (30.0, 68.0),
+        12.0,
+        "#444",
+        "design curve solid · control polygon thin grey · elastica red dashed · blade extension light grey · block outline",
+    );
+    doc.polyline(&map(&outline), "#888888", 1.0, Some("block outline"));
+    for (i, (c, (design, elastica))) in res.stations.iter().zip(&curves).enumerate() {
+        let p = &c.pieces[piece];
+        let blade = p.blade.segment.sample(200).unwrap_or_default();
+        doc.polyline(
+            &map(&blade),
+            "#cccccc",
+            1.0,
+            Some("blade extended to its length"),
+        );
+        doc.polyline(&map(&p.design.p), "#999999", 0.6, Some("control polygon"));
+        for q in &p.design.p {
+            doc.circle(vp.map(q[0], q[1]), 2.5, "#999999", Some("control point"));
+        }
+        let colour = STATION_COLOURS[i % STATION_COLOURS.len()];
+        doc.polyline(
+            &map(design),
+            colour,
+            2.2,
+            Some(&format!("design curve, station {i}")),
+        );
+        doc.dashed_polyline(
+            &map(elastica),
+            "#e01010",
+            1.4,
+            6.0,
+            Some(&format!("elastica, station {i}")),
+        );
+    }
+    doc.text(
+        (30.0, H - 24.0),
+        12.0,
+        "#444",
+        &format!("across the cut (horizontal) and height (vertical), {units}; faces at {lo:.1} and {hi:.1}"),
+    );
+    doc
+}
+
+/// Deviation colour: blue at 0, green at half the tolerance, red at or beyond it.
+fn deviation_color(dev: f64, tolerance: f64) -> [f32; 4] {
+    let t = if tolerance > 0.0 {
+        (dev / tolerance).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    let r = (2.0 * t - 1.0).clamp(0.0, 1.0);
+    let g = 1.0 - (2.0 * t - 1.0).abs();
+    let b = (1.0 - 2.0 * t).clamp(0.0, 1.0);
+    [r as f32, g as f32, b as f32, 1.0]
+}
+
+/// A grid mesh of `rows × cols` points (row-major).
+fn grid_indices(rows: usize, cols: usize) -> Vec<u32> {
+    let mut out = Vec::with_capacity(6 * rows * cols);
+    for i in 0..rows.saturating_sub(1) {
+        for j in 0..cols.saturating_sub(1) {
+            let a = (i * cols + j) as u32;
+            let (b, c, d) = (a + 1, a + cols as u32, a + cols as u32 + 1);
+            out.extend([a, b, d, a, d, c]);
+        }
+    }
+    out
+}
+
+/// `model.gltf`: the blocks as translucent boxes; per cut and block the design surface
+/// (grey) and the elastica surface coloured by its distance to the design at equal arc
+/// length (blue 0, green half the job's `tolerance.max`, red at or beyond it).
+pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+    let tol = done.job.tolerance.max;
+    let n = done.params.points;
+    let materials = vec![
+        block_material(),
+        Material::new("design", [0.8, 0.8, 0.8, 1.0], false),
+        Material::new("elastica", [1.0, 1.0, 1.0, 1.0], false),
+    ];
+    let mut meshes = Vec::new();
+    for b in &done.run.blocks {
+        meshes.push(Mesh::from_box(
+            format!("block_{}", b.id),
+            b.min,
+            [Vector3::x(), Vector3::y(), Vector3::z()],
+            (b.max - b.min).into(),
+            0,
+        ));
+    }
+    for (r, res) in &done.run.cuts {
+        for (piece, &k) in r.blocks.iter().enumerate() {
+            let (mut design, mut elastica, mut colors) = (Vec::new(), Vec::new(), Vec::new());
+            for c in &res.planes {
+                let (d, e) = sampled(c, piece, n);
+                for (p, q) in d.iter().zip(&e) {
+                    let w = |v: &[f64; 2]| r.frame.to_world(c.offset, &Vector2::new(v[0], v[1]));
+                    design.push(f32s(&w(p)));
+                    elastica.push(f32s(&w(q)));
+                    colors.push(deviation_color((p[0] - q[0]).hypot(p[1] - q[1]), tol));
+                }
+            }
+            let indices = grid_indices(res.planes.len(), n);
+            let id = &done.run.blocks[k].id;
+            meshes.push(Mesh {
+                name: format!("design_{id}"),
+                positions: design,
+                colors: None,
+                indices: indices.clone(),
+                material: 1,
+            });
+            meshes.push(Mesh {
+                name: format!("elastica_{id}"),
+                positions: elastica,
+                colors: Some(colors),
+                indices,
+                material: 2,
+            });
+        }
+    }
+    files.add("model.gltf", |buf| {
+        write_gltf("hotcut", &meshes, &materials, buf)
+    })
+}
