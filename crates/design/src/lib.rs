@@ -15,6 +15,8 @@
 //! - [`loft`]: curves at stations along the cut lofted with √chord ("tight") spacing.
 //! - [`cut`]: one designed cut through a row of blocks: its curves on every station and
 //!   cutting plane, their elastica, the blade extended to its length and posed in 3D.
+//! - [`numerical`]: the numerical road ("Hot Blade Cuttings" §5.2, eq. 13): a refined
+//!   spline of least bending energy whose control points stay within ε of the input's.
 //! - [`proxy`]: how close a Bézier is to its elastica: deviation, length, curvature,
 //!   inflections, and the residual of the affine curvature law κ = λ₂x − λ₁y + α
 //!   ("Hot Blade Cuttings" eq. 11), which predicts the deviation cheaply.
@@ -44,6 +46,8 @@ pub mod cut;
 pub mod error;
 /// Lofting design curves along the cut.
 pub mod loft;
+/// The numerical spline approach: least bending energy within ε of the input.
+pub mod numerical;
 /// How close a Bézier is to its elastica.
 pub mod proxy;
 /// Design curves as one C² cubic B-spline over the blocks.

@@ -71,12 +71,19 @@ pub fn eq11_residual(b: &Bezier) -> f64 {
             (b.point(t), b.curvature(t))
         })
         .collect();
+    affine_curvature_residual(&rows, length)
+}
+
+/// The eq. (11) residual of a curve of `length` sampled at `rows` (point, curvature),
+/// evenly along it: κ fitted by λ₂x − λ₁y + α by least squares (coordinates about their
+/// centroid), the RMS residual times the length. NaN when the fit is singular.
+pub fn affine_curvature_residual(rows: &[([f64; 2], f64)], length: f64) -> f64 {
     let n = rows.len() as f64;
     let c = rows
         .iter()
         .fold([0.0, 0.0], |c, (p, _)| [c[0] + p[0] / n, c[1] + p[1] / n]);
     let (mut a, mut y) = (Matrix3::zeros(), Vector3::zeros());
-    for (p, k) in &rows {
+    for (p, k) in rows {
         let v = Vector3::new(p[0] - c[0], -(p[1] - c[1]), 1.0);
         a += v * v.transpose();
         y += v * *k;

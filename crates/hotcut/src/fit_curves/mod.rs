@@ -26,8 +26,9 @@ use crate::report::surface_kind;
 use crate::spec::{FitConstraintSpec, OutputKind};
 use crate::task::{Output, Task};
 use curves::{read_curves, InputCurve};
+use design::numerical::{numerical_spline, NumericalParams, NumericalResult};
 use elastica::fit::describe::{CurveFit, FitSummary};
-use report::{input_length, FitCurvesReport};
+use report::{input_length, FitCurvesReport, NumericalCurve};
 
 /// Fit every curve of `input` (or, without `input`, every section of the surface) by
 /// one elastica, line or arc — the shapes a hot blade takes ("Hot Blade Cuttings" §5.1).
@@ -52,6 +53,41 @@ pub struct FitCurves {
     #[serde(default = "default_fit_samples")]
     #[schemars(range(min = 3, max = 100000))]
     pub samples: u32,
+    /// `Analytic` (the closed-form elastica fit, always made) or additionally
+    /// `NumericalSpline(epsilon: ..)`: "Hot Blade Cuttings" §5.2, eq. (13). Default:
+    /// `Analytic`.
+    #[serde(default)]
+    pub method: FitMethod,
+}
+
+/// How `FitCurves` approximates each curve by an elastica.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub enum FitMethod {
+    /// The closed-form elastica fit.
+    #[default]
+    Analytic,
+    /// Also the numerical spline approach ("Hot Blade Cuttings" §5.2, eq. 13): the curve
+    /// as a cubic B-spline of `control_points` control points, and the spline of least
+    /// bending energy whose control points stay within `epsilon` of those; the end points
+    /// are kept, and with `fix_tangents` / `fix_length` the end tangents and the length.
+    /// Reported per curve beside the analytic fit (`numerical` in the report), drawn in
+    /// `fit.svg` in orange.
+    NumericalSpline {
+        /// Largest distance of a control point from the input spline's (> 0), job units.
+        epsilon: f64,
+        /// Control points of the refined spline, 6 to the curve's number of points.
+        /// Default: 24 (or the number of points, if fewer).
+        #[serde(default)]
+        #[schemars(range(min = 6, max = 10000))]
+        control_points: Option<u32>,
+        /// Keep the end tangents. Default: false.
+        #[serde(default)]
+        fix_tangents: bool,
+        /// Keep the length. Default: false.
+        #[serde(default)]
+        fix_length: bool,
+    },
 }
 
 fn default_fit_samples() -> u32 {
@@ -69,6 +105,8 @@ pub struct FitCurvesParams {
     pub constraint: FitConstraintSpec,
     /// Points per surface section.
     pub samples: usize,
+    /// The method.
+    pub method: FitMethod,
 }
 
 /// Curves and fits of a `FitCurves` run.
@@ -80,6 +118,8 @@ pub struct FitRun {
     pub curves: Vec<InputCurve>,
     /// Their fits (segment and matched parameters), or why not.
     pub fits: Vec<std::result::Result<FitResult, FitError>>,
+    /// With `NumericalSpline`: per curve its result, or why not.
+    pub numerical: Option<Vec<std::result::Result<NumericalResult, String>>>,
 }
 
 impl Task for FitCurves {
@@ -91,17 +131,51 @@ impl Task for FitCurves {
     type Report = FitCurvesReport;
 
     fn check(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
-        match &self.input {
-            Some(rel) => {
-                if let Err(m) = read_curves(&job.base.join(rel)) {
-                    errors.push(job.error(INPUT, m));
+        let numerical = match self.method {
+            FitMethod::Analytic => None,
+            FitMethod::NumericalSpline {
+                epsilon,
+                control_points,
+                ..
+            } => {
+                if !(epsilon > 0.0) || !epsilon.is_finite() {
+                    errors.push(job.error(
+                        "/task/FitCurves/method/NumericalSpline/epsilon",
+                        format!("epsilon must be a positive length, got {epsilon:?}"),
+                    ));
                 }
+                Some(control_points.map_or(6, |n| n as usize))
             }
+        };
+        match &self.input {
+            Some(rel) => match read_curves(&job.base.join(rel)) {
+                Err(m) => errors.push(job.error(INPUT, m)),
+                Ok(curves) => {
+                    let n = numerical.unwrap_or(0);
+                    if let Some(c) = curves.iter().find(|c| c.points.len() < n.max(4)) {
+                        errors.push(job.error(
+                            "/task/FitCurves/method/NumericalSpline/control_points",
+                            format!(
+                                "curve `{}` has {} points: the numerical spline needs at least 4, and at least control_points ({n})",
+                                c.id,
+                                c.points.len()
+                            ),
+                        ));
+                    }
+                }
+            },
             None if job.surface.is_none() => errors.push(job.error(
                 INPUT,
                 "task FitCurves needs `input` (a curves file) or a surface to section",
             )),
-            None => {}
+            None => {
+                if numerical.is_some_and(|n| n > self.samples as usize) {
+                    errors.push(job.error(
+                        "/task/FitCurves/method/NumericalSpline/control_points",
+                        "control_points must not exceed the task's samples",
+                    ));
+                }
+            }
         }
     }
 
@@ -111,6 +185,7 @@ impl Task for FitCurves {
             input: self.input.as_ref().map(|rel| (base.join(rel), rel.clone())),
             constraint: self.constraint,
             samples: self.samples as usize,
+            method: self.method,
         })
     }
 
@@ -164,10 +239,39 @@ impl Task for FitCurves {
             })
             .collect();
         progress.finish();
+        let numerical = match params.method {
+            FitMethod::Analytic => None,
+            FitMethod::NumericalSpline {
+                epsilon,
+                control_points,
+                fix_tangents,
+                fix_length,
+            } => {
+                progress.start("numerical splines", curves.len() as u64);
+                let out = curves
+                    .par_iter()
+                    .map(|c| {
+                        let n = control_points.map_or(24.min(c.points.len()), |n| n as usize);
+                        let p = NumericalParams {
+                            epsilon,
+                            control_points: n,
+                            fix_tangents,
+                            fix_length,
+                        };
+                        let r = numerical_spline(&c.points, &p).map_err(|e| e.to_string());
+                        progress.tick();
+                        r
+                    })
+                    .collect();
+                progress.finish();
+                Some(out)
+            }
+        };
         Ok(FitRun {
             source,
             curves,
             fits,
+            numerical,
         })
     }
 
@@ -178,14 +282,24 @@ impl Task for FitCurves {
             .zip(&run.fits)
             .map(|(c, f)| CurveFit::new(&c.id, c.points.len(), input_length(c), f))
             .collect();
+        let numerical = run.numerical.as_ref().map(|list| {
+            run.curves
+                .iter()
+                .zip(&run.fits)
+                .zip(list)
+                .map(|((c, f), r)| NumericalCurve::new(&c.id, r, f.as_ref().ok()))
+                .collect()
+        });
         FitCurvesReport {
             job: job.name.clone(),
             task: Self::NAME.into(),
             units: job.units,
             source: run.source.clone(),
             constraint: params.constraint,
+            method: params.method,
             summary: FitSummary::of(&entries),
             curves: entries,
+            numerical,
         }
     }
 
@@ -198,6 +312,26 @@ impl Task for FitCurves {
             s.curves, s.inflectional, s.noninflectional, s.arcs, s.lines,
             s.median_rms, s.max_rms, s.max_distance
         );
+        if let Some(list) = &r.numerical {
+            let active = list.iter().filter(|n| n.constraint_active).count();
+            let worst = list.iter().map(|n| n.eq11_residual).fold(0.0, f64::max);
+            let far = list
+                .iter()
+                .filter_map(|n| n.distance_to_analytic)
+                .fold(0.0, f64::max);
+            out.push_str(&format!(
+                "\n  numerical spline: {active} of {} curve(s) with an active ε constraint; eq. (11) residual ≤ {worst:.3}; ≤ {far:.3e} {units} from the analytic fit",
+                list.len()
+            ));
+            for n in list {
+                if let Some(e) = &n.error {
+                    out.push_str(&format!(
+                        "\n  warning: curve `{}`: numerical spline failed: {e}",
+                        n.id
+                    ));
+                }
+            }
+        }
         for c in &r.curves {
             if let Some(e) = &c.error {
                 out.push_str(&format!(

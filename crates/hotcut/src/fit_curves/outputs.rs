@@ -63,8 +63,10 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
         12.0,
         "#444",
         &format!(
-            "RMS median {:.3e}, max {:.3e} {units} · input points grey; fit: elastica blue, arc green, line purple; inflections red",
-            s.median_rms, s.max_rms
+            "RMS median {:.3e}, max {:.3e} {units} · input points grey; fit: elastica blue, arc green, line purple; inflections red{}",
+            s.median_rms,
+            s.max_rms,
+            if r.numerical.is_some() { "; numerical spline orange, dashed" } else { "" }
         ),
     );
     for (k, (c, e)) in run.curves.iter().zip(&r.curves).enumerate() {
@@ -76,7 +78,19 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
             "none",
         );
         let fitted: &[[f64; 2]] = e.fit.as_ref().map_or(&[], |f| &f.fitted);
-        let (lo, hi) = bounds(c.points.iter().chain(fitted).map(|p| (p[0], p[1])));
+        let numerical: &[[f64; 2]] = run
+            .numerical
+            .as_ref()
+            .and_then(|n| n.get(k))
+            .and_then(|n| n.as_ref().ok())
+            .map_or(&[], |n| &n.samples);
+        let (lo, hi) = bounds(
+            c.points
+                .iter()
+                .chain(fitted)
+                .chain(numerical)
+                .map(|p| (p[0], p[1])),
+        );
         let vp = Viewport::fit(lo, hi, (x0 + 10.0, y0 + 24.0, cell_w - 20.0, cell_h - 34.0));
         let title = match &e.fit {
             Some(f) => format!("{}: {}, RMS {:.2e}", e.id, f.family, f.rms),
@@ -86,6 +100,10 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
         let step = c.points.len().div_ceil(FIT_DOTS).max(1);
         for p in c.points.iter().step_by(step) {
             doc.circle(vp.map(p[0], p[1]), 1.4, "#999", None);
+        }
+        if !numerical.is_empty() {
+            let pts: Vec<(f64, f64)> = numerical.iter().map(|p| vp.map(p[0], p[1])).collect();
+            doc.dashed_polyline(&pts, "#f08000", 1.2, 4.0, Some("numerical spline (eq. 13)"));
         }
         match &e.fit {
             Some(f) => {
