@@ -245,6 +245,33 @@ pub struct CurveResult {
     pub joints: Vec<Joint>,
 }
 
+impl CurveResult {
+    /// Piece `k`'s design curve and elastica at `n ≥ 2` points of equal arc-length
+    /// fractions (empty when the elastica cannot be evaluated).
+    pub fn sampled(&self, k: usize, n: usize) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
+        let p = &self.pieces[k];
+        let n = n.max(2);
+        let elastica = p
+            .proxy
+            .elastica
+            .evaluator()
+            .map(|e| {
+                (0..n)
+                    .map(|i| e.eval(i as f64 / (n - 1) as f64).p)
+                    .collect()
+            })
+            .unwrap_or_default();
+        let length = p.design.length();
+        let design = (0..n)
+            .map(|i| {
+                p.design
+                    .point(p.design.at_length(length * i as f64 / (n - 1) as f64))
+            })
+            .collect();
+        (design, elastica)
+    }
+}
+
 /// A designed cut and its elastica.
 #[derive(Debug, Clone, Serialize)]
 pub struct CutResult {

@@ -15,6 +15,8 @@
 //! - [`loft`]: curves at stations along the cut lofted with √chord ("tight") spacing.
 //! - [`cut`]: one designed cut through a row of blocks: its curves on every station and
 //!   cutting plane, their elastica, the blade extended to its length and posed in 3D.
+//! - [`envelope`]: several cuts through one block: priority, cuts that touch nothing
+//!   dropped, the lower envelope and how far the elastica move its crease.
 //! - [`numerical`]: the numerical road ("Hot Blade Cuttings" §5.2, eq. 13): a refined
 //!   spline of least bending energy whose control points stay within ε of the input's.
 //! - [`proxy`]: how close a Bézier is to its elastica: deviation, length, curvature,
@@ -42,6 +44,8 @@ pub mod bvp;
 pub mod chain;
 /// One designed cut through a row of blocks.
 pub mod cut;
+/// Several cuts through one block: the lower envelope and its crease.
+pub mod envelope;
 /// Errors of the design crate.
 pub mod error;
 /// Lofting design curves along the cut.

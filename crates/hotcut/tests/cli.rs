@@ -665,3 +665,89 @@ fn bad_block_carriers_are_rejected_with_their_pointer() {
         &["/cell/block_carrier/grip"],
     );
 }
+
+#[test]
+fn bad_designs_are_rejected_naming_the_station_and_face() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let g1 = std::fs::read_to_string(root.join("jobs/designs/bezier-g1.json")).unwrap();
+    let spline = std::fs::read_to_string(root.join("jobs/designs/spline-c2.json")).unwrap();
+    let job = |resolution: &str, outputs: &str| {
+        format!(
+            "Job(name: \"t\", blade: Blade(length: 900, max_curvature: 0.011, max_inflections: 2), task: Design(design: \"d.json\", resolution: {resolution}), outputs: [{outputs}])"
+        )
+    };
+    let ok = job("Production", "Report, Svg");
+    let bad = |design: &str, needles: &[&str]| {
+        common::expect_invalid_with(&ok, &[("d.json", design)], needles);
+    };
+    // the last leg of piece 0 and the first of piece 1 no longer on one line
+    bad(
+        &g1.replacen("[750, 350]", "[750, 390]", 1),
+        &[
+            "/task/Design/design",
+            "/cuts/0/stations/1/curve",
+            "face 1",
+            "one line",
+        ],
+    );
+    // a piece's end off its face
+    bad(
+        &g1.replacen("[1800, 350]", "[1790, 350]", 1),
+        &["/cuts/0/stations/0/curve", "face 3"],
+    );
+    // a spline's knot image off its face; too few control points
+    bad(
+        &spline.replacen("[600, 400]", "[650, 400]", 1),
+        &["/cuts/0/stations/0/curve", "knot image"],
+    );
+    bad(
+        &spline
+            .replacen("[1800, 320]]", "]", 1)
+            .replacen("[1600, 220], ]", "[1600, 220]]", 1),
+        &["control points"],
+    );
+    // blocks: unknown, not side by side, unknown key, a huge grid
+    bad(
+        &g1.replacen("\"x0y2\"]", "\"x0y9\"]", 1),
+        &["/cuts/0/blocks/2", "no block"],
+    );
+    bad(
+        &g1.replacen("\"x0y1\", \"x0y2\"", "\"x0y2\", \"x0y1\"", 1),
+        &["side by side"],
+    );
+    bad(
+        &g1.replacen("\"id\": \"wave\"", "\"id\": \"wave\", \"colour\": 1", 1),
+        &["colour"],
+    );
+    bad(
+        &g1.replacen("\"count\": [1, 3]", "\"count\": [1, 3000000]", 1),
+        &["design.schema.json"],
+    );
+    // stations: the ends required, in order
+    bad(
+        &g1.replacen("{\"at\": 1,", "{\"at\": 0.9,", 1),
+        &["/stations", "exit face"],
+    );
+    // a piece longer than the blade
+    common::expect_invalid_with(
+        &ok.replace("length: 900", "length: 500"),
+        &[("d.json", &g1)],
+        &["longer than the blade", "blade.length"],
+    );
+    // robot files need Production; no surface
+    common::expect_invalid_with(
+        &job("Design", "Report, Rapid"),
+        &[("d.json", &g1)],
+        &["/outputs/1", "Production"],
+    );
+    common::expect_invalid_with(
+        &ok.replace(
+            "task:",
+            "surface: HeightField(z: \"0\", x: (0, 1), y: (0, 1)), task:",
+        ),
+        &[("d.json", &g1)],
+        &["/surface", "design file"],
+    );
+    // a missing design file
+    common::expect_invalid(&ok, &["/task/Design/design", "cannot read"]);
+}

@@ -7,6 +7,8 @@
 
 /// The design file.
 pub mod file;
+/// Blocks cut several times.
+pub mod multi;
 /// Its files: SVG per block, glTF, robot targets, RAPID.
 mod outputs;
 /// Its report.
@@ -29,7 +31,9 @@ use crate::spec::OutputKind;
 use crate::task::{Output, Task};
 use export::robot::Motion;
 use file::{read, resolve_cut, Block, DesignFile, ResolvedCut};
-use report::{cut_report, summary, BlockInfo, DesignReport, DesignSettings};
+use report::{
+    cut_report, summary, BlockCut, BlockInfo, DesignReport, DesignSettings, EnvelopeReport,
+};
 
 /// A surface designed for the hot blade ("Designing for Robotic Hot-Blade Cutting"): the
 /// design file's curves, each block's piece replaced by its elastica, with the deviation,
@@ -103,6 +107,10 @@ pub struct DesignRun {
     pub blocks: Vec<Block>,
     /// Per cut: resolved, and its elastica.
     pub cuts: Vec<(ResolvedCut, CutResult)>,
+    /// Per block: the cuts through it and, with several, their envelope.
+    pub multi: Vec<multi::BlockCuts>,
+    /// The (cut, piece) pairs the robots cut, in order.
+    pub order: Vec<(usize, usize)>,
     /// The robot cell's plan (when the job writes RAPID or gives a cell).
     pub cell: Option<CellPlan>,
 }
@@ -131,7 +139,6 @@ fn check_design(d: &DesignFile, blade: f64) -> (Vec<(String, String)>, Vec<Resol
             errors.push((at, format!("block `{}` is named twice", b.id)));
         }
     }
-    let mut used: Vec<&str> = Vec::new();
     let mut cuts = Vec::new();
     for (i, c) in d.cuts.iter().enumerate() {
         if d.cuts[..i].iter().any(|o| o.id == c.id) {
@@ -140,15 +147,6 @@ fn check_design(d: &DesignFile, blade: f64) -> (Vec<(String, String)>, Vec<Resol
                 format!("cut `{}` is named twice", c.id),
             ));
         }
-        for (k, b) in c.blocks.iter().enumerate() {
-            if used.contains(&b.as_str()) {
-                errors.push((
-                    format!("/cuts/{i}/blocks/{k}"),
-                    format!("block `{b}` is already cut by an earlier cut: several cuts per block are not offered yet"),
-                ));
-            }
-        }
-        used.extend(c.blocks.iter().map(String::as_str));
         match resolve_cut(c, &blocks) {
             Ok(r) => {
                 for (s, st) in r.stations.iter().enumerate() {
@@ -301,8 +299,12 @@ impl Task for Design {
             })
             .collect::<Result<Vec<_>>>()?;
         progress.finish();
+        let grid = (2 * params.planes - 1).min(101);
+        let multi = multi::block_cuts(&blocks, &cuts, grid, params.points);
+        let order = multi::robot_order(&multi, &cuts);
         let cell = if job.rapid || job.cell.is_some() {
-            let (t, sizes) = outputs::targets(&blocks, &cuts, params.blade.length, job.units);
+            let (t, sizes) =
+                outputs::targets(&blocks, &cuts, &order, params.blade.length, job.units);
             let m = &params.motion;
             Some(robot_cell::plan(job, &t, &sizes, m.speed, m.approach)?)
         } else {
@@ -312,21 +314,22 @@ impl Task for Design {
             design,
             blocks,
             cuts,
+            multi,
+            order,
             cell,
         })
     }
 
     fn nothing_to_cut(run: &DesignRun) -> Option<String> {
         let poses: usize = run
-            .cuts
+            .order
             .iter()
-            .map(|(_, r)| r.planes.len() * r.planes.first().map_or(0, |p| p.pieces.len()))
+            .map(|&(c, _)| run.cuts[c].1.planes.len())
             .sum();
         (poses == 0).then(|| "the design has no cut with a blade pose".to_string())
     }
 
     fn report(params: &DesignParams, run: &DesignRun, job: &Context) -> DesignReport {
-        let numbers = outputs::block_numbers(&run.blocks, &run.cuts);
         let cuts: Vec<_> = run
             .cuts
             .iter()
@@ -354,15 +357,18 @@ impl Task for Design {
             blocks: run
                 .blocks
                 .iter()
-                .zip(numbers)
-                .map(|(b, number)| BlockInfo {
-                    id: b.id.clone(),
-                    number,
-                    min: b.min.into(),
-                    max: b.max.into(),
-                })
+                .zip(&run.multi)
+                .map(|(b, m)| block_info(b, m, run))
                 .collect(),
-            summary: summary(&cuts),
+            summary: {
+                let mut s = summary(&cuts);
+                s.poses = run
+                    .order
+                    .iter()
+                    .map(|&(c, _)| run.cuts[c].1.planes.len())
+                    .sum();
+                s
+            },
             cuts,
             cell: run.cell.as_ref().map(|c| c.report.clone()),
         }
@@ -371,6 +377,34 @@ impl Task for Design {
     fn summary(r: &DesignReport, job: &Context) -> String {
         let units = job.units.symbol();
         let s = &r.summary;
+        let mut multi = String::new();
+        for b in r.blocks.iter().filter(|b| b.envelope.is_some()) {
+            let order: Vec<&str> = b
+                .cuts
+                .iter()
+                .filter(|c| c.note.is_none())
+                .map(|c| c.cut.as_str())
+                .collect();
+            let e = b
+                .envelope
+                .as_ref()
+                .map(|e| (e.max_deviation, e.crease_deviation));
+            multi.push_str(&format!(
+                "\n  block {}: cuts {} (primary first); top: elastica vs design ≤ {:.3} {units}, crease moved ≤ {}",
+                b.id,
+                order.join(" → "),
+                e.map_or(0.0, |e| e.0),
+                e.and_then(|e| e.1).map_or("— (no crease)".to_string(), |d| format!("{d:.3} {units}")),
+            ));
+            for c in b.cuts.iter().filter(|c| c.note.is_some()) {
+                multi.push_str(&format!(
+                    "\n  note: block {}: cut `{}` dropped: {}",
+                    b.id,
+                    c.cut,
+                    c.note.as_deref().unwrap_or("")
+                ));
+            }
+        }
         let verdict = if s.all_ok {
             "  every blade within its curvature and inflection limits".to_string()
         } else {
@@ -385,9 +419,52 @@ impl Task for Design {
             .map(|c| format!("\n{}", c.summary()))
             .unwrap_or_default();
         format!(
-            "{} (Design, {:?}, {}): {} cut(s), {} block(s), {} curve(s), {} blade pose(s)\n  design vs elastica: ≤ {:.3} % of the length; eq. (11) residual ≤ {:.3}; blade max |κ| {:.4e} /{units}\n{verdict}{cell}",
+            "{} (Design, {:?}, {}): {} cut(s), {} block(s), {} curve(s), {} blade pose(s)\n  design vs elastica: ≤ {:.3} % of the length; eq. (11) residual ≤ {:.3}; blade max |κ| {:.4e} /{units}{multi}\n{verdict}{cell}",
             r.job, r.settings.resolution, r.design, s.cuts, r.blocks.len(), s.curves, s.poses,
             s.max_deviation_percent, s.max_eq11_residual, s.blade_max_curvature,
         )
+    }
+}
+
+/// The report of block `b` with its cuts `m`.
+fn block_info(b: &Block, m: &multi::BlockCuts, run: &DesignRun) -> BlockInfo {
+    let number = |c: usize| {
+        run.order
+            .iter()
+            .position(|&(k, p)| k == c && run.cuts[k].0.blocks[p] == m.block)
+            .map(|n| n + 1)
+    };
+    let id = |c: usize| run.design.cuts[c].id.clone();
+    let mut cuts: Vec<(usize, BlockCut)> = m
+        .cuts
+        .iter()
+        .map(|&(c, _)| {
+            let rank = m.rank(c);
+            let note = rank.is_none().then(|| {
+                "it lies above the material the earlier cuts leave: it would cut nothing"
+                    .to_string()
+            });
+            (
+                rank.unwrap_or(usize::MAX),
+                BlockCut {
+                    cut: id(c),
+                    number: number(c),
+                    note,
+                },
+            )
+        })
+        .collect();
+    cuts.sort_by_key(|c| c.0);
+    BlockInfo {
+        id: b.id.clone(),
+        min: b.min.into(),
+        max: b.max.into(),
+        cuts: cuts.into_iter().map(|c| c.1).collect(),
+        envelope: m.envelope.as_ref().map(|e| EnvelopeReport {
+            grid: e.grid,
+            max_deviation: e.max_deviation,
+            crease_deviation: e.crease_deviation,
+            crease_points: [e.design_crease.len(), e.elastica_crease.len()],
+        }),
     }
 }

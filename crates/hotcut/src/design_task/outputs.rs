@@ -3,7 +3,6 @@
 //! design surface and the elastica surface coloured by its deviation), and the robot files
 //! ([`crate::output::robot`]).
 
-use design::bezier::Bezier;
 use design::cut::{CurveResult, CutResult};
 use elastica::sweep::frame_quaternion;
 use export::gltf::{f32s, write_gltf, Material, Mesh};
@@ -20,52 +19,35 @@ use crate::task::Finished;
 
 type Done<'a> = Finished<'a, Design>;
 
-/// The robot files' number of each block (1, 2, … in the order of the cuts and across
-/// each), `None` for a block no cut runs through.
-pub(super) fn block_numbers(
-    blocks: &[Block],
-    cuts: &[(ResolvedCut, CutResult)],
-) -> Vec<Option<usize>> {
-    let mut out = vec![None; blocks.len()];
-    let mut next = 1;
-    for (r, _) in cuts {
-        for &k in &r.blocks {
-            out[k] = Some(next);
-            next += 1;
-        }
-    }
-    out
-}
-
-/// The targets of a run: per cut and block (in robot-file order) the poses on every
-/// cutting plane, the block's frame having its x-axis along the cut; and the blocks' sizes
-/// in those frames.
+/// The targets of a run: per (cut, block) pair in the robots' `order`
+/// ([`super::multi::robot_order`]; numbered 1, 2, … in it) the poses on every cutting plane,
+/// the block's frame having its x-axis along the cut; and the blocks' sizes in those
+/// frames.
 pub(super) fn targets(
     blocks: &[Block],
     cuts: &[(ResolvedCut, CutResult)],
+    order: &[(usize, usize)],
     blade_length: f64,
     units: Units,
 ) -> (Targets, Vec<[f64; 3]>) {
-    let numbers = block_numbers(blocks, cuts);
     let (mut out, mut sizes) = (Vec::new(), Vec::new());
-    for (r, res) in cuts {
+    for (number, &(c, piece)) in order.iter().enumerate() {
+        let (r, res) = &cuts[c];
         let f = &r.frame;
-        for (piece, &k) in r.blocks.iter().enumerate() {
-            let b = &blocks[k];
-            let (lo, hi) = (r.faces[piece], r.faces[piece + 1]);
-            let origin = f.to_world(r.span.0, &Vector2::new(lo, b.min.z));
-            out.push(TargetsBlock {
-                block: numbers[k].unwrap_or(0),
-                origin: origin.into(),
-                rotation: frame_quaternion(&f.normal, &f.v),
-                poses: res
-                    .planes
-                    .iter()
-                    .map(|p| robot::pose(&p.pieces[piece].pose))
-                    .collect(),
-            });
-            sizes.push([r.span.1 - r.span.0, hi - lo, b.max.z - b.min.z]);
-        }
+        let b = &blocks[r.blocks[piece]];
+        let (lo, hi) = (r.faces[piece], r.faces[piece + 1]);
+        let origin = f.to_world(r.span.0, &Vector2::new(lo, b.min.z));
+        out.push(TargetsBlock {
+            block: number + 1,
+            origin: origin.into(),
+            rotation: frame_quaternion(&f.normal, &f.v),
+            poses: res
+                .planes
+                .iter()
+                .map(|p| robot::pose(&p.pieces[piece].pose))
+                .collect(),
+        });
+        sizes.push([r.span.1 - r.span.0, hi - lo, b.max.z - b.min.z]);
     }
     (robot::targets(units, blade_length, out), sizes)
 }
@@ -75,39 +57,21 @@ pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> expor
     let (t, _) = targets(
         &done.run.blocks,
         &done.run.cuts,
+        &done.run.order,
         done.params.blade.length,
         done.job.units,
     );
     robot::write(files, &t, done.run.cell.as_ref(), &done.job.name, o.kind())
 }
 
-/// `n` points of `b` equally spaced in arc length.
-fn design_points(b: &Bezier, n: usize) -> Vec<[f64; 2]> {
-    let length = b.length();
-    (0..n)
-        .map(|i| b.point(b.at_length(length * i as f64 / (n - 1) as f64)))
-        .collect()
-}
-
 /// Piece `k` of curve `c`: design and elastica at `n` equal arc-length fractions.
 fn sampled(c: &CurveResult, k: usize, n: usize) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
-    let p = &c.pieces[k];
-    let elastica = p
-        .proxy
-        .elastica
-        .evaluator()
-        .map(|e| {
-            (0..n)
-                .map(|i| e.eval(i as f64 / (n - 1) as f64).p)
-                .collect()
-        })
-        .unwrap_or_default();
-    (design_points(&p.design, n), elastica)
+    c.sampled(k, n)
 }
 
-/// `block_<id>.svg`: per cut through the block, its piece at every station: design curve
-/// (black), control polygon (grey), elastica (red, dashed), blade extension (light grey),
-/// over the block's outline.
+/// `block_<id>.svg` (`block_<id>_<cut>.svg` for a block cut several times): the cut's
+/// piece in the block at every station: design curve (black), control polygon (grey),
+/// elastica (red, dashed), blade extension (light grey), over the block's outline.
 pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
     let units = done.job.units.symbol();
     let n = done.params.points;
@@ -115,9 +79,13 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
         for (piece, &k) in r.blocks.iter().enumerate() {
             let b = &done.run.blocks[k];
             let doc = block_svg(b, r, res, piece, n, units);
-            files.add(format!("block_{}.svg", file_name(&b.id)), |buf| {
-                doc.write(buf)
-            })?;
+            // a block cut several times gets one drawing per cut
+            let name = if done.run.multi[k].cuts.len() > 1 {
+                format!("block_{}_{}.svg", file_name(&b.id), file_name(&r.id))
+            } else {
+                format!("block_{}.svg", file_name(&b.id))
+            };
+            files.add(name, |buf| doc.write(buf))?;
         }
     }
     Ok(())
@@ -276,7 +244,9 @@ fn grid_indices(rows: usize, cols: usize) -> Vec<u32> {
 
 /// `model.gltf`: the blocks as translucent boxes; per cut and block the design surface
 /// (grey) and the elastica surface coloured by its distance to the design at equal arc
-/// length (blue 0, green half the job's `tolerance.max`, red at or beyond it).
+/// length (blue 0, green half the job's `tolerance.max`, red at or beyond it); a block cut
+/// several times shows its top instead, the lower envelope of its cuts (design grey,
+/// elastica coloured by the height difference).
 pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
     let tol = done.job.tolerance.max;
     let n = done.params.points;
@@ -295,8 +265,37 @@ pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export
             0,
         ));
     }
+    for m in &done.run.multi {
+        let Some(e) = &m.envelope else { continue };
+        let id = &done.run.blocks[m.block].id;
+        let at = |k: usize, z: f64| [e.points[k][0] as f32, e.points[k][1] as f32, z as f32];
+        meshes.push(Mesh {
+            name: format!("envelope_design_{id}"),
+            positions: (0..e.points.len()).map(|k| at(k, e.design[k])).collect(),
+            colors: None,
+            indices: grid_indices(e.grid, e.grid),
+            material: 1,
+        });
+        meshes.push(Mesh {
+            name: format!("envelope_elastica_{id}"),
+            positions: (0..e.points.len()).map(|k| at(k, e.elastica[k])).collect(),
+            colors: Some(
+                e.design
+                    .iter()
+                    .zip(&e.elastica)
+                    .map(|(d, h)| deviation_color((d - h).abs(), tol))
+                    .collect(),
+            ),
+            indices: grid_indices(e.grid, e.grid),
+            material: 2,
+        });
+    }
     for (r, res) in &done.run.cuts {
         for (piece, &k) in r.blocks.iter().enumerate() {
+            if done.run.multi[k].envelope.is_some() {
+                // a block cut several times shows its top: the envelope above
+                continue;
+            }
             let (mut design, mut elastica, mut colors) = (Vec::new(), Vec::new(), Vec::new());
             for c in &res.planes {
                 let (d, e) = sampled(c, piece, n);

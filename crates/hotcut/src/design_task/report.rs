@@ -64,12 +64,45 @@ pub struct DesignSettings {
 pub struct BlockInfo {
     /// Its name.
     pub id: String,
-    /// Its number in the robot files (1, 2, … in the order of the cuts).
-    pub number: Option<usize>,
     /// Smallest corner.
     pub min: [f64; 3],
     /// Largest corner.
     pub max: [f64; 3],
+    /// The cuts through it, in priority order (the primary, closest to the block's base,
+    /// first), dropped ones last.
+    pub cuts: Vec<BlockCut>,
+    /// With several cuts: the block's top, their lower envelope.
+    pub envelope: Option<EnvelopeReport>,
+}
+
+/// One cut through a block.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BlockCut {
+    /// The cut.
+    pub cut: String,
+    /// Its number in the robot files (each (cut, block) pair is one placement of the
+    /// block), `null` when dropped.
+    pub number: Option<usize>,
+    /// Why it was dropped, if it was.
+    pub note: Option<String>,
+}
+
+/// The lower envelope of a block's cuts ("Designing for Robotic Hot-Blade Cutting" §3.1,
+/// figs. 4/5).
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct EnvelopeReport {
+    /// Grid points per side over the block's footprint.
+    pub grid: usize,
+    /// Largest height difference of the envelope, elastica against design.
+    pub max_deviation: f64,
+    /// How far the crease (where the lowest cut changes) of the elastica's envelope lies
+    /// from the design's: the larger of the two one-sided largest distances; `null`
+    /// without a crease.
+    pub crease_deviation: Option<f64>,
+    /// Crease points found on the grid, design and elastica.
+    pub crease_points: [usize; 2],
 }
 
 /// One cut.
@@ -187,7 +220,7 @@ pub struct DesignSummary {
     pub cuts: usize,
     /// Curves reported (stations × blocks).
     pub curves: usize,
-    /// Blade poses written (planes × blocks).
+    /// Blade poses the robots get: planes of every (cut, block) pair not dropped.
     pub poses: usize,
     /// Largest deviation design vs elastica anywhere, % of the piece's length.
     pub max_deviation_percent: f64,

@@ -42,6 +42,11 @@ impl Files {
         write: impl FnOnce(&mut Vec<u8>) -> export::Result<()>,
     ) -> export::Result<()> {
         let name = name.into();
+        if self.names.contains(&name) {
+            return Err(export::ExportError::Data(format!(
+                "two outputs would both be written as {name}"
+            )));
+        }
         let path = self.dir.join(&name);
         self.names.push(name);
         let mut buf = Vec::new();

@@ -28,7 +28,15 @@ pub fn stderr(o: &Output) -> String {
 
 /// Validates `text` as a job and expects exit 1 with every `needle` in stderr.
 pub fn expect_invalid(text: &str, needles: &[&str]) {
+    expect_invalid_with(text, &[], needles);
+}
+
+/// [`expect_invalid`] with other files (name, text) beside the job.
+pub fn expect_invalid_with(text: &str, files: &[(&str, &str)], needles: &[&str]) {
     let dir = tempfile::tempdir().unwrap();
+    for (name, body) in files {
+        write(dir.path(), name, body);
+    }
     write(dir.path(), "job.ron", text);
     for cmd in ["validate", "run"] {
         let o = hotcut(&[cmd, "job.ron"], dir.path());
