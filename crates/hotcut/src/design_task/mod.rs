@@ -258,11 +258,12 @@ impl Task for Design {
                 (d.cuts.len(), pieces)
             })
             .unwrap_or((1, 1));
-        // a closed-form boundary-value solve with its discrete start: ~2·10⁵ steps
+        // a closed-form boundary-value solve with its discrete start: ~10⁶ steps (some
+        // milliseconds; nearly taut pieces take up to a hundred times longer)
         let solves = (pieces * (p.planes + 2)) as f64;
         Estimate::new(
             solves * (4e4 + 64.0 * p.points as f64) + cuts as f64 * 1e4 + 1e7,
-            solves * 2e5,
+            solves * 1e6,
             "/task/Design/resolution",
             "use resolution Design, or split the design into fewer cuts and blocks",
         )
