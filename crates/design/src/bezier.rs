@@ -17,7 +17,7 @@ pub struct Bezier {
 /// Pieces and nodes of the arc-length quadrature.
 const PIECES: usize = 64;
 /// Gauss–Legendre nodes and weights on [−1, 1], 5 points.
-const GAUSS: [(f64, f64); 5] = [
+pub(crate) const GAUSS: [(f64, f64); 5] = [
     (0.0, 0.568_888_888_888_888_9),
     (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
     (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),

@@ -19,6 +19,7 @@
 
 use serde::Serialize;
 
+use crate::bezier::GAUSS;
 use crate::error::{DesignError, Result};
 
 /// Settings of the numerical spline approach.
@@ -74,14 +75,6 @@ struct Basis {
     n: usize,
     knots: Vec<f64>,
 }
-
-const GAUSS: [(f64, f64); 5] = [
-    (0.0, 0.568_888_888_888_888_9),
-    (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
-    (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
-    (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
-    (0.906_179_845_938_664, 0.236_926_885_056_189_1),
-];
 
 /// One quadrature node: weight, first control index, basis values, first and second
 /// derivatives of the four basis functions there.

@@ -13,7 +13,7 @@ use nalgebra::{Vector2, Vector3};
 use super::file::{Block, ResolvedCut};
 use super::Design;
 use crate::output::robot;
-use crate::output::{block_material, Files};
+use crate::output::{block_material, deviation_color, Files};
 use crate::spec::{OutputSpec, Units};
 use crate::task::Finished;
 
@@ -214,19 +214,6 @@ fn block_svg(
         &format!("across the cut (horizontal) and height (vertical), {units}; faces at {lo:.1} and {hi:.1}"),
     );
     doc
-}
-
-/// Deviation colour: blue at 0, green at half the tolerance, red at or beyond it.
-fn deviation_color(dev: f64, tolerance: f64) -> [f32; 4] {
-    let t = if tolerance > 0.0 {
-        (dev / tolerance).clamp(0.0, 1.0)
-    } else {
-        1.0
-    };
-    let r = (2.0 * t - 1.0).clamp(0.0, 1.0);
-    let g = 1.0 - (2.0 * t - 1.0).abs();
-    let b = (1.0 - 2.0 * t).clamp(0.0, 1.0);
-    [r as f32, g as f32, b as f32, 1.0]
 }
 
 /// A grid mesh of `rows × cols` points (row-major).

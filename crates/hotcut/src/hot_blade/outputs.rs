@@ -12,7 +12,7 @@ use nalgebra::Vector3;
 
 use super::HotBlade;
 use crate::output::robot;
-use crate::output::{block_material, Files};
+use crate::output::{block_material, deviation_color, Files};
 use crate::spec::{OutputSpec, Units};
 use crate::task::Finished;
 use export::robot::{Targets, TargetsBlock};
@@ -110,19 +110,6 @@ fn sections_csv(run: &Rationalization) -> String {
         }
     }
     t.finish()
-}
-
-/// Deviation colour: blue at 0, green at half the tolerance, red at or beyond it.
-fn deviation_color(dev: f64, tolerance: f64) -> [f32; 4] {
-    let t = if tolerance > 0.0 {
-        (dev / tolerance).clamp(0.0, 1.0)
-    } else {
-        1.0
-    };
-    let r = (2.0 * t - 1.0).clamp(0.0, 1.0);
-    let g = 1.0 - (2.0 * t - 1.0).abs();
-    let b = (1.0 - 2.0 * t).clamp(0.0, 1.0);
-    [r as f32, g as f32, b as f32, 1.0]
 }
 
 fn model(run: &Rationalization, tol: f64, buf: &mut Vec<u8>) -> export::Result<()> {

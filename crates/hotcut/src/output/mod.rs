@@ -8,6 +8,20 @@ pub mod robot;
 
 use std::path::{Path, PathBuf};
 
+/// A deviation's glTF vertex colour: blue at 0, green at half the tolerance, red at or
+/// beyond it.
+pub fn deviation_color(dev: f64, tolerance: f64) -> [f32; 4] {
+    let t = if tolerance > 0.0 {
+        (dev / tolerance).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    let r = (2.0 * t - 1.0).clamp(0.0, 1.0);
+    let g = 1.0 - (2.0 * t - 1.0).abs();
+    let b = (1.0 - 2.0 * t).clamp(0.0, 1.0);
+    [r as f32, g as f32, b as f32, 1.0]
+}
+
 /// The translucent grey blocks of the hot-blade tasks' `model.gltf`.
 pub fn block_material() -> export::gltf::Material {
     export::gltf::Material::new("block", [0.85, 0.85, 0.8, 0.15], true)
