@@ -168,18 +168,19 @@ impl UnitElastica {
         if self.family == Family::NonInflectional || !kk.is_finite() || self.k == 0.0 {
             return Vec::new();
         }
-        let j0 = ((lo / kk - 1.0) / 2.0).ceil() as i64;
+        // in floating point: far out (|σ| ≫ K) an integer index would overflow
+        let mut j = ((lo / kk - 1.0) / 2.0).ceil();
         let mut out = Vec::new();
-        let mut j = j0;
-        loop {
-            let s = (2 * j + 1) as f64 * kk;
-            if s >= hi {
+        // at most 100 001 inflections, whatever the range
+        for _ in 0..=100_001 {
+            let s = (2.0 * j + 1.0) * kk;
+            if !(s < hi) {
                 break;
             }
             if s > lo {
                 out.push(s);
             }
-            j += 1;
+            j += 1.0;
             if out.len() > 100_000 {
                 break;
             }

@@ -46,6 +46,10 @@ const HEIGHT: &str =
     r#"surface: HeightField(z: "50*sin(y/100) + 10*cos(x/80)", x: (0, 300), y: (0, 900)),"#;
 const COMMON: &str = r#"block: Block(size: (300, 450, 300)), blade: Blade(length: 700, max_curvature: 0.011, max_inflections: 2), cutting: Cutting(direction: (1, 0, 0), sections: 4), tolerance: Tolerance(rms: 0.5, max: 2.0),"#;
 
+/// The design file of the `design` base: two blocks, a G¹ Bézier per block at the entry
+/// and exit faces.
+const DESIGN: &str = r#"{"blocks": {"Grid": {"origin": [0, 0, 0], "size": [600, 400, 400], "count": [1, 2]}}, "cuts": [{"id": "c", "direction": "X", "blocks": ["x0y0", "x0y1"], "stations": [{"at": 0, "curve": {"Bezier": [[[0, 150], [150, 300], [300, 300], [400, 250]], [[400, 250], [500, 200], [700, 150], [800, 250]]]}}, {"at": 1, "curve": {"Bezier": [[[0, 200], [150, 320], [300, 320], [400, 280]], [[400, 280], [550, 220], [700, 200], [800, 300]]]}}]}]}"#;
+
 /// A base job: label, job text, extra files.
 type Base = (&'static str, String, Vec<(String, Vec<u8>)>);
 
@@ -119,6 +123,11 @@ fn bases() -> Vec<Base> {
             "precut",
             r#"Job(name: "h", surface: HeightField(z: "100 + 80*exp(-((x/200)^2 + (y/200)^2))", x: (-300, 300), y: (-300, 300)), block: Block(size: (600, 600, 300), origin: (-300, -300, 0)), wire: Wire(tower_distance: 900, kerf: 1.5, speed: 300, lead: 20, clearance: 50), task: PreCut(legs: 2, directions: [X], sections: 8, samples: 8, controls: 5), outputs: [Report, GCode, Csv])"#.to_string(),
             vec![],
+        ),
+        (
+            "design",
+            r#"Job(name: "h", blade: Blade(length: 900, max_curvature: 0.011, max_inflections: 2), task: Design(design: "d.json", speed: 7, approach: 50), outputs: [Report, Svg, Gltf, RobotTargets(), Rapid])"#.to_string(),
+            vec![("d.json".to_string(), DESIGN.as_bytes().to_vec())],
         ),
         (
             "blocks",
@@ -213,6 +222,38 @@ fn cases() -> Vec<Case> {
                     t,
                 );
             }
+        }
+        // every numeric literal of a design file at a hostile value (JSON has no NaN or
+        // infinity: those make it unreadable, once is enough)
+        for (name, bytes) in files.iter().filter(|(n, _)| n.ends_with(".json")) {
+            let design = String::from_utf8_lossy(bytes).into_owned();
+            for (k, (s, e)) in numbers(&design).into_iter().enumerate() {
+                for v in ["0", "-1", "1e-300", "1e300", "-1e300"] {
+                    let mut c = Case::job(
+                        format!("{label}: {name} number {k} ({}) = {v}", &design[s..e]),
+                        &text,
+                    );
+                    for (n, b) in &files {
+                        let b = if n == name {
+                            format!("{}{v}{}", &design[..s], &design[e..]).into_bytes()
+                        } else {
+                            b.clone()
+                        };
+                        c = c.with(n, &b);
+                    }
+                    out.push(c);
+                }
+            }
+            let mut c = Case::job(format!("{label}: {name} with NaN"), &text);
+            for (n, b) in &files {
+                let b = if n == name {
+                    design.replacen("150", "NaN", 1).into_bytes()
+                } else {
+                    b.clone()
+                };
+                c = c.with(n, &b);
+            }
+            out.push(c);
         }
         // cutting directions: oblique, tilted, vertical, overflowing, underflowing
         if text.contains("direction: (1, 0, 0)") {

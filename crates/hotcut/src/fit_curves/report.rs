@@ -65,9 +65,8 @@ pub struct NumericalCurve {
     pub eq11_residual: f64,
     /// Largest distance of the result from the analytic fit (`null` when that failed).
     pub distance_to_analytic: Option<f64>,
-    /// Solver iterations; whether its optimality test was met.
-    pub iterations: usize,
-    /// See `iterations`.
+    /// Whether the solver's optimality test was met (else its iteration bound stopped
+    /// it).
     pub converged: bool,
 }
 
@@ -113,7 +112,6 @@ impl NumericalCurve {
                 distance_to_analytic: fit
                     .and_then(|f| f.segment.sample(2000).ok())
                     .map(|s| distance_to_polyline(&r.samples, &s)),
-                iterations: r.iterations,
                 converged: r.converged,
             },
             Err(e) => Self {
@@ -131,7 +129,6 @@ impl NumericalCurve {
                 length: 0.0,
                 eq11_residual: 0.0,
                 distance_to_analytic: None,
-                iterations: 0,
                 converged: false,
             },
         }
