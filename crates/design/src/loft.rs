@@ -6,7 +6,7 @@
 //!
 //! Every curve parameter of the stations is lofted alike, and so is the offset along the
 //! cut; at one loft parameter the curve therefore lies in one cutting plane, and
-//! [`Loft::at_offset`] finds it for a plane.
+//! [`Loft::at_offset`](crate::loft::Loft::at_offset) finds it for a plane.
 
 use crate::error::{DesignError, Result};
 

@@ -4,10 +4,10 @@
 //! block and the curve is C² where pieces meet. The construction asks that the knot
 //! images, the curve's points at the knots, lie on the faces: their first coordinate is
 //! the face's. Control points whose first coordinates are the Greville abscissae of the
-//! knots ([`greville`]) meet it exactly, whatever their heights.
+//! knots ([`greville`](crate::spline::greville)) meet it exactly, whatever their heights.
 //!
 //! Each piece, a cubic polynomial, is handed on as the Bézier with the same points
-//! ([`BSpline::pieces`], by blossoming), so that the Bézier tools — its elastica, its
+//! ([`BSpline::pieces`](crate::spline::BSpline::pieces), by blossoming), so that the Bézier tools — its elastica, its
 //! proxy measures — serve both constructions.
 
 use serde::Serialize;
