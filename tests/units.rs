@@ -412,13 +412,6 @@ fn differences(
         for r in [&mut mine, &mut theirs] {
             if let Some(o) = r.as_object_mut() {
                 o.remove("cell");
-                // KNOWN GAP (issue 22): the numerical spline's projected-gradient solver
-                // stops in a flat valley of its objective (moving control points along
-                // the curve barely changes the energy) at a point that depends on the
-                // path, so its results differ between units beyond rounding. Left out
-                // here until the solver converges tightly; the analytic fits beside it
-                // are still compared.
-                o.remove("numerical");
             }
         }
         let mut errors = Vec::new();
@@ -500,14 +493,8 @@ fn every_job_gives_the_same_results_in_millimetres_and_in_metres() {
             Units::Metre => (Units::Millimetre, 1e3),
         };
         let other = convert(&job, &base, units, f, dir.path());
-        let mut mine = report(job.clone(), path, &dir.path().join("a"));
-        let mut theirs = report(other, &dir.path().join(&name), &dir.path().join("b"));
-        // KNOWN GAP (issue 22): see `differences`
-        for r in [&mut mine, &mut theirs] {
-            if let Some(o) = r.as_object_mut() {
-                o.remove("numerical");
-            }
-        }
+        let mine = report(job.clone(), path, &dir.path().join("a"));
+        let theirs = report(other, &dir.path().join(&name), &dir.path().join("b"));
         let (mm, m) = match job.units {
             Units::Millimetre => (mine, theirs),
             Units::Metre => (theirs, mine),

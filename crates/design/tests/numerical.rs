@@ -173,3 +173,58 @@ fn bad_settings_are_refused() {
     .is_err());
     assert!(numerical_spline(&[[1.0, 1.0]; 10], &p).is_err());
 }
+
+#[test]
+fn results_are_invariant_under_units_and_rigid_motion() {
+    // mm instead of m, and a turn plus a shift: the same curve, so the same result mapped
+    let (c, s) = (0.6f64.cos(), 0.6f64.sin());
+    let motion = |q: &[f64; 2]| [c * q[0] - s * q[1] + 3.0, s * q[0] + c * q[1] - 7.0];
+    let mut worst = 0.0f64;
+    for (id, _, pts) in curves().iter().step_by(6) {
+        for (fix_tangents, fix_length) in [(false, false), (true, true)] {
+            let p = NumericalParams {
+                epsilon: 0.002,
+                control_points: 24,
+                fix_tangents,
+                fix_length,
+            };
+            let r = numerical_spline(pts, &p).unwrap();
+            assert!(r.converged, "{id}: {} steps", r.iterations);
+            let mm: Vec<[f64; 2]> = pts.iter().map(|q| [q[0] * 1e3, q[1] * 1e3]).collect();
+            let rm = numerical_spline(&mm, &NumericalParams { epsilon: 2.0, ..p }).unwrap();
+            let moved: Vec<[f64; 2]> = pts.iter().map(motion).collect();
+            let rr = numerical_spline(&moved, &p).unwrap();
+            assert_eq!(r.active_constraints, rm.active_constraints, "{id} mm");
+            assert_eq!(r.active_constraints, rr.active_constraints, "{id} moved");
+            for ((a, b), d) in r.control.iter().zip(&rm.control).zip(&rr.control) {
+                let ma = motion(a);
+                let e = ((a[0] - b[0] * 1e-3).hypot(a[1] - b[1] * 1e-3))
+                    .max((ma[0] - d[0]).hypot(ma[1] - d[1]))
+                    / p.epsilon;
+                worst = worst.max(e);
+                assert!(e < 1e-7, "{id} {fix_length}: {e:e} of ε");
+            }
+        }
+    }
+    println!("worst difference {worst:e} of ε");
+}
+
+#[test]
+fn extreme_epsilons_neither_panic_nor_leave_their_discs() {
+    // ε from far below rounding to far beyond the curve's size (a 1 m curve)
+    let (_, _, pts) = curves().into_iter().nth(6).unwrap();
+    for eps in [1e-12, 1e-6, 0.5, 10.0, 1e6] {
+        for (fix_tangents, fix_length) in [(false, false), (true, true)] {
+            let p = NumericalParams {
+                epsilon: eps,
+                control_points: 24,
+                fix_tangents,
+                fix_length,
+            };
+            let r = numerical_spline(&pts, &p).unwrap();
+            assert!(r.max_control_offset <= eps * (1.0 + 1e-9), "{eps}");
+            assert!(r.energy_after.is_finite() && r.length.is_finite(), "{eps}");
+            assert!(r.energy_after <= r.energy_before * (1.0 + 1e-9), "{eps}");
+        }
+    }
+}

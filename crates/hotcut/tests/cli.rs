@@ -751,3 +751,29 @@ fn bad_designs_are_rejected_naming_the_station_and_face() {
     // a missing design file
     common::expect_invalid(&ok, &["/task/Design/design", "cannot read"]);
 }
+
+#[test]
+fn bad_numerical_spline_settings_are_rejected_naming_the_field() {
+    let curves = r#"{"curves": [{"id": "c", "points": [[0,0],[1,1],[2,1],[3,0],[4,-1],[5,0]]}]}"#;
+    let job = |method: &str| {
+        format!(
+            "Job(name: \"t\", units: Metre, task: FitCurves(input: \"c.json\", method: {method}), outputs: [Report])"
+        )
+    };
+    for (method, needles) in [
+        (
+            "NumericalSpline(epsilon: 0.002, control_points: 500, fix_tangents: true, fix_length: true)",
+            &["/task/FitCurves/method/NumericalSpline/control_points", "at most 96"][..],
+        ),
+        (
+            "NumericalSpline(epsilon: 0.002, control_points: 8, fix_tangents: true, fix_length: true)",
+            &["/task/FitCurves/method/NumericalSpline/control_points", "has 6 points"][..],
+        ),
+        (
+            "NumericalSpline(epsilon: -1, control_points: 6, fix_tangents: true, fix_length: true)",
+            &["/task/FitCurves/method/NumericalSpline/epsilon"][..],
+        ),
+    ] {
+        common::expect_invalid_with(&job(method), &[("c.json", curves)], needles);
+    }
+}

@@ -144,7 +144,17 @@ impl Task for FitCurves {
                         format!("epsilon must be a positive length, got {epsilon:?}"),
                     ));
                 }
-                Some(control_points.map_or(6, |n| n as usize))
+                let n = control_points.map_or(6, |n| n as usize);
+                if n > design::numerical::MAX_CONTROL_POINTS {
+                    errors.push(job.error(
+                        "/task/FitCurves/method/NumericalSpline/control_points",
+                        format!(
+                            "control_points must be at most {} (the solver's work grows with their cube), got {n}",
+                            design::numerical::MAX_CONTROL_POINTS
+                        ),
+                    ));
+                }
+                Some(n)
             }
         };
         match &self.input {

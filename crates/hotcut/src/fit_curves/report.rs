@@ -65,8 +65,8 @@ pub struct NumericalCurve {
     pub eq11_residual: f64,
     /// Largest distance of the result from the analytic fit (`null` when that failed).
     pub distance_to_analytic: Option<f64>,
-    /// Whether the solver's optimality test was met (else its iteration bound stopped
-    /// it).
+    /// Whether the solver reached the optimality (KKT) conditions, its active-set Newton
+    /// end game settled (else the result is the SQP's last feasible iterate).
     pub converged: bool,
 }
 
