@@ -99,13 +99,15 @@ fn every_elastica_keeps_its_design_end_data_and_neighbours_meet_g1() {
     for c in r.stations.iter().chain(&r.planes) {
         for p in &c.pieces {
             let x = &p.proxy;
+            // the 1e-9 (the solver accepts up to ACCEPT = 1e-8 only for nearly
+            // taut pieces, see `a_nearly_taut_piece_is_solved`; these reach 1.3e-10)
             assert!(
-                x.end_point_error <= ACCEPT * x.length,
+                x.end_point_error <= 1e-9 * x.length,
                 "{}",
                 x.end_point_error
             );
-            assert!(x.end_angle_error <= ACCEPT, "{}", x.end_angle_error);
-            assert!(x.relative_length_error.abs() <= ACCEPT);
+            assert!(x.end_angle_error <= 1e-9, "{}", x.end_angle_error);
+            assert!(x.relative_length_error.abs() <= 1e-9);
             // the discrete elastica between the same end poses matches the closed form
             // to its O(h²) discretization error
             assert!(
@@ -116,8 +118,8 @@ fn every_elastica_keeps_its_design_end_data_and_neighbours_meet_g1() {
         }
         assert_eq!(c.joints.len(), 2);
         for j in &c.joints {
-            assert!(j.gap <= 1e-9 * 1800.0 + ACCEPT * 700.0, "{j:?}");
-            assert!(j.tangent_jump.abs() <= 2.0 * ACCEPT, "{j:?}");
+            assert!(j.gap <= 1e-9 * 700.0, "{j:?}");
+            assert!(j.tangent_jump.abs() <= 1e-9, "{j:?}");
         }
     }
     // the first and last planes are the entry and exit stations
@@ -157,7 +159,7 @@ fn spline_ducks_keep_tangents_and_report_curvature_jumps() {
             assert!((p.design.p[3][0] - FACES[i + 1]).abs() < 1e-9);
         }
         for j in &c.joints {
-            assert!(j.tangent_jump.abs() <= 2.0 * ACCEPT, "{j:?}");
+            assert!(j.tangent_jump.abs() <= 1e-9, "{j:?}");
             jump = jump.max(j.curvature_jump.abs());
         }
     }
