@@ -152,7 +152,7 @@ fn fine_meshes_agree_with_the_analytic_counts() {
         assert!(spacing <= 0.002 * extent + 1e-9);
         let obj = dir.path().join(format!("{}.obj", c.name));
         let mut f = std::io::BufWriter::new(std::fs::File::create(&obj).unwrap());
-        export::obj::write_mesh(&mut f, &mesh, 6).unwrap();
+        export::obj::write_mesh(&mut f, &mesh, 6, export::SourceUnits::METRE).unwrap();
         drop(f);
         let path = dir.path().join(format!("{}-mesh.ron", c.name));
         std::fs::write(
@@ -368,7 +368,7 @@ fn fine_meshes_of_rippled_surfaces_count_95_percent_of_sections_exactly() {
             let mesh = hf.to_mesh(500, 500).unwrap();
             let obj = dir.path().join(format!("{}-{units}.obj", r.name));
             let mut f = std::io::BufWriter::new(std::fs::File::create(&obj).unwrap());
-            export::obj::write_mesh(&mut f, &mesh, 9).unwrap();
+            export::obj::write_mesh(&mut f, &mesh, 9, export::SourceUnits::METRE).unwrap();
             drop(f);
             // along x (sections x = const, the class's axis-aligned case) and oblique
             for (tag, theta, direction) in [

@@ -1,10 +1,14 @@
 //! Runs every job in `jobs/`: its `report.json` is snapshot-tested (snapshots live in the
-//! top-level `snapshots/`), and a second run must give byte-identical output files.
+//! top-level `snapshots/`), a second run must give byte-identical output files, and the
+//! files are checked as their readers see them ([`outputs_check`]): glTF bounds in metres
+//! against the report, every JSON file against its schema.
 
 use hotcut::load::load_job;
 use hotcut::run::run_job;
 use hotcut::NoProgress;
-use hotcut_workspace_tests::read_tree;
+use hotcut_workspace_tests::{read_tree, root};
+
+mod outputs_check;
 
 #[test]
 fn every_job_runs_matches_its_snapshot_and_is_reproducible() {
@@ -29,6 +33,9 @@ fn every_job_runs_matches_its_snapshot_and_is_reproducible() {
                     path.display()
                 );
             }
+            let what = path.display().to_string();
+            outputs_check::gltf_bounds_match_the_report(&first.dir, &what);
+            outputs_check::json_files_validate(&first.dir, &root(), &what);
             let report = std::fs::read_to_string(first.dir.join("report.json")).unwrap();
             insta::assert_snapshot!("report", report);
         });

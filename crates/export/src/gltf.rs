@@ -1,7 +1,9 @@
 //! glTF 2.0 writer: one self-contained `.gltf` (JSON, buffer embedded as a base64 data
 //! URI) holding triangle meshes with optional per-vertex colours and simple PBR materials.
-//! Coordinates are written as given (z up) under a root node that turns them to glTF's
-//! y-up convention.
+//! glTF's unit is the metre (spec §3.4 "Coordinate System and Units"), so positions given
+//! in another unit are scaled to metres as they are written, and the source unit is named
+//! in `asset.extras`. They stay z up under a root node that turns them to glTF's y-up
+//! convention, so Blender, three.js and every other glTF reader see the job's z as up.
 
 use std::io::Write;
 
@@ -47,6 +49,8 @@ pub struct Mesh {
     pub material: usize,
 }
 
+pub use crate::SourceUnits;
+
 /// A position as glTF's single precision.
 pub fn f32s(v: &nalgebra::Vector3<f64>) -> [f32; 3] {
     [v.x as f32, v.y as f32, v.z as f32]
@@ -89,18 +93,37 @@ impl Mesh {
     }
 }
 
+/// The bounding box `(min, max)` of every position of `meshes`, in their own units
+/// (`None` without any position).
+pub fn bounds(meshes: &[Mesh]) -> Option<([f64; 3], [f64; 3])> {
+    let mut it = meshes
+        .iter()
+        .flat_map(|m| &m.positions)
+        .map(|p| p.map(f64::from));
+    let first = it.next()?;
+    Some(it.fold((first, first), |(lo, hi), p| {
+        (
+            std::array::from_fn(|k| lo[k].min(p[k])),
+            std::array::from_fn(|k| hi[k].max(p[k])),
+        )
+    }))
+}
+
 /// Writes the scene.
 ///
 /// ```
-/// use export::gltf::{write_gltf, Material, Mesh};
+/// use export::gltf::{write_gltf, Material, Mesh, SourceUnits};
 /// let m = Mesh { name: "tri".into(), positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
 ///     colors: None, indices: vec![0, 1, 2], material: 0 };
 /// let mat = Material { name: "grey".into(), color: [0.5, 0.5, 0.5, 1.0], blend: false };
 /// let mut out = Vec::new();
-/// write_gltf("hotcut", &[m], &[mat], &mut out).unwrap();
+/// // positions in millimetres: written in metres
+/// let mm = SourceUnits { name: "Millimetre", metres: 1e-3 };
+/// write_gltf("hotcut", &[m], &[mat], mm, &mut out).unwrap();
 /// let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
 /// assert_eq!(v["asset"]["version"], "2.0");
-/// assert_eq!(v["accessors"][0]["max"][0], 1.0);
+/// assert_eq!(v["asset"]["extras"]["source_units"], "Millimetre");
+/// assert_eq!(v["accessors"][0]["max"][0].as_f64().unwrap() as f32, 0.001f32);
 /// ```
 ///
 /// # Errors
@@ -109,6 +132,7 @@ pub fn write_gltf(
     generator: &str,
     meshes: &[Mesh],
     materials: &[Material],
+    units: SourceUnits<'_>,
     mut w: impl Write,
 ) -> Result<()> {
     let mut buffer: Vec<u8> = Vec::new();
@@ -136,9 +160,10 @@ pub fn write_gltf(
         let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
         for p in &m.positions {
             for k in 0..3 {
-                bytes.extend_from_slice(&p[k].to_le_bytes());
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
+                let v = (f64::from(p[k]) * units.metres) as f32;
+                bytes.extend_from_slice(&v.to_le_bytes());
+                lo[k] = lo[k].min(v);
+                hi[k] = hi[k].max(v);
             }
         }
         let pv = push_view(&bytes, 34962, &mut buffer);
@@ -194,7 +219,11 @@ pub fn write_gltf(
         base64::engine::general_purpose::STANDARD.encode(&buffer)
     );
     let mut doc = json!({
-        "asset": {"version": "2.0", "generator": generator},
+        "asset": {"version": "2.0", "generator": generator, "extras": {
+            "source_units": units.name,
+            "metres_per_source_unit": units.metres,
+            "up_axis": "the source's +z, turned to glTF's +y by the root node `z-up`",
+        }},
         "scene": 0,
         "scenes": [{"nodes": [root]}],
         "nodes": nodes,

@@ -42,6 +42,24 @@ pub enum ExportError {
     Geom(#[from] geom::GeomError),
 }
 
+/// The length unit of the coordinates handed to a writer: glTF scales them to metres, OBJ
+/// names it in its header.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SourceUnits<'a> {
+    /// Its name, e.g. `Millimetre`.
+    pub name: &'a str,
+    /// Metres per unit (`0.001` for millimetres).
+    pub metres: f64,
+}
+
+impl SourceUnits<'static> {
+    /// Coordinates in metres.
+    pub const METRE: Self = Self {
+        name: "Metre",
+        metres: 1.0,
+    };
+}
+
 /// Result alias of this crate.
 pub type Result<T, E = ExportError> = std::result::Result<T, E>;
 

@@ -1,5 +1,8 @@
 //! Wavefront OBJ writer: triangle meshes and polylines, floats with a fixed number of
-//! decimals, 1-based indices, `o` groups in the order given.
+//! decimals, 1-based indices, `o` groups in the order given. OBJ has no units and no up
+//! axis, so the header says both: the coordinates are the job's, in its unit, z up.
+//! Importers differ: Blender's OBJ import assumes y up unless told "Up Axis: Z"; Rhino
+//! reads z up as written; three.js and most game engines assume y up.
 //!
 //! Entry points: [`ObjWriter`](crate::obj::ObjWriter), [`write_mesh`](crate::obj::write_mesh).
 
@@ -8,7 +11,7 @@ use std::io::Write;
 use geom::mesh::TriMesh;
 use nalgebra::Vector3;
 
-use crate::{fmt_float, Result};
+use crate::{fmt_float, Result, SourceUnits};
 
 /// Accumulates named objects and writes them as one OBJ file.
 #[derive(Debug, Default, Clone)]
@@ -19,11 +22,15 @@ pub struct ObjWriter {
 }
 
 impl ObjWriter {
-    /// A writer printing coordinates with `decimals` digits.
-    pub fn new(decimals: usize) -> Self {
+    /// A writer printing coordinates in `units` with `decimals` digits.
+    pub fn new(decimals: usize, units: SourceUnits<'_>) -> Self {
         Self {
             decimals,
-            text: String::from("# written by hotcut\n"),
+            text: format!(
+                "# written by hotcut\n# units: {} (1 unit = {} m)\n# axes: right-handed, +z up (import z-up: in Blender set Up Axis Z, Forward Y)\n",
+                units.name,
+                units.metres
+            ),
             next_vertex: 1,
         }
     }
@@ -82,12 +89,17 @@ impl ObjWriter {
     }
 }
 
-/// Writes one mesh as an OBJ file.
+/// Writes one mesh in `units` as an OBJ file.
 ///
 /// # Errors
 /// I/O failures.
-pub fn write_mesh(w: impl Write, mesh: &TriMesh, decimals: usize) -> Result<()> {
-    let mut o = ObjWriter::new(decimals);
+pub fn write_mesh(
+    w: impl Write,
+    mesh: &TriMesh,
+    decimals: usize,
+    units: SourceUnits<'_>,
+) -> Result<()> {
+    let mut o = ObjWriter::new(decimals, units);
     o.mesh("mesh", mesh);
     o.write(w)
 }
@@ -103,7 +115,7 @@ mod tests {
             vec![[0, 1, 2]],
         )
         .unwrap();
-        let mut o = ObjWriter::new(3);
+        let mut o = ObjWriter::new(3, SourceUnits::METRE);
         o.mesh("m", &m)
             .polyline("p", &[Vector3::zeros(), Vector3::new(1.0 / 3.0, 0.0, 0.0)]);
         let mut buf = Vec::new();
@@ -111,14 +123,14 @@ mod tests {
         let s = String::from_utf8(buf).unwrap();
         assert_eq!(
             s,
-            "# written by hotcut\no m\nv 0 0 0\nv 1 0 0\nv 0 1 0.5\nf 1 2 3\no p\nv 0 0 0\nv 0.333 0 0\nl 4 5\n"
+            "# written by hotcut\n# units: Metre (1 unit = 1 m)\n# axes: right-handed, +z up (import z-up: in Blender set Up Axis Z, Forward Y)\no m\nv 0 0 0\nv 1 0 0\nv 0 1 0.5\nf 1 2 3\no p\nv 0 0 0\nv 0.333 0 0\nl 4 5\n"
         );
         // the written mesh reads back
         let dir = std::env::temp_dir().join(format!("hotcut-obj-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("m.obj");
         let mut f = std::fs::File::create(&path).unwrap();
-        write_mesh(&mut f, &m, 6).unwrap();
+        write_mesh(&mut f, &m, 6, SourceUnits::METRE).unwrap();
         drop(f);
         let back = TriMesh::load_obj(&path).unwrap();
         assert_eq!(back.faces().len(), 1);

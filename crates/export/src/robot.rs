@@ -2,6 +2,7 @@
 //! serialized) and `targets.csv` (one row per pose and held end). The RAPID programs are
 //! written by [`crate::rapid`] from the cell's plan.
 
+use schemars::JsonSchema;
 use serde::Serialize;
 
 use crate::csv::Table;
@@ -10,7 +11,7 @@ use crate::csv::Table;
 pub const TARGET_DIGITS: usize = 12;
 
 /// One held end of the blade.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct EndPose {
     /// Position.
     pub position: [f64; 3],
@@ -21,7 +22,7 @@ pub struct EndPose {
 }
 
 /// A blade pose: the cutting plane's normal and both held ends, the blade's start first.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct Pose {
     /// Unit normal of the cutting plane.
     pub plane_normal: [f64; 3],
@@ -30,7 +31,7 @@ pub struct Pose {
 }
 
 /// The poses of a run, `targets.json`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct Targets {
     /// Length unit of every position, as the job names it (`Millimetre`, `Metre`).
     pub units: String,
@@ -39,6 +40,7 @@ pub struct Targets {
     pub per_mm: f64,
     /// The unit's symbol (`mm`, `m`).
     #[serde(skip)]
+    #[schemars(skip)]
     pub unit_symbol: &'static str,
     /// Physical blade length.
     pub blade_length: f64,
@@ -47,7 +49,7 @@ pub struct Targets {
 }
 
 /// One block (or piece) of `targets.json`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct TargetsBlock {
     /// Block number.
     pub block: usize,

@@ -17,7 +17,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs/models/facade.obj");
     let mut f = std::io::BufWriter::new(std::fs::File::create(&path)?);
-    export::obj::write_mesh(&mut f, &mesh, 4)?;
+    export::obj::write_mesh(
+        &mut f,
+        &mesh,
+        4,
+        export::SourceUnits {
+            name: "Millimetre",
+            metres: 1e-3,
+        },
+    )?;
     println!(
         "wrote {} ({} vertices, {} faces)",
         path.display(),

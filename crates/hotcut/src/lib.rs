@@ -90,9 +90,26 @@ pub struct SchemaFile {
     pub text: String,
 }
 
+/// Makes a schema of a file hotcut writes strict: every object schema that lists its
+/// properties gets `additionalProperties: false` (maps, which give their own
+/// `additionalProperties`, stay as they are), so a reader's validator rejects unknown keys.
+pub fn strict(v: &mut serde_json::Value) {
+    match v {
+        serde_json::Value::Object(o) => {
+            if o.contains_key("properties") && !o.contains_key("additionalProperties") {
+                o.insert("additionalProperties".into(), false.into());
+            }
+            o.values_mut().for_each(strict);
+        }
+        serde_json::Value::Array(a) => a.iter_mut().for_each(strict),
+        _ => {}
+    }
+}
+
 /// The schema of task `T`'s `report.json`.
 fn report_schema<T: Task>() -> SchemaFile {
-    let v = serde_json::to_value(schemars::schema_for!(T::Report)).unwrap_or_default();
+    let mut v = serde_json::to_value(schemars::schema_for!(T::Report)).unwrap_or_default();
+    strict(&mut v);
     SchemaFile {
         task: Some(T::NAME),
         file: T::REPORT_SCHEMA,
@@ -120,5 +137,21 @@ pub fn schema_files() -> Vec<SchemaFile> {
         text: pretty(&design_task::file::design_schema()),
     });
     job::TaskSpec::each(&mut files);
+    files.0.extend([
+        output_schema::<export::robot::Targets>("targets.schema.json"),
+        output_schema::<block_segmentation::BlocksFile<'static>>("blocks.schema.json"),
+        output_schema::<pre_cut::PreCutFile<'static>>("precut.schema.json"),
+    ]);
     files.0
+}
+
+/// The strict schema of a JSON file other than a report.
+fn output_schema<T: schemars::JsonSchema>(file: &'static str) -> SchemaFile {
+    let mut v = serde_json::to_value(schemars::schema_for!(T)).unwrap_or_default();
+    strict(&mut v);
+    SchemaFile {
+        task: None,
+        file,
+        text: pretty(&v),
+    }
 }

@@ -8,6 +8,29 @@ use serde::Serialize;
 
 use crate::context::Context;
 
+/// The hotcut version every report carries (`hotcut_version`).
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// The bounding box of what `model.gltf` shows, in job units (the glTF holds the same box
+/// in metres, turned y up).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct ModelBounds {
+    /// Minimum corner.
+    pub min: [f64; 3],
+    /// Maximum corner.
+    pub max: [f64; 3],
+}
+
+impl ModelBounds {
+    /// The box of a glTF scene's meshes (`None` for an empty scene or one that could not
+    /// be built).
+    pub fn of(scene: export::Result<Vec<export::gltf::Mesh>>) -> Option<Self> {
+        let meshes = scene.ok()?;
+        export::gltf::bounds(&meshes).map(|(min, max)| Self { min, max })
+    }
+}
+
 /// What was loaded.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct SurfaceInfo {

@@ -159,6 +159,7 @@ impl Task for Analyze {
             job: job.name.clone(),
             task: Self::NAME.into(),
             units: job.units,
+            hotcut_version: crate::report::VERSION.into(),
             surface: run.surface.clone(),
             cutting: CuttingInfo {
                 direction: arr(&f.normal),

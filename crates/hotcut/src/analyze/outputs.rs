@@ -40,7 +40,7 @@ pub(super) fn obj(
     files: &mut Files,
 ) -> export::Result<()> {
     files.add("sections.obj", |buf| {
-        let mut w = ObjWriter::new(REPORT_DIGITS);
+        let mut w = ObjWriter::new(REPORT_DIGITS, crate::output::source_units(done.job.units));
         for (s, _) in &done.run.survey.sections {
             w.polyline(
                 &format!("section_{}_{}", s.index, s.piece),

@@ -19,6 +19,8 @@ pub struct AnalyzeReport {
     pub task: String,
     /// Length unit.
     pub units: Units,
+    /// The hotcut version that wrote it.
+    pub hotcut_version: String,
     /// The surface as loaded.
     pub surface: SurfaceInfo,
     /// The section planes.

@@ -17,6 +17,17 @@
 /// Its files: `blocks.json`, `blocks.obj`, `model.gltf`, `progress.svg`.
 mod outputs;
 
+/// `blocks.json` (schema `schemas/blocks.schema.json`).
+#[derive(Debug, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BlocksFile<'a> {
+    /// Length unit of centres and sizes.
+    pub units: Units,
+    /// Every block: centre, rotation `[w, x, y, z]` (a unit quaternion taking block axes
+    /// to model axes) and edge lengths, in the mesh's coordinates.
+    pub blocks: &'a [blocks::Placement],
+}
+
 use geom::mesh::TriMesh;
 use geom::surface::Surface;
 use schemars::JsonSchema;
@@ -101,10 +112,18 @@ fn default_sample_spacing() -> f64 {
 /// The report of a `BlockSegmentation` run (`report.json`).
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct BlockSegReport {
+    /// Job name.
+    pub job: String,
+    /// Task name, `BlockSegmentation`.
+    pub task: String,
     /// Length unit of every length.
     pub units: Units,
+    /// The hotcut version that wrote it.
+    pub hotcut_version: String,
     /// The model: vertices, faces, volume.
     pub model: ModelInfo,
+    /// The box of what `model.gltf` shows (the model and the blocks).
+    pub model_bounds: Option<crate::report::ModelBounds>,
     /// The parameters the optimizer ran with.
     pub params: blocks::Params,
     /// The result: counts, reduction, lower bound, history (fig. 3.6), acceptance
@@ -244,12 +263,16 @@ impl Task for BlockSegmentation {
 
     fn report(params: &blocks::Params, run: &BlockSegRun, job: &Context) -> BlockSegReport {
         BlockSegReport {
+            job: job.name.clone(),
+            task: Self::NAME.into(),
             units: job.units,
+            hotcut_version: crate::report::VERSION.into(),
             model: ModelInfo {
                 vertices: run.mesh.vertices().len(),
                 faces: run.mesh.faces().len(),
                 volume: run.segmentation.model_volume,
             },
+            model_bounds: crate::report::ModelBounds::of(outputs::scene(run)),
             params: params.clone(),
             segmentation: run.segmentation.clone(),
         }

@@ -2,12 +2,11 @@
 //! `blocks.obj` (blocks as boxes), `model.gltf` (model and translucent blocks) and
 //! `progress.svg` (blocks and E per iteration, after thesis fig. 3.6).
 
-use blocks::{Phase, Placement};
+use blocks::Phase;
 use export::gltf::{write_gltf, Material, Mesh};
 use export::json::REPORT_DIGITS;
 use export::obj::ObjWriter;
 use export::svg::SvgDoc;
-use serde::Serialize;
 
 use super::BlockSegmentation;
 use crate::output::Files;
@@ -22,11 +21,8 @@ pub(super) fn blocks_json(
     _: &OutputSpec,
     files: &mut Files,
 ) -> export::Result<()> {
-    #[derive(Serialize)]
-    struct BlocksFile<'a> {
-        blocks: &'a [Placement],
-    }
-    let f = BlocksFile {
+    let f = super::BlocksFile {
+        units: done.job.units,
         blocks: &done.run.segmentation.blocks,
     };
     files.json("blocks.json", &f, REPORT_DIGITS)
@@ -35,7 +31,7 @@ pub(super) fn blocks_json(
 /// `blocks.obj`: the blocks as boxes.
 pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
     files.add("blocks.obj", |buf| {
-        let mut w = ObjWriter::new(6);
+        let mut w = ObjWriter::new(6, crate::output::source_units(done.job.units));
         for (i, b) in done.run.segmentation.blocks.iter().enumerate() {
             w.mesh(&format!("block_{i}"), &b.mesh()?);
         }
@@ -45,18 +41,29 @@ pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
 
 /// `model.gltf`: the model and its translucent blocks.
 pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    let run = done.run;
     files.add("model.gltf", |buf| {
         let materials = vec![
             Material::new("model", [0.8, 0.8, 0.82, 1.0], false),
             Material::new("block", [0.95, 0.6, 0.2, 0.25], true),
         ];
-        let mut meshes = vec![Mesh::from_trimesh("model", &run.mesh, 0)];
-        for (i, b) in run.segmentation.blocks.iter().enumerate() {
-            meshes.push(Mesh::from_trimesh(format!("block_{i}"), &b.mesh()?, 1));
-        }
-        write_gltf("hotcut BlockSegmentation", &meshes, &materials, buf)
+        let meshes = scene(done.run)?;
+        write_gltf(
+            "hotcut BlockSegmentation",
+            &meshes,
+            &materials,
+            crate::output::source_units(done.job.units),
+            buf,
+        )
     })
+}
+
+/// The meshes of `model.gltf`: the model, then every block.
+pub(super) fn scene(run: &super::BlockSegRun) -> export::Result<Vec<Mesh>> {
+    let mut meshes = vec![Mesh::from_trimesh("model", &run.mesh, 0)];
+    for (i, b) in run.segmentation.blocks.iter().enumerate() {
+        meshes.push(Mesh::from_trimesh(format!("block_{i}"), &b.mesh()?, 1));
+    }
+    Ok(meshes)
 }
 
 /// `progress.svg`: blocks and E per iteration.

@@ -344,6 +344,12 @@ impl Task for Design {
             job: job.name.clone(),
             task: Self::NAME.into(),
             units: job.units,
+            hotcut_version: crate::report::VERSION.into(),
+            model_bounds: crate::report::ModelBounds::of(Ok(outputs::scene(
+                run,
+                params.points,
+                job.tolerance.max,
+            ))),
             design: params.file.1.clone(),
             settings: DesignSettings {
                 resolution: params.resolution,

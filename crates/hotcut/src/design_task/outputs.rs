@@ -235,15 +235,28 @@ fn grid_indices(rows: usize, cols: usize) -> Vec<u32> {
 /// several times shows its top instead, the lower envelope of its cuts (design grey,
 /// elastica coloured by the height difference).
 pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    let tol = done.job.tolerance.max;
-    let n = done.params.points;
     let materials = vec![
         block_material(),
         Material::new("design", [0.8, 0.8, 0.8, 1.0], false),
         Material::new("elastica", [1.0, 1.0, 1.0, 1.0], false),
     ];
+    let meshes = scene(done.run, done.params.points, done.job.tolerance.max);
+    files.add("model.gltf", |buf| {
+        write_gltf(
+            "hotcut",
+            &meshes,
+            &materials,
+            crate::output::source_units(done.job.units),
+            buf,
+        )
+    })
+}
+
+/// The meshes of `model.gltf` (see [`gltf`]), `n` points per curve, deviations coloured
+/// red at `tol`.
+pub(super) fn scene(run: &super::DesignRun, n: usize, tol: f64) -> Vec<Mesh> {
     let mut meshes = Vec::new();
-    for b in &done.run.blocks {
+    for b in &run.blocks {
         meshes.push(Mesh::from_box(
             format!("block_{}", b.id),
             b.min,
@@ -252,9 +265,9 @@ pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export
             0,
         ));
     }
-    for m in &done.run.multi {
+    for m in &run.multi {
         let Some(e) = &m.envelope else { continue };
-        let id = &done.run.blocks[m.block].id;
+        let id = &run.blocks[m.block].id;
         let at = |k: usize, z: f64| [e.points[k][0] as f32, e.points[k][1] as f32, z as f32];
         meshes.push(Mesh {
             name: format!("envelope_design_{id}"),
@@ -277,9 +290,9 @@ pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export
             material: 2,
         });
     }
-    for (r, res) in &done.run.cuts {
+    for (r, res) in &run.cuts {
         for (piece, &k) in r.blocks.iter().enumerate() {
-            if done.run.multi[k].envelope.is_some() {
+            if run.multi[k].envelope.is_some() {
                 // a block cut several times shows its top: the envelope above
                 continue;
             }
@@ -294,7 +307,7 @@ pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export
                 }
             }
             let indices = grid_indices(res.planes.len(), n);
-            let id = &done.run.blocks[k].id;
+            let id = &run.blocks[k].id;
             meshes.push(Mesh {
                 name: format!("design_{id}"),
                 positions: design,
@@ -311,7 +324,5 @@ pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export
             });
         }
     }
-    files.add("model.gltf", |buf| {
-        write_gltf("hotcut", &meshes, &materials, buf)
-    })
+    meshes
 }

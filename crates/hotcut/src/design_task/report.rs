@@ -22,6 +22,10 @@ pub struct DesignReport {
     pub task: String,
     /// Length unit.
     pub units: Units,
+    /// The hotcut version that wrote it.
+    pub hotcut_version: String,
+    /// The box of what `model.gltf` shows (blocks, design and elastica surfaces, tops).
+    pub model_bounds: Option<crate::report::ModelBounds>,
     /// The design file, as the job names it.
     pub design: String,
     /// The settings used (defaults filled in).

@@ -356,7 +356,9 @@ impl Task for FacadeSegmentation {
             job: job.name.clone(),
             task: Self::NAME.into(),
             units: job.units,
+            hotcut_version: crate::report::VERSION.into(),
             surface: run.surface.clone(),
+            model_bounds: crate::report::ModelBounds::of(Ok(outputs::scene(run))),
             settings: SegmentationSettings {
                 algorithm: params.algorithm.clone(),
                 sections: run.facade.sections.len(),

@@ -4,7 +4,7 @@
 //! shared with `HotBlade`.
 
 use export::csv::Table;
-use export::gltf::{f32s, write_gltf, Material, Mesh};
+use export::gltf::{f32s, write_gltf, Material, Mesh, SourceUnits};
 use export::obj::ObjWriter;
 use export::svg::{bounds, SvgDoc, Viewport};
 use facade_seg::Piece;
@@ -89,12 +89,16 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
 
 /// `model.gltf`.
 pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    files.add("model.gltf", |buf| model(done.run, buf))
+    files.add("model.gltf", |buf| {
+        model(done.run, crate::output::source_units(done.job.units), buf)
+    })
 }
 
 /// `segmentation.obj`.
 pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    files.add("segmentation.obj", |buf| parts_obj(done.run, buf))
+    files.add("segmentation.obj", |buf| {
+        parts_obj(done.run, crate::output::source_units(done.job.units), buf)
+    })
 }
 
 /// `sections.csv`.
@@ -248,7 +252,7 @@ fn draw_piece(
 
 /// Pieces as coloured triangle strips between their consecutive section parts, and their
 /// blocks as translucent boxes.
-fn model(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
+fn model(run: &SegmentationRun, units: SourceUnits<'_>, buf: &mut Vec<u8>) -> export::Result<()> {
     let mut materials = vec![block_material()];
     for (k, c) in PALETTE.iter().enumerate() {
         materials.push(Material {
@@ -257,6 +261,11 @@ fn model(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
             blend: false,
         });
     }
+    write_gltf("hotcut", &scene(run), &materials, units, buf)
+}
+
+/// The meshes of `model.gltf`: per piece its block and its strip.
+pub(super) fn scene(run: &SegmentationRun) -> Vec<Mesh> {
     let mut meshes = Vec::new();
     let n = DRAW_SAMPLES;
     for piece in &run.segmentation.pieces {
@@ -279,12 +288,16 @@ fn model(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
             material: 1 + (piece.id + PALETTE.len() - 1) % PALETTE.len(),
         });
     }
-    write_gltf("hotcut", &meshes, &materials, buf)
+    meshes
 }
 
 /// Every piece's section parts as 3D polylines.
-fn parts_obj(run: &SegmentationRun, buf: &mut Vec<u8>) -> export::Result<()> {
-    let mut w = ObjWriter::new(6);
+fn parts_obj(
+    run: &SegmentationRun,
+    units: SourceUnits<'_>,
+    buf: &mut Vec<u8>,
+) -> export::Result<()> {
+    let mut w = ObjWriter::new(6, units);
     for piece in &run.segmentation.pieces {
         for part in &piece.parts {
             w.polyline(

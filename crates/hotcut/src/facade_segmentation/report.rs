@@ -20,8 +20,12 @@ pub struct SegmentationReport {
     pub task: String,
     /// Length unit.
     pub units: Units,
+    /// The hotcut version that wrote it.
+    pub hotcut_version: String,
     /// The surface as loaded.
     pub surface: SurfaceInfo,
+    /// The box of what `model.gltf` shows (pieces and their blocks).
+    pub model_bounds: Option<crate::report::ModelBounds>,
     /// The settings used (defaults filled in).
     pub settings: SegmentationSettings,
     /// How many pieces and blocks, and how many break each constraint.

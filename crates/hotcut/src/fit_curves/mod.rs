@@ -304,6 +304,7 @@ impl Task for FitCurves {
             job: job.name.clone(),
             task: Self::NAME.into(),
             units: job.units,
+            hotcut_version: crate::report::VERSION.into(),
             source: run.source.clone(),
             constraint: params.constraint,
             method: params.method,

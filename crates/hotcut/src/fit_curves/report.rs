@@ -18,6 +18,8 @@ pub struct FitCurvesReport {
     pub task: String,
     /// Length unit of every coordinate and length; curvatures in 1/unit.
     pub units: Units,
+    /// The hotcut version that wrote it.
+    pub hotcut_version: String,
     /// Where the curves came from: `file <path>` or `sections of the <kind> surface`.
     pub source: String,
     /// The boundary constraint every fit honours.

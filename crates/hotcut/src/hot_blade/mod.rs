@@ -312,7 +312,9 @@ impl Task for HotBlade {
             job: job.name.clone(),
             task: Self::NAME.into(),
             units: job.units,
+            hotcut_version: crate::report::VERSION.into(),
             surface: run.surface.clone(),
+            model_bounds: crate::report::ModelBounds::of(Ok(outputs::scene(cut, p.tolerance_max))),
             settings: HotBladeSettings {
                 targets_per_block: p.targets,
                 constraint: params.constraint,

@@ -4,7 +4,7 @@
 //! fitted section.
 
 use export::csv::Table;
-use export::gltf::{f32s, write_gltf, Material, Mesh};
+use export::gltf::{f32s, write_gltf, Material, Mesh, SourceUnits};
 use export::obj::ObjWriter;
 use export::svg::{bounds, SvgDoc, Viewport};
 use hotblade::{BlockResult, Rationalization};
@@ -53,7 +53,7 @@ pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> expor
 pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
     for b in &done.run.cut.blocks {
         files.add(format!("surface_block_{:03}.obj", b.report.block), |buf| {
-            let mut w = ObjWriter::new(6);
+            let mut w = ObjWriter::new(6, crate::output::source_units(done.job.units));
             if let Some(m) = b.surface_mesh() {
                 w.mesh(&format!("block_{}", b.report.block), &m);
             }
@@ -77,7 +77,14 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
 /// `model.gltf`: blocks as translucent boxes, surfaces coloured by deviation.
 pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
     let tol = done.params.pipeline.tolerance_max;
-    files.add("model.gltf", |buf| model(&done.run.cut, tol, buf))
+    files.add("model.gltf", |buf| {
+        model(
+            &done.run.cut,
+            tol,
+            crate::output::source_units(done.job.units),
+            buf,
+        )
+    })
 }
 
 /// `sections.csv`: one row per fitted section.
@@ -112,11 +119,22 @@ fn sections_csv(run: &Rationalization) -> String {
     t.finish()
 }
 
-fn model(run: &Rationalization, tol: f64, buf: &mut Vec<u8>) -> export::Result<()> {
+fn model(
+    run: &Rationalization,
+    tol: f64,
+    units: SourceUnits<'_>,
+    buf: &mut Vec<u8>,
+) -> export::Result<()> {
     let materials = vec![
         block_material(),
         Material::new("surface", [1.0, 1.0, 1.0, 1.0], false),
     ];
+    write_gltf("hotcut", &scene(run, tol), &materials, units, buf)
+}
+
+/// The meshes of `model.gltf`: per block its box and its rationalized surface, coloured by
+/// deviation (`tol` is red).
+pub(super) fn scene(run: &Rationalization, tol: f64) -> Vec<Mesh> {
     let mut meshes = Vec::new();
     let g = &run.grid;
     for b in &run.blocks {
@@ -142,7 +160,7 @@ fn model(run: &Rationalization, tol: f64, buf: &mut Vec<u8>) -> export::Result<(
             material: 1,
         });
     }
-    write_gltf("hotcut", &meshes, &materials, buf)
+    meshes
 }
 
 /// Design section and fitted elastica of the block's worst section (largest L2), with the

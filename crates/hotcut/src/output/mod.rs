@@ -22,6 +22,15 @@ pub fn deviation_color(dev: f64, tolerance: f64) -> [f32; 4] {
     [r as f32, g as f32, b as f32, 1.0]
 }
 
+/// The unit the job's lengths are in, for the 3D writers (glTF scales to metres, OBJ
+/// names it).
+pub fn source_units(units: crate::spec::Units) -> export::SourceUnits<'static> {
+    export::SourceUnits {
+        name: units.name(),
+        metres: 1e-3 / units.per_mm(),
+    }
+}
+
 /// The translucent grey blocks of the hot-blade tasks' `model.gltf`.
 pub fn block_material() -> export::gltf::Material {
     export::gltf::Material::new("block", [0.85, 0.85, 0.8, 0.15], true)

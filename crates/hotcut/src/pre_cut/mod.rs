@@ -19,6 +19,16 @@ mod machine;
 /// Its files: `precut.json`, `sections.svg`, `precut.obj`, `model.gltf`, wire G-code with
 /// its preview, and CSV.
 mod outputs;
+
+/// `precut.json` (schema `schemas/precut.schema.json`).
+#[derive(Debug, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PreCutFile<'a> {
+    /// Length unit of every coordinate.
+    pub units: Units,
+    /// Per direction the polygons of rulings and the legs' B-splines.
+    pub directions: &'a [ruled::DirectionCut],
+}
 /// The drawing of one wire program: both towers' paths, the block, the travel.
 mod preview;
 
@@ -147,10 +157,18 @@ fn default_cut_rounds() -> u32 {
 /// The report of a `PreCut` run (`report.json`).
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct PreCutReport {
+    /// Job name.
+    pub job: String,
+    /// Task name, `PreCut`.
+    pub task: String,
     /// Length unit of every length.
     pub units: Units,
+    /// The hotcut version that wrote it.
+    pub hotcut_version: String,
     /// The block: minimum and maximum corner.
     pub block: ruled::Block,
+    /// The box of what `model.gltf` shows (design, cut surfaces, block).
+    pub model_bounds: Option<crate::report::ModelBounds>,
     /// The optimizer's parameters as run.
     pub params: ruled::Params,
     /// Table 2.1: volumes normalised by the block.
@@ -413,8 +431,12 @@ impl Task for PreCut {
             .map(|d| [d.direction[0], d.direction[1]])
             .collect();
         PreCutReport {
+            job: job.name.clone(),
+            task: Self::NAME.into(),
             units: job.units,
+            hotcut_version: crate::report::VERSION.into(),
             block: params.block,
+            model_bounds: crate::report::ModelBounds::of(outputs::scene(run, &params.block)),
             params: ruled::Params {
                 directions,
                 ..params.cut.clone()

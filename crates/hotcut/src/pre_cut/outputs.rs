@@ -4,13 +4,12 @@
 //! (design surface, each direction's cut surface, the block) and per cut the wire's
 //! G-code and CSV.
 
-use export::gltf::{write_gltf, Material, Mesh};
+use export::gltf::{write_gltf, Material, Mesh, SourceUnits};
 use export::json::REPORT_DIGITS;
 use export::obj::ObjWriter;
 use export::svg::{SvgDoc, Viewport};
 use geom::mesh::TriMesh;
 use nalgebra::Vector3;
-use serde::Serialize;
 
 use super::preview::preview;
 use super::{program_file, PreCut, PreCutRun};
@@ -26,11 +25,8 @@ pub(super) fn precut_json(
     _: &OutputSpec,
     files: &mut Files,
 ) -> export::Result<()> {
-    #[derive(Serialize)]
-    struct PreCutFile<'a> {
-        directions: &'a [ruled::DirectionCut],
-    }
-    let f = PreCutFile {
+    let f = super::PreCutFile {
+        units: done.job.units,
         directions: &done.run.cut.directions,
     };
     files.json("precut.json", &f, REPORT_DIGITS)
@@ -46,13 +42,25 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
 /// `precut.obj`: design, cut surfaces, block.
 pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
     files.add("precut.obj", |buf| {
-        meshes_obj(done.run, &done.params.block, buf)
+        meshes_obj(
+            done.run,
+            &done.params.block,
+            crate::output::source_units(done.job.units),
+            buf,
+        )
     })
 }
 
 /// `model.gltf`: design, cut surfaces, block.
 pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    files.add("model.gltf", |buf| model(done.run, &done.params.block, buf))
+    files.add("model.gltf", |buf| {
+        model(
+            done.run,
+            &done.params.block,
+            crate::output::source_units(done.job.units),
+            buf,
+        )
+    })
 }
 
 /// The block as a box mesh: its centre ± half its size on each axis.
@@ -76,8 +84,13 @@ const DESIGN_GRID: usize = 64;
 /// Points across the block per section of a cut surface mesh.
 const ACROSS: usize = 40;
 
-fn meshes_obj(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> export::Result<()> {
-    let mut w = ObjWriter::new(6);
+fn meshes_obj(
+    run: &PreCutRun,
+    block: &ruled::Block,
+    units: SourceUnits<'_>,
+    buf: &mut Vec<u8>,
+) -> export::Result<()> {
+    let mut w = ObjWriter::new(6, units);
     w.mesh("design", &design_mesh(run)?);
     for (i, d) in run.cut.directions.iter().enumerate() {
         if let Some(m) = d.surface_mesh(block.max[2], ACROSS) {
@@ -88,12 +101,8 @@ fn meshes_obj(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> expor
     w.write(buf)
 }
 
-fn model(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> export::Result<()> {
-    let materials = vec![
-        Material::new("design", [0.8, 0.8, 0.82, 1.0], false),
-        Material::new("cut", [0.85, 0.2, 0.15, 0.45], true),
-        Material::new("block", [0.2, 0.4, 0.9, 0.12], true),
-    ];
+/// The meshes of `model.gltf`: the design, each direction's cut surface, the block.
+pub(super) fn scene(run: &PreCutRun, block: &ruled::Block) -> export::Result<Vec<Mesh>> {
     let mut meshes = vec![Mesh::from_trimesh("design", &design_mesh(run)?, 0)];
     for (i, d) in run.cut.directions.iter().enumerate() {
         if let Some(m) = d.surface_mesh(block.max[2], ACROSS) {
@@ -101,7 +110,22 @@ fn model(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> export::Re
         }
     }
     meshes.push(Mesh::from_trimesh("block", &block_box(block)?, 2));
-    write_gltf("hotcut PreCut", &meshes, &materials, buf)
+    Ok(meshes)
+}
+
+fn model(
+    run: &PreCutRun,
+    block: &ruled::Block,
+    units: SourceUnits<'_>,
+    buf: &mut Vec<u8>,
+) -> export::Result<()> {
+    let materials = vec![
+        Material::new("design", [0.8, 0.8, 0.82, 1.0], false),
+        Material::new("cut", [0.85, 0.2, 0.15, 0.45], true),
+        Material::new("block", [0.2, 0.4, 0.9, 0.12], true),
+    ];
+    let meshes = scene(run, block)?;
+    write_gltf("hotcut PreCut", &meshes, &materials, units, buf)
 }
 
 /// One file per cut: `wire_dD_cC.gcode` with its preview `wire_dD_cC.svg` (`GCode`), or

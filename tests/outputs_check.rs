@@ -1,0 +1,234 @@
+//! Checks of every job's output files, run by `jobs.rs` on each job's first run: the glTF
+//! is in metres and its bounds are the report's `model_bounds`, and every JSON file
+//! validates against its committed schema, which rejects unknown keys.
+
+use std::path::Path;
+
+use serde_json::Value;
+
+/// The schema file of a JSON output `name` (`report.json` by the report's task).
+fn schema_for(name: &str, value: &Value) -> String {
+    match name {
+        "targets.json" => "targets.schema.json".into(),
+        "blocks.json" => "blocks.schema.json".into(),
+        "precut.json" => "precut.schema.json".into(),
+        "report.json" => {
+            let task = value["task"].as_str().expect("a report names its task");
+            hotcut::schema_files()
+                .into_iter()
+                .find(|f| f.task == Some(task))
+                .unwrap_or_else(|| panic!("no report schema for task {task}"))
+                .file
+                .into()
+        }
+        other => panic!("{other}: a JSON output without a schema"),
+    }
+}
+
+/// Every object of `v`, depth first, as JSON pointers.
+fn objects(v: &Value, at: String, out: &mut Vec<String>) {
+    match v {
+        Value::Object(o) => {
+            out.push(at.clone());
+            for (k, x) in o {
+                objects(
+                    x,
+                    format!("{at}/{}", k.replace('~', "~0").replace('/', "~1")),
+                    out,
+                );
+            }
+        }
+        Value::Array(a) => {
+            for (i, x) in a.iter().enumerate() {
+                objects(x, format!("{at}/{i}"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// Every `.json` file in `dir` validates against its schema in `schemas/`, and adding an
+/// unknown key to any of its objects (up to 64 of them, spread evenly) makes it invalid.
+pub fn json_files_validate(dir: &Path, root: &Path, what: &str) {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".json"))
+        .collect();
+    names.sort();
+    assert!(
+        names.contains(&"report.json".to_string()),
+        "{what}: no report"
+    );
+    for name in names {
+        let value: Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join(&name)).unwrap()).unwrap();
+        let schema_file = schema_for(&name, &value);
+        let schema: Value = serde_json::from_str(
+            &std::fs::read_to_string(root.join("schemas").join(&schema_file)).unwrap(),
+        )
+        .unwrap();
+        let validator = jsonschema::validator_for(&schema).unwrap();
+        let errors: Vec<String> = validator
+            .iter_errors(&value)
+            .take(5)
+            .map(|e| format!("{} at {}", e, e.instance_path()))
+            .collect();
+        assert!(
+            errors.is_empty(),
+            "{what}: {name} does not validate against schemas/{schema_file}: {errors:?}"
+        );
+        let mut all = Vec::new();
+        objects(&value, String::new(), &mut all);
+        let step = all.len().div_ceil(64).max(1);
+        for at in all.iter().step_by(step) {
+            let mut bad = value.clone();
+            bad.pointer_mut(at)
+                .and_then(Value::as_object_mut)
+                .unwrap()
+                .insert("hotcut_unknown_key".into(), Value::Null);
+            assert!(
+                !validator.is_valid(&bad),
+                "{what}: schemas/{schema_file} accepts an unknown key at {name}{at}"
+            );
+        }
+    }
+}
+
+/// A unit quaternion `[x, y, z, w]` as a rotation matrix (rows).
+fn rotation(q: &[f64]) -> [[f64; 3]; 3] {
+    let (x, y, z, w) = (q[0], q[1], q[2], q[3]);
+    [
+        [
+            1.0 - 2.0 * (y * y + z * z),
+            2.0 * (x * y - w * z),
+            2.0 * (x * z + w * y),
+        ],
+        [
+            2.0 * (x * y + w * z),
+            1.0 - 2.0 * (x * x + z * z),
+            2.0 * (y * z - w * x),
+        ],
+        [
+            2.0 * (x * z - w * y),
+            2.0 * (y * z + w * x),
+            1.0 - 2.0 * (x * x + y * y),
+        ],
+    ]
+}
+
+/// `model.gltf`'s scene bounds in metres, y up (every mesh node's accessor box, its
+/// corners moved by the rotations and scales of the nodes above it), and the report's
+/// `model_bounds` moved the same way glTF says a z-up job is turned (checked separately:
+/// the root node is the −90° turn about x) agree to single precision.
+pub fn gltf_bounds_match_the_report(dir: &Path, what: &str) {
+    let path = dir.join("model.gltf");
+    if !path.exists() {
+        return;
+    }
+    let g: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap();
+    let metres = match report["units"].as_str().unwrap() {
+        "Millimetre" => 1e-3,
+        "Metre" => 1.0,
+        u => panic!("{what}: unit {u}"),
+    };
+    assert_eq!(
+        g["asset"]["extras"]["source_units"], report["units"],
+        "{what}"
+    );
+    assert_eq!(
+        g["asset"]["extras"]["metres_per_source_unit"].as_f64(),
+        Some(metres),
+        "{what}"
+    );
+    let nodes = g["nodes"].as_array().unwrap();
+    // each node's transform: rotation then scale (no node translates)
+    let transform = |n: &Value| {
+        assert!(
+            n.get("translation").is_none() && n.get("matrix").is_none(),
+            "{what}"
+        );
+        let r = n["rotation"]
+            .as_array()
+            .map(|q| rotation(&q.iter().map(|v| v.as_f64().unwrap()).collect::<Vec<_>>()))
+            .unwrap_or([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+        let s: Vec<f64> = n["scale"]
+            .as_array()
+            .map(|s| s.iter().map(|v| v.as_f64().unwrap()).collect())
+            .unwrap_or(vec![1.0; 3]);
+        move |p: [f64; 3]| -> [f64; 3] {
+            let q = [p[0] * s[0], p[1] * s[1], p[2] * s[2]];
+            std::array::from_fn(|i| (0..3).map(|k| r[i][k] * q[k]).sum())
+        }
+    };
+    let parent = |i: usize| {
+        nodes.iter().position(|n| {
+            n["children"]
+                .as_array()
+                .is_some_and(|c| c.iter().any(|x| x.as_u64() == Some(i as u64)))
+        })
+    };
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for (i, n) in nodes.iter().enumerate() {
+        let Some(mesh) = n["mesh"].as_u64() else {
+            continue;
+        };
+        for prim in g["meshes"][mesh as usize]["primitives"].as_array().unwrap() {
+            let acc = &g["accessors"][prim["attributes"]["POSITION"].as_u64().unwrap() as usize];
+            let v = |k: &str| -> Vec<f64> {
+                acc[k]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|x| x.as_f64().unwrap())
+                    .collect()
+            };
+            let (a, b) = (v("min"), v("max"));
+            for c in 0..8 {
+                let mut p = [
+                    if c & 1 == 0 { a[0] } else { b[0] },
+                    if c & 2 == 0 { a[1] } else { b[1] },
+                    if c & 4 == 0 { a[2] } else { b[2] },
+                ];
+                p = transform(n)(p);
+                let mut up = parent(i);
+                let mut depth = 0;
+                while let Some(j) = up {
+                    p = transform(&nodes[j])(p);
+                    up = parent(j);
+                    depth += 1;
+                    assert!(depth < nodes.len(), "{what}: node cycle");
+                }
+                for k in 0..3 {
+                    lo[k] = lo[k].min(p[k]);
+                    hi[k] = hi[k].max(p[k]);
+                }
+            }
+        }
+    }
+    let b = &report["model_bounds"];
+    let r = |k: &str| -> Vec<f64> {
+        b[k].as_array()
+            .unwrap_or_else(|| panic!("{what}: report has no model_bounds"))
+            .iter()
+            .map(|x| x.as_f64().unwrap() * metres)
+            .collect()
+    };
+    let (min, max) = (r("min"), r("max"));
+    // z up to y up: (x, y, z) → (x, z, −y)
+    let want_lo = [min[0], min[2], -max[1]];
+    let want_hi = [max[0], max[2], -min[1]];
+    let size = (0..3)
+        .map(|k| want_hi[k].abs().max(want_lo[k].abs()))
+        .fold(0.0, f64::max);
+    // f32 positions (6e-8 relative) and the report's 9 digits
+    let tol = 1e-6 * size.max(1e-3);
+    for k in 0..3 {
+        assert!(
+            (lo[k] - want_lo[k]).abs() <= tol && (hi[k] - want_hi[k]).abs() <= tol,
+            "{what}: glTF bounds {lo:?}..{hi:?} m, report {want_lo:?}..{want_hi:?} m"
+        );
+    }
+}
