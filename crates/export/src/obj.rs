@@ -13,23 +13,44 @@ use nalgebra::Vector3;
 
 use crate::{fmt_float, Result, SourceUnits};
 
+/// Which axis of the file is up.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub enum UpAxis {
+    /// As hotcut computes: x, y, z with +z up (Rhino, most CAD).
+    #[default]
+    Z,
+    /// Turned for y-up readers (Blender's OBJ import default, three.js): a point
+    /// (x, y, z) is written as (x, z, −y), the turn glTF's `z-up` root node makes.
+    Y,
+}
+
 /// Accumulates named objects and writes them as one OBJ file.
 #[derive(Debug, Default, Clone)]
 pub struct ObjWriter {
     decimals: usize,
+    up: UpAxis,
     text: String,
     next_vertex: usize,
 }
 
 impl ObjWriter {
-    /// A writer printing coordinates in `units` with `decimals` digits.
+    /// A writer printing coordinates in `units` with `decimals` digits, z up.
     pub fn new(decimals: usize, units: SourceUnits<'_>) -> Self {
+        Self::with_up(decimals, units, UpAxis::Z)
+    }
+
+    /// A writer printing coordinates in `units` with `decimals` digits, `up` up.
+    pub fn with_up(decimals: usize, units: SourceUnits<'_>, up: UpAxis) -> Self {
+        let axes = match up {
+            UpAxis::Z => "right-handed, +z up as computed (Blender: import with Up Axis Z, Forward Axis Y)",
+            UpAxis::Y => "right-handed, +y up: a computed (x, y, z) is written (x, z, -y) (Blender's and three.js's default)",
+        };
         Self {
             decimals,
+            up,
             text: format!(
-                "# written by hotcut\n# units: {} (1 unit = {} m)\n# axes: right-handed, +z up (import z-up: in Blender set Up Axis Z, Forward Y)\n",
-                units.name,
-                units.metres
+                "# written by hotcut\n# units: {} (1 unit = {} m)\n# axes: {axes}\n",
+                units.name, units.metres
             ),
             next_vertex: 1,
         }
@@ -37,6 +58,10 @@ impl ObjWriter {
 
     fn vertex(&mut self, p: &Vector3<f64>) {
         let d = self.decimals;
+        let p = match self.up {
+            UpAxis::Z => *p,
+            UpAxis::Y => Vector3::new(p.x, p.z, -p.y),
+        };
         self.text.push_str(&format!(
             "v {} {} {}\n",
             fmt_float(p.x, d),
@@ -109,6 +134,17 @@ mod tests {
     use super::*;
 
     #[test]
+    fn y_up_turns_points_as_gltf_does() {
+        let mut o = ObjWriter::with_up(3, SourceUnits::METRE, UpAxis::Y);
+        o.polyline("p", &[Vector3::new(1.0, 2.0, 3.0), Vector3::zeros()]);
+        let mut buf = Vec::new();
+        o.write(&mut buf).unwrap();
+        let s = String::from_utf8(buf).unwrap();
+        assert!(s.contains("+y up"), "{s}");
+        assert!(s.contains("\nv 1 3 -2\n"), "{s}");
+    }
+
+    #[test]
     fn writes_mesh_and_polyline() {
         let m = TriMesh::try_new(
             vec![Vector3::zeros(), Vector3::x(), Vector3::new(0.0, 1.0, 0.5)],
@@ -123,7 +159,7 @@ mod tests {
         let s = String::from_utf8(buf).unwrap();
         assert_eq!(
             s,
-            "# written by hotcut\n# units: Metre (1 unit = 1 m)\n# axes: right-handed, +z up (import z-up: in Blender set Up Axis Z, Forward Y)\no m\nv 0 0 0\nv 1 0 0\nv 0 1 0.5\nf 1 2 3\no p\nv 0 0 0\nv 0.333 0 0\nl 4 5\n"
+            "# written by hotcut\n# units: Metre (1 unit = 1 m)\n# axes: right-handed, +z up as computed (Blender: import with Up Axis Z, Forward Axis Y)\no m\nv 0 0 0\nv 1 0 0\nv 0 1 0.5\nf 1 2 3\no p\nv 0 0 0\nv 0.333 0 0\nl 4 5\n"
         );
         // the written mesh reads back
         let dir = std::env::temp_dir().join(format!("hotcut-obj-{}", std::process::id()));

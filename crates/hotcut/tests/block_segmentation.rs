@@ -234,3 +234,91 @@ fn too_small_blocks_fail_cleanly() {
         assert!(!dir.path().join("out/t").exists());
     }
 }
+
+/// Bounding box of object `name`'s vertices in an OBJ text.
+fn obj_box(text: &str, name: &str) -> ([f64; 3], [f64; 3]) {
+    let mut inside = false;
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for line in text.lines() {
+        if let Some(o) = line.strip_prefix("o ") {
+            inside = o == name;
+        } else if let (true, Some(v)) = (inside, line.strip_prefix("v ")) {
+            let p: Vec<f64> = v.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+    }
+    (lo, hi)
+}
+
+#[test]
+fn obj_y_up_lands_where_the_gltf_does() {
+    // `Obj(axes: YUp)` writes what glTF readers show: the glTF's block_0, in metres and
+    // turned by its root node, is the OBJ's block_0; plain `Obj` stays z up
+    let dir = tempfile::tempdir().unwrap();
+    let text = job(SMALL, "").replace(
+        "outputs: [Report, Blocks, Svg, Obj, Gltf]",
+        "outputs: [Report, Obj(axes: YUp), Gltf]",
+    );
+    write(dir.path(), "job.ron", &text);
+    let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = dir.path().join("out/t");
+    let obj = std::fs::read_to_string(out.join("blocks.obj")).unwrap();
+    assert!(obj.contains("# units: Metre (1 unit = 1 m)"), "{obj}");
+    assert!(obj.contains("+y up"), "{obj}");
+    let g: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("model.gltf")).unwrap()).unwrap();
+    assert_eq!(g["asset"]["extras"]["source_units"], "Metre");
+    let mesh = g["meshes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|m| m["name"] == "block_0")
+        .unwrap();
+    let acc = &g["accessors"][mesh["primitives"][0]["attributes"]["POSITION"]
+        .as_u64()
+        .unwrap() as usize];
+    let v = |k: &str| -> Vec<f64> {
+        acc[k]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let (a, b) = (v("min"), v("max"));
+    // the root node `z-up`: (x, y, z) → (x, z, −y)
+    let (want_lo, want_hi) = ([a[0], a[2], -b[1]], [b[0], b[2], -a[1]]);
+    let (lo, hi) = obj_box(&obj, "block_0");
+    for k in 0..3 {
+        assert!((lo[k] - want_lo[k]).abs() < 1e-6, "{lo:?} vs {want_lo:?}");
+        assert!((hi[k] - want_hi[k]).abs() < 1e-6, "{hi:?} vs {want_hi:?}");
+    }
+    let root = g["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|n| n["name"] == "z-up")
+        .unwrap();
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let q: Vec<f64> = root["rotation"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert!((q[0] + h).abs() < 1e-12 && q[1] == 0.0 && q[2] == 0.0 && (q[3] - h).abs() < 1e-12);
+    // and the default form, in the same list syntax, stays z up
+    let text = job(SMALL, "").replace(
+        "outputs: [Report, Blocks, Svg, Obj, Gltf]",
+        "outputs: [Report, Obj]",
+    );
+    write(dir.path(), "job.ron", &text);
+    let o = hotcut(&["run", "job.ron", "--out", "out2"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let obj = std::fs::read_to_string(dir.path().join("out2/t/blocks.obj")).unwrap();
+    assert!(obj.contains("+z up"), "{obj}");
+}

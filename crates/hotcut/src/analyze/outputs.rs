@@ -5,7 +5,6 @@
 //! sections as 3D polylines.
 
 use export::json::REPORT_DIGITS;
-use export::obj::ObjWriter;
 use export::svg::{bounds, SvgDoc, Viewport};
 use geom::planar::PlanarCurve;
 use geom::slice::PlaneFrame;
@@ -36,11 +35,11 @@ pub(super) fn svg(
 /// `sections.obj`.
 pub(super) fn obj(
     done: &Finished<'_, Analyze>,
-    _: &OutputSpec,
+    o: &OutputSpec,
     files: &mut Files,
 ) -> export::Result<()> {
     files.add("sections.obj", |buf| {
-        let mut w = ObjWriter::new(REPORT_DIGITS, crate::output::source_units(done.job.units));
+        let mut w = crate::output::obj_writer(REPORT_DIGITS, done.job.units, o);
         for (s, _) in &done.run.survey.sections {
             w.polyline(
                 &format!("section_{}_{}", s.index, s.piece),

@@ -5,7 +5,6 @@
 use blocks::Phase;
 use export::gltf::{write_gltf, Material, Mesh};
 use export::json::REPORT_DIGITS;
-use export::obj::ObjWriter;
 use export::svg::SvgDoc;
 
 use super::BlockSegmentation;
@@ -29,9 +28,9 @@ pub(super) fn blocks_json(
 }
 
 /// `blocks.obj`: the blocks as boxes.
-pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+pub(super) fn obj(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
     files.add("blocks.obj", |buf| {
-        let mut w = ObjWriter::new(6, crate::output::source_units(done.job.units));
+        let mut w = crate::output::obj_writer(6, done.job.units, o);
         for (i, b) in done.run.segmentation.blocks.iter().enumerate() {
             w.mesh(&format!("block_{i}"), &b.mesh()?);
         }

@@ -95,9 +95,13 @@ pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export
 }
 
 /// `segmentation.obj`.
-pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+pub(super) fn obj(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
     files.add("segmentation.obj", |buf| {
-        parts_obj(done.run, crate::output::source_units(done.job.units), buf)
+        parts_obj(
+            done.run,
+            crate::output::obj_writer(6, done.job.units, o),
+            buf,
+        )
     })
 }
 
@@ -292,12 +296,7 @@ pub(super) fn scene(run: &SegmentationRun) -> Vec<Mesh> {
 }
 
 /// Every piece's section parts as 3D polylines.
-fn parts_obj(
-    run: &SegmentationRun,
-    units: SourceUnits<'_>,
-    buf: &mut Vec<u8>,
-) -> export::Result<()> {
-    let mut w = ObjWriter::new(6, units);
+fn parts_obj(run: &SegmentationRun, mut w: ObjWriter, buf: &mut Vec<u8>) -> export::Result<()> {
     for piece in &run.segmentation.pieces {
         for part in &piece.parts {
             w.polyline(

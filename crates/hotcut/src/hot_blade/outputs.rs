@@ -5,7 +5,6 @@
 
 use export::csv::Table;
 use export::gltf::{f32s, write_gltf, Material, Mesh, SourceUnits};
-use export::obj::ObjWriter;
 use export::svg::{bounds, SvgDoc, Viewport};
 use hotblade::{BlockResult, Rationalization};
 use nalgebra::Vector3;
@@ -50,10 +49,10 @@ pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> expor
 }
 
 /// `surface_block_NNN.obj`: each block's rationalized surface.
-pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+pub(super) fn obj(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
     for b in &done.run.cut.blocks {
         files.add(format!("surface_block_{:03}.obj", b.report.block), |buf| {
-            let mut w = ObjWriter::new(6, crate::output::source_units(done.job.units));
+            let mut w = crate::output::obj_writer(6, done.job.units, o);
             if let Some(m) = b.surface_mesh() {
                 w.mesh(&format!("block_{}", b.report.block), &m);
             }

@@ -26,6 +26,9 @@ const UNIT_FORM_FIELDS: &[(&str, &[&str])] = &[
     ("algorithm", &["Inflection", "Trace", "LongestElastica"]),
 ];
 
+/// The output kinds that hold options and may be written in unit form inside `outputs:`.
+const UNIT_FORM_OUTPUTS: &[&str] = &["Obj"];
+
 /// The job text with `()` written after every unit-form variant, and where they went.
 pub(crate) struct UnitForms<'a> {
     /// The text to parse.
@@ -143,7 +146,65 @@ fn line_col(text: &str, pos: usize) -> (usize, usize) {
     (line, before[line_start..].chars().count() + 1)
 }
 
-/// Writes `()` after each unit-form variant of the fields in [`UNIT_FORM_FIELDS`].
+/// After the field name `outputs`: if `: [` follows, the positions after each element of
+/// [`UNIT_FORM_OUTPUTS`] not followed by `(`, up to the list's `]`. Elements with
+/// parentheses are skipped whole (strings inside them included).
+fn outputs_list(s: &mut Scanner<'_>, at: &mut Vec<usize>) {
+    s.skip_trivia();
+    if s.peek() != Some(b':') {
+        return;
+    }
+    s.pos += 1;
+    s.skip_trivia();
+    if s.peek() != Some(b'[') {
+        return;
+    }
+    s.pos += 1;
+    // every iteration consumes at least one byte or stops
+    while s.pos < s.bytes.len() {
+        s.skip_trivia();
+        match s.peek() {
+            None | Some(b']') => return,
+            Some(b',') => {
+                s.pos += 1;
+                continue;
+            }
+            _ => {}
+        }
+        let Some(word) = s.ident() else {
+            // not an identifier: leave the list to the parser's error
+            return;
+        };
+        let known = UNIT_FORM_OUTPUTS.contains(&word);
+        let end = s.pos;
+        s.skip_trivia();
+        if s.peek() == Some(b'(') {
+            let mut depth = 0usize;
+            while s.pos < s.bytes.len() {
+                if s.skip_string() {
+                    continue;
+                }
+                match s.peek() {
+                    Some(b'(') => depth += 1,
+                    Some(b')') => {
+                        depth -= 1;
+                        if depth == 0 {
+                            s.pos += 1;
+                            break;
+                        }
+                    }
+                    _ => {}
+                }
+                s.pos += 1;
+            }
+        } else if known {
+            at.push(end);
+        }
+    }
+}
+
+/// Writes `()` after each unit-form variant of the fields in [`UNIT_FORM_FIELDS`], and of
+/// the outputs in [`UNIT_FORM_OUTPUTS`].
 pub(crate) fn expand(text: &str) -> UnitForms<'_> {
     let mut s = Scanner {
         bytes: text.as_bytes(),
@@ -160,6 +221,10 @@ pub(crate) fn expand(text: &str) -> UnitForms<'_> {
             s.pos += 1;
             continue;
         };
+        if word == "outputs" {
+            outputs_list(&mut s, &mut at);
+            continue;
+        }
         let Some(&(_, variants)) = UNIT_FORM_FIELDS.iter().find(|(f, _)| *f == word) else {
             continue;
         };
@@ -205,6 +270,24 @@ pub(crate) fn expand(text: &str) -> UnitForms<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn writes_parentheses_after_unit_form_outputs() {
+        let t = "Job(outputs: [Report, Obj, RobotTargets(per_block: 3), Obj(axes: YUp), /* Obj */ Obj ], x: Obj)";
+        assert_eq!(
+            expand(t).text,
+            "Job(outputs: [Report, Obj(), RobotTargets(per_block: 3), Obj(axes: YUp), /* Obj */ Obj() ], x: Obj)"
+        );
+        // a broken list is left to the parser
+        for bad in [
+            "Job(outputs: [Obj",
+            "Job(outputs: [(",
+            "Job(outputs: [RobotTargets(\"a)\"",
+            "Job(outputs:",
+        ] {
+            let _ = expand(bad);
+        }
+    }
 
     #[test]
     fn writes_parentheses_after_unit_forms_only() {

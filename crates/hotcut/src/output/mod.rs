@@ -31,6 +31,21 @@ pub fn source_units(units: crate::spec::Units) -> export::SourceUnits<'static> {
     }
 }
 
+/// An OBJ writer for output `o` (its `axes`) of a job in `units`, `decimals` digits.
+pub fn obj_writer(
+    decimals: usize,
+    units: crate::spec::Units,
+    o: &crate::spec::OutputSpec,
+) -> export::obj::ObjWriter {
+    let up = match o {
+        crate::spec::OutputSpec::Obj {
+            axes: crate::spec::ObjAxes::YUp,
+        } => export::obj::UpAxis::Y,
+        _ => export::obj::UpAxis::Z,
+    };
+    export::obj::ObjWriter::with_up(decimals, source_units(units), up)
+}
+
 /// The translucent grey blocks of the hot-blade tasks' `model.gltf`.
 pub fn block_material() -> export::gltf::Material {
     export::gltf::Material::new("block", [0.85, 0.85, 0.8, 0.15], true)

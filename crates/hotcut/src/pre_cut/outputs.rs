@@ -40,12 +40,12 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
 }
 
 /// `precut.obj`: design, cut surfaces, block.
-pub(super) fn obj(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
+pub(super) fn obj(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
     files.add("precut.obj", |buf| {
         meshes_obj(
             done.run,
             &done.params.block,
-            crate::output::source_units(done.job.units),
+            crate::output::obj_writer(6, done.job.units, o),
             buf,
         )
     })
@@ -87,10 +87,9 @@ const ACROSS: usize = 40;
 fn meshes_obj(
     run: &PreCutRun,
     block: &ruled::Block,
-    units: SourceUnits<'_>,
+    mut w: ObjWriter,
     buf: &mut Vec<u8>,
 ) -> export::Result<()> {
-    let mut w = ObjWriter::new(6, units);
     w.mesh("design", &design_mesh(run)?);
     for (i, d) in run.cut.directions.iter().enumerate() {
         if let Some(m) = d.surface_mesh(block.max[2], ACROSS) {

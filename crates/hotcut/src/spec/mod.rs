@@ -304,8 +304,15 @@ pub enum OutputSpec {
     Svg,
     /// Wavefront OBJ: the section curves (Analyze), each block's rationalized surface
     /// (HotBlade), every piece's section parts (FacadeSegmentation), the blocks as boxes
-    /// (BlockSegmentation), the design, cut surfaces and block (PreCut).
-    Obj,
+    /// (BlockSegmentation), the design, cut surfaces and block (PreCut). `Obj` alone is
+    /// `Obj(axes: ZUp)`.
+    Obj {
+        /// Which axis is up in the file: `ZUp` (default; as computed, for Rhino and CAD)
+        /// or `YUp` (for Blender's default OBJ import and three.js: (x, y, z) is written
+        /// (x, z, −y), so the mesh lands with the job's `model.gltf`).
+        #[serde(default)]
+        axes: ObjAxes,
+    },
     /// `model.gltf`: blocks as boxes and the rationalized surfaces coloured by deviation
     /// (HotBlade), the pieces in colours and their blocks (FacadeSegmentation), the model
     /// and its blocks (BlockSegmentation), the design, cut surfaces and block (PreCut).
@@ -335,13 +342,23 @@ pub enum OutputSpec {
     PreCut,
 }
 
+/// The up axis of an OBJ output.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+pub enum ObjAxes {
+    /// +z up, as hotcut computes.
+    #[default]
+    ZUp,
+    /// +y up: (x, y, z) written as (x, z, −y).
+    YUp,
+}
+
 impl OutputSpec {
     /// The kind of file, without its options.
     pub fn kind(&self) -> OutputKind {
         match self {
             Self::Report => OutputKind::Report,
             Self::Svg => OutputKind::Svg,
-            Self::Obj => OutputKind::Obj,
+            Self::Obj { .. } => OutputKind::Obj,
             Self::Gltf => OutputKind::Gltf,
             Self::Csv => OutputKind::Csv,
             Self::RobotTargets { .. } => OutputKind::RobotTargets,
