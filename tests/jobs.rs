@@ -1,7 +1,8 @@
 //! Runs every job in `jobs/`: its `report.json` is snapshot-tested (snapshots live in the
 //! top-level `snapshots/`), a second run must give byte-identical output files, and the
 //! files are checked as their readers see them ([`outputs_check`]): glTF bounds in metres
-//! against the report, every JSON file against its schema.
+//! against the report, every JSON file against its schema, and no drawing's text off the
+//! page, on other text or crossed by a line.
 
 use hotcut::load::load_job;
 use hotcut::run::run_job;
@@ -36,6 +37,8 @@ fn every_job_runs_matches_its_snapshot_and_is_reproducible() {
             let what = path.display().to_string();
             outputs_check::gltf_bounds_match_the_report(&first.dir, &what);
             outputs_check::json_files_validate(&first.dir, &root(), &what);
+            let svg = outputs_check::svg_problems(&first.dir);
+            assert!(svg.is_empty(), "{what}: drawings:\n{}", svg.join("\n"));
             let report = std::fs::read_to_string(first.dir.join("report.json")).unwrap();
             insta::assert_snapshot!("report", report);
         });

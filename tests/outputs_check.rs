@@ -232,3 +232,147 @@ pub fn gltf_bounds_match_the_report(dir: &Path, what: &str) {
         );
     }
 }
+
+/// The value of attribute `name` in an element's text.
+fn attr<'a>(el: &'a str, name: &str) -> Option<&'a str> {
+    let key = format!(" {name}=\"");
+    let i = el.find(&key)? + key.len();
+    let j = el[i..].find('"')? + i;
+    Some(&el[i..j])
+}
+
+fn num(el: &str, name: &str) -> f64 {
+    attr(el, name).and_then(|v| v.parse().ok()).unwrap_or(0.0)
+}
+
+/// Whether segment `a`–`b` meets the box `(x0, y0, x1, y1)` (Liang–Barsky clipping).
+fn segment_meets_box(a: (f64, f64), b: (f64, f64), bx: (f64, f64, f64, f64)) -> bool {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-dx, a.0 - bx.0),
+        (dx, bx.2 - a.0),
+        (-dy, a.1 - bx.1),
+        (dy, bx.3 - a.1),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else {
+            let r = q / p;
+            if p < 0.0 {
+                t0 = t0.max(r);
+            } else {
+                t1 = t1.min(r);
+            }
+            if t0 > t1 {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// What a reader of the drawings in `dir` would trip on, by a simple honest proxy of
+/// "text overdrawn by geometry": every text's box (0.6 em per character wide, from 0.8 em
+/// above its baseline to 0.2 em below) must lie on the page, clear of every other text's
+/// box and of every drawn segment (polyline and polygon edges, rectangle edges, circles as
+/// their boxes). The page's white background and a text's own halo are not geometry.
+pub fn svg_problems(dir: &Path) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut names: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "svg"))
+        .collect();
+    names.sort();
+    for path in names {
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let svg = text.lines().find(|l| l.starts_with("<svg")).unwrap_or("");
+        let (w, h) = (num(svg, "width"), num(svg, "height"));
+        let mut boxes: Vec<(String, (f64, f64, f64, f64))> = Vec::new();
+        let mut segments: Vec<((f64, f64), (f64, f64))> = Vec::new();
+        for (i, el) in text.lines().enumerate() {
+            if let Some(rest) = el.strip_prefix("<text") {
+                let size = num(rest, "font-size");
+                let content = rest
+                    .split_once('>')
+                    .map(|(_, c)| c.trim_end_matches("</text>"))
+                    .unwrap_or("");
+                let chars = content
+                    .replace("&amp;", "&")
+                    .replace("&lt;", "<")
+                    .replace("&gt;", ">")
+                    .replace("&quot;", "\"")
+                    .chars()
+                    .count() as f64;
+                let (x, y) = (num(rest, "x"), num(rest, "y"));
+                let width = 0.6 * size * chars;
+                let x0 = match attr(rest, "text-anchor") {
+                    Some("middle") => x - width / 2.0,
+                    Some("end") => x - width,
+                    _ => x,
+                };
+                boxes.push((
+                    content.to_string(),
+                    (x0, y - 0.8 * size, x0 + width, y + 0.2 * size),
+                ));
+            } else if el.starts_with("<polyline") || el.starts_with("<polygon") {
+                let pts: Vec<(f64, f64)> = attr(el, "points")
+                    .unwrap_or("")
+                    .split_whitespace()
+                    .filter_map(|p| {
+                        let (a, b) = p.split_once(',')?;
+                        Some((a.parse().ok()?, b.parse().ok()?))
+                    })
+                    .collect();
+                for s in pts.windows(2) {
+                    segments.push((s[0], s[1]));
+                }
+                if el.starts_with("<polygon") && pts.len() > 2 {
+                    segments.push((pts[pts.len() - 1], pts[0]));
+                }
+            } else if el.starts_with("<rect") && i > 2 {
+                // (the first element, on line 3, is the page's white background)
+                let (x, y, rw, rh) = (
+                    num(el, "x"),
+                    num(el, "y"),
+                    num(el, "width"),
+                    num(el, "height"),
+                );
+                let c = [(x, y), (x + rw, y), (x + rw, y + rh), (x, y + rh)];
+                for k in 0..4 {
+                    segments.push((c[k], c[(k + 1) % 4]));
+                }
+            } else if el.starts_with("<circle") {
+                let (x, y, r) = (num(el, "cx"), num(el, "cy"), num(el, "r"));
+                segments.push(((x - r, y), (x + r, y)));
+                segments.push(((x, y - r), (x, y + r)));
+            }
+        }
+        for (k, (t, b)) in boxes.iter().enumerate() {
+            if b.0 < -0.5 || b.1 < -0.5 || b.2 > w + 0.5 || b.3 > h + 0.5 {
+                out.push(format!("{name}: text {t:?} runs off the page"));
+            }
+            if let Some((u, _)) = boxes[..k]
+                .iter()
+                .find(|(_, c)| b.0 < c.2 && c.0 < b.2 && b.1 < c.3 && c.1 < b.3)
+            {
+                out.push(format!("{name}: texts {u:?} and {t:?} overlap"));
+            }
+            let inner = (b.0 + 0.5, b.1 + 0.5, b.2 - 0.5, b.3 - 0.5);
+            if let Some(s) = segments
+                .iter()
+                .find(|(p, q)| segment_meets_box(*p, *q, inner))
+            {
+                out.push(format!(
+                    "{name}: text {t:?} is overdrawn by a line through {:?}",
+                    s.0
+                ));
+            }
+        }
+    }
+    out
+}

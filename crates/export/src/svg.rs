@@ -20,6 +20,19 @@ pub fn bounds(pts: impl Iterator<Item = (f64, f64)>) -> ((f64, f64), (f64, f64))
     )
 }
 
+/// A "nice" length (1, 2 or 5 × 10ᵏ) no longer than `at_most` (> 0), for scale bars.
+pub fn nice_length(at_most: f64) -> f64 {
+    if !(at_most > 0.0) || !at_most.is_finite() {
+        return 0.0;
+    }
+    let p = 10f64.powf(at_most.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|&l| l <= at_most)
+        .unwrap_or(p)
+}
+
 /// Maps world coordinates `(x, y)` (y up) into a page rectangle, preserving aspect ratio.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Viewport {
@@ -221,6 +234,32 @@ impl SvgDoc {
         self
     }
 
+    /// A scale bar under a drawing of viewport `vp`: a bar of a "nice" world length about a
+    /// fifth of `max_width` page units, its left end at page point `at` (the bar's
+    /// baseline), labelled with the length and `units` to its right.
+    pub fn scale_bar(
+        &mut self,
+        vp: &Viewport,
+        at: (f64, f64),
+        max_width: f64,
+        units: &str,
+    ) -> &mut Self {
+        let len = nice_length(max_width / 5.0 / vp.scale().max(1e-300));
+        let w = len * vp.scale();
+        if !(w > 0.0) {
+            return self;
+        }
+        let (x, y) = at;
+        self.polyline(
+            &[(x, y - 4.0), (x, y), (x + w, y), (x + w, y - 4.0)],
+            "black",
+            1.0,
+            None,
+        );
+        let label = format!("{} {units}", crate::fmt_float(len, 6));
+        self.text((x + w + 6.0, y), 10.0, "black", &label)
+    }
+
     /// Writes the document.
     ///
     /// # Errors
@@ -248,6 +287,14 @@ mod tests {
         let v = Viewport::fit((0.0, 0.0), (10.0, 5.0), (0.0, 0.0, 100.0, 100.0));
         assert_eq!(v.map(0.0, 0.0), (0.0, 75.0));
         assert_eq!(v.map(10.0, 5.0), (100.0, 25.0));
+    }
+
+    #[test]
+    fn nice_lengths() {
+        assert_eq!(nice_length(7.0), 5.0);
+        assert_eq!(nice_length(0.03), 0.02);
+        assert_eq!(nice_length(100.0), 100.0);
+        assert_eq!(nice_length(0.0), 0.0);
     }
 
     #[test]

@@ -12,8 +12,8 @@
 //!
 //! Solver: sequential quadratic programming with `clarabel` (the discs as second-order
 //! cones, the length linearized), in units where the input is 1 long, with a tie-break
-//! that makes the minimizer unique ([`sqp`]). The energy and its gradient are exact for the
-//! spline ([`basis`]).
+//! that makes the minimizer unique (module `sqp`). The energy and its gradient are exact for the
+//! spline (module `basis`).
 
 use serde::Serialize;
 

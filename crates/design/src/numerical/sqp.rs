@@ -13,7 +13,7 @@
 //! first-order method stops somewhere in it that depends on its path — in mm and in m
 //! differently. A tie-break `τ·E₀·Σ|offset/ε|²/k` (E₀ the input's energy, k free points,
 //! τ = 10⁻⁴) makes the minimizer unique, the one nearest the input, at a price of at most
-//! 10⁻⁴ E₀ in energy. The active-set Newton end game ([`super::polish`]) then converges to
+//! 10⁻⁴ E₀ in energy. The active-set Newton end game (module `polish`) then converges to
 //! it tightly; smaller τ leaves the valley so flat that Newton's steps shrink only
 //! linearly there.
 //!

@@ -129,20 +129,33 @@ fn plan_svg(run: &SegmentationRun, r: &SegmentationReport, units: &str) -> SvgDo
                 .collect()
         })
         .collect();
-    let (mut lo, mut hi) = bounds(sections.iter().flatten().copied());
+    // the viewport holds everything drawn: sections, pieces half a spacing beyond their
+    // sections, and the blocks' outlines
+    let corners = run.segmentation.pieces.iter().flat_map(|piece| {
+        let (d0, u0) = plan(&Vector3::from(piece.block.origin));
+        let s = piece.block.size;
+        [(d0, u0), (d0 + s[0], u0 + s[1])]
+    });
+    let (mut lo, mut hi) = bounds(sections.iter().flatten().copied().chain(corners));
     lo.0 -= half;
     hi.0 += half;
     let inner = W - 2.0 * M;
     let h = (inner * (hi.1 - lo.1) / (hi.0 - lo.0).max(1e-9)).clamp(200.0, 1400.0);
-    let mut doc = SvgDoc::new(W, h + 3.0 * M);
+    // header: title, counts and verdict, legend; then the plan
+    const TOP: f64 = 76.0;
+    let mut doc = SvgDoc::new(W, TOP + h + M);
     doc.text(
         (M, 22.0),
         16.0,
         "black",
+        &format!("{} — {}", r.job, r.settings.algorithm.name()),
+    );
+    doc.text(
+        (M, 42.0),
+        12.0,
+        "black",
         &format!(
-            "{} — {}: {} pieces in {} blocks, {} bands × {} rows, {}",
-            r.job,
-            r.settings.algorithm.name(),
+            "{} pieces in {} blocks, {} bands × {} rows: {}",
             r.counts.pieces,
             r.counts.blocks,
             r.counts.bands,
@@ -155,12 +168,12 @@ fn plan_svg(run: &SegmentationRun, r: &SegmentationReport, units: &str) -> SvgDo
         ),
     );
     doc.text(
-        (M, M + 4.0),
+        (M, 60.0),
         12.0,
         "#444",
         &format!("plan in the facade frame ({units}): cut left to right; sections grey, inflections red, seams black, blocks blue"),
     );
-    let page = (M, M + 14.0, inner, h);
+    let page = (M, TOP, inner, h);
     let vp = Viewport::fit(lo, hi, page);
     let map = |p: (f64, f64)| vp.map(p.0, p.1);
     for piece in &run.segmentation.pieces {

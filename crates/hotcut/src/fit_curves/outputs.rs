@@ -39,7 +39,7 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
     let inner = WIDTH - 2.0 * MARGIN;
     let cell_w = inner / cols as f64;
     let cell_h = cell_w * 0.75;
-    let top = MARGIN + 30.0;
+    let top = MARGIN + 44.0;
     let height = top + rows as f64 * cell_h + MARGIN;
     let mut doc = SvgDoc::new(WIDTH, height);
     let s = &r.summary;
@@ -63,10 +63,21 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
         12.0,
         "#444",
         &format!(
-            "RMS median {:.3e}, max {:.3e} {units} · input points grey; fit: elastica blue, arc green, line purple; inflections red{}",
-            s.median_rms,
-            s.max_rms,
-            if r.numerical.is_some() { "; numerical spline orange, dashed" } else { "" }
+            "RMS median {:.3e}, max {:.3e} {units}",
+            s.median_rms, s.max_rms
+        ),
+    );
+    doc.text(
+        (MARGIN, MARGIN + 30.0),
+        12.0,
+        "#444",
+        &format!(
+            "input points grey; fit: elastica blue, arc green, line purple; inflections red{}",
+            if r.numerical.is_some() {
+                "; numerical spline orange, dashed"
+            } else {
+                ""
+            }
         ),
     );
     for (k, (c, e)) in run.curves.iter().zip(&r.curves).enumerate() {
@@ -91,12 +102,14 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
                 .chain(numerical)
                 .map(|p| (p[0], p[1])),
         );
-        let vp = Viewport::fit(lo, hi, (x0 + 10.0, y0 + 24.0, cell_w - 20.0, cell_h - 34.0));
+        let vp = Viewport::fit(lo, hi, (x0 + 10.0, y0 + 38.0, cell_w - 20.0, cell_h - 48.0));
+        // the panel's title on two lines, inside its frame
         let title = match &e.fit {
-            Some(f) => format!("{}: {}, RMS {:.2e}", e.id, f.family, f.rms),
-            None => format!("{}: failed", e.id),
+            Some(f) => format!("{}, RMS {:.2e} {units}", f.family, f.rms),
+            None => "failed".to_string(),
         };
-        doc.text((x0 + 8.0, y0 + 16.0), 10.0, "black", &title);
+        doc.text((x0 + 8.0, y0 + 16.0), 10.0, "black", &e.id);
+        doc.text((x0 + 8.0, y0 + 30.0), 9.0, "#444", &title);
         let step = c.points.len().div_ceil(FIT_DOTS).max(1);
         for p in c.points.iter().step_by(step) {
             doc.circle(vp.map(p[0], p[1]), 1.4, "#999", None);
@@ -123,8 +136,18 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
                 }
             }
             None => {
+                // as much of the error as fits the panel (the report has all of it)
+                let fits = ((cell_w - 16.0) / (0.6 * 9.0)) as usize;
                 let msg = e.error.as_deref().unwrap_or("");
-                doc.text((x0 + 8.0, y0 + cell_h - 10.0), 9.0, "#c00000", msg);
+                let shown: String = if msg.chars().count() > fits {
+                    msg.chars()
+                        .take(fits.saturating_sub(1))
+                        .chain(std::iter::once('…'))
+                        .collect()
+                } else {
+                    msg.to_string()
+                };
+                doc.text((x0 + 8.0, y0 + cell_h - 10.0), 9.0, "#c00000", &shown);
             }
         }
     }

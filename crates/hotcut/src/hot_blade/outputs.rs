@@ -162,11 +162,31 @@ pub(super) fn scene(run: &Rationalization, tol: f64) -> Vec<Mesh> {
     meshes
 }
 
+/// Distance from each point of `pts` to the polyline `line`.
+fn distances(pts: &[[f64; 2]], line: &[[f64; 2]]) -> Vec<f64> {
+    pts.iter()
+        .map(|p| {
+            line.windows(2)
+                .map(|w| {
+                    let d = [w[1][0] - w[0][0], w[1][1] - w[0][1]];
+                    let e = [p[0] - w[0][0], p[1] - w[0][1]];
+                    let t = ((d[0] * e[0] + d[1] * e[1]) / (d[0] * d[0] + d[1] * d[1]).max(1e-300))
+                        .clamp(0.0, 1.0);
+                    (e[0] - t * d[0]).hypot(e[1] - t * d[1])
+                })
+                .fold(f64::INFINITY, f64::min)
+        })
+        .collect()
+}
+
 /// Design section and fitted elastica of the block's worst section (largest L2), with the
-/// blade's extension dashed in grey.
+/// blade's extension dashed in grey and a scale bar; below, the distance from the design to
+/// the fit against arc length, so deviations of hundredths of a millimetre, invisible at
+/// the section's scale, can be read.
 fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
     const W: f64 = 900.0;
-    const H: f64 = 560.0;
+    const H: f64 = 760.0;
+    const TOP: f64 = 76.0;
     let mut doc = SvgDoc::new(W, H);
     let Some(sec) = b.sections.get(b.report.worst_section) else {
         return doc;
@@ -181,10 +201,10 @@ fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
             .chain(&blade)
             .map(|p| (p[0], p[1])),
     );
-    let vp = Viewport::fit(lo, hi, (30.0, 70.0, W - 60.0, H - 100.0));
+    let vp = Viewport::fit(lo, hi, (30.0, TOP, W - 60.0, 360.0));
     let r = &b.report;
     doc.text(
-        (30.0, 26.0),
+        (30.0, 24.0),
         16.0,
         "black",
         &format!(
@@ -197,16 +217,22 @@ fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
         ),
     );
     doc.text(
-        (30.0, 48.0),
+        (30.0, 44.0),
         12.0,
         "#444",
         &format!(
-            "L2 {:.4} · max distance {:.4} {units} · {} · design black, fitted elastica red, blade extension grey · flags: {}",
+            "L2 {:.4} · max distance {:.4} {units} · {} · flags: {}",
             sec.fit.l2,
             sec.fit.max,
             sec.fit.segment.kind(),
             if r.flags.any() { "see report" } else { "none" }
         ),
+    );
+    doc.text(
+        (30.0, 62.0),
+        12.0,
+        "#444",
+        "design black, fitted elastica red, blade extension grey, held ends blue",
     );
     let map = |pts: &[[f64; 2]]| pts.iter().map(|p| vp.map(p[0], p[1])).collect::<Vec<_>>();
     doc.polyline(
@@ -230,5 +256,44 @@ fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
             Some("held blade end"),
         );
     }
+    doc.scale_bar(&vp, (30.0, TOP + 360.0 + 26.0), W - 60.0, units);
+    // the deviation against arc length
+    let pts = &sec.design.points;
+    let dev = distances(pts, &fitted);
+    let mut s = vec![0.0];
+    for w in pts.windows(2) {
+        s.push(s[s.len() - 1] + (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]));
+    }
+    let (len, top_dev) = (s[s.len() - 1], dev.iter().copied().fold(0.0, f64::max));
+    let (x0, y0, pw, ph) = (90.0, 500.0, W - 130.0, 200.0);
+    doc.text(
+        (30.0, y0 - 22.0),
+        12.0,
+        "black",
+        &format!("distance from the design to the fit along the section ({units}), largest {top_dev:.3e}"),
+    );
+    doc.rect((x0, y0, pw, ph), "#999", "none");
+    if len > 0.0 && top_dev > 0.0 {
+        let line: Vec<(f64, f64)> = s
+            .iter()
+            .zip(&dev)
+            .map(|(a, d)| (x0 + pw * a / len, y0 + ph - ph * d / top_dev))
+            .collect();
+        doc.polyline(&line, "#e01010", 1.2, Some("distance design → fit"));
+    }
+    doc.text(
+        (x0 - 58.0, y0 + 10.0),
+        10.0,
+        "#444",
+        &format!("{top_dev:.2e}"),
+    );
+    doc.text((x0 - 14.0, y0 + ph), 10.0, "#444", "0");
+    doc.text((x0, y0 + ph + 16.0), 10.0, "#444", "0");
+    doc.text(
+        (x0 + pw - 110.0, y0 + ph + 16.0),
+        10.0,
+        "#444",
+        &format!("arc length {len:.1} {units}"),
+    );
     doc
 }
