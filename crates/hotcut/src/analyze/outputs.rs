@@ -85,40 +85,34 @@ fn sections_svg(a: &Analysis, r: &AnalyzeReport, units: &str) -> SvgDoc {
                 .collect()
         })
         .collect();
-    let (pmin, pmax) = bounds(plan.iter().flatten().copied());
+    let block_outline = block_outline(r);
+    let (pmin, pmax) = bounds(
+        plan.iter()
+            .flatten()
+            .copied()
+            .chain(block_outline.iter().flatten().copied()),
+    );
     let (qmin, qmax) = bounds(profiles.iter().flatten().copied());
     let inner = WIDTH - 2.0 * MARGIN;
     let plan_h = (inner * (pmax.1 - pmin.1) / (pmax.0 - pmin.0).max(1e-9)).clamp(150.0, 700.0);
     let prof_h = (inner * (qmax.1 - qmin.1) / (qmax.0 - qmin.0).max(1e-9)).clamp(120.0, 400.0);
-    let height = MARGIN * 4.0 + plan_h + prof_h + 30.0;
+    let height = MARGIN * 4.0 + plan_h + prof_h + 46.0;
     let mut doc = SvgDoc::new(WIDTH, height);
-    doc.text(
-        (MARGIN, 24.0),
-        16.0,
-        "black",
-        &format!(
-            "{} — {} sections, {} inflections, max |κ| {:.4} /{units}, {}",
-            r.job,
-            r.summary.pieces,
-            r.summary.total_inflections,
-            r.summary.max_abs_curvature,
-            if r.summary.cuttable_without_segmentation {
-                "cuttable in one piece"
-            } else {
-                "needs segmentation"
-            }
-        ),
-    );
-    doc.text(
-        (MARGIN, MARGIN + 12.0),
-        12.0,
-        "#444",
-        "plan (x right, y up): inflections red, curvature maxima blue, offending sections orange",
-    );
-    let plan_page = (MARGIN, MARGIN + 20.0, inner, plan_h);
+    sections_header(&mut doc, r, units);
+    let plan_page = (MARGIN, MARGIN + 32.0, inner, plan_h);
     doc.rect(plan_page, "#ccc", "none");
     let vp = Viewport::fit(pmin, pmax, plan_page);
-    let prof_top = MARGIN * 2.0 + 20.0 + plan_h + 20.0;
+    if let Some(outline) = block_outline {
+        let pts: Vec<(f64, f64)> = outline.iter().map(|&(x, y)| vp.map(x, y)).collect();
+        doc.dashed_polyline(
+            &pts,
+            "#c00000",
+            1.4,
+            6.0,
+            Some("the block, at the surface's corner"),
+        );
+    }
+    let prof_top = MARGIN * 2.0 + 32.0 + plan_h + 20.0;
     doc.text(
         (MARGIN, prof_top - 8.0),
         12.0,
@@ -128,6 +122,8 @@ fn sections_svg(a: &Analysis, r: &AnalyzeReport, units: &str) -> SvgDoc {
     let prof_page = (MARGIN, prof_top, inner, prof_h);
     doc.rect(prof_page, "#ccc", "none");
     let vq = Viewport::fit(qmin, qmax, prof_page);
+    doc.scale_bar(&vp, (MARGIN, plan_page.1 + plan_h + 20.0), inner, units);
+    doc.scale_bar(&vq, (MARGIN, prof_top + prof_h + 24.0), inner, units);
 
     for (k, ((s, an), rep)) in a.survey.sections.iter().zip(&r.sections).enumerate() {
         let bad = !rep.violations.is_empty();
@@ -155,4 +151,83 @@ fn sections_svg(a: &Analysis, r: &AnalyzeReport, units: &str) -> SvgDoc {
         }
     }
     doc
+}
+
+/// The block, placed at the surface's lower corner, in plan, when the surface as a whole
+/// breaks the block's size (the reason a surface "needs segmentation" although every
+/// section passes); `None` otherwise.
+fn block_outline(r: &AnalyzeReport) -> Option<[(f64, f64); 5]> {
+    // the block, placed at the surface's lower corner, when the surface breaks it: the
+    // reason a surface "needs segmentation" although every section passes
+    match (
+        r.constraints.block_size,
+        r.summary.surface_violations.is_empty(),
+    ) {
+        (Some(b), false) => {
+            let (x0, y0) = (r.surface.bbox_min[0], r.surface.bbox_min[1]);
+            Some([
+                (x0, y0),
+                (x0 + b[0], y0),
+                (x0 + b[0], y0 + b[1]),
+                (x0, y0 + b[1]),
+                (x0, y0),
+            ])
+        }
+        _ => None,
+    }
+}
+
+/// Why the surface as a whole breaks the rules, one phrase per violation (sections name
+/// their own reasons).
+fn surface_reasons(r: &AnalyzeReport, units: &str) -> Vec<String> {
+    // why the surface as a whole breaks the rules (sections name their own reasons)
+    r.summary
+        .surface_violations
+        .iter()
+        .map(|v| match v {
+            facade_seg::survey::Violation::Dimension { what, value, limit } => {
+                format!(
+                    "{}: {value:.1} vs {limit:.1} {units}",
+                    what.replace('_', " ")
+                )
+            }
+            other => format!("{other:?}"),
+        })
+        .collect()
+}
+
+/// The title, the surface's reasons (if any) and the legend of `sections.svg`.
+fn sections_header(doc: &mut SvgDoc, r: &AnalyzeReport, units: &str) {
+    doc.text(
+        (MARGIN, 24.0),
+        16.0,
+        "black",
+        &format!(
+            "{} — {} sections, {} inflections, max |κ| {:.4} /{units}, {}",
+            r.job,
+            r.summary.pieces,
+            r.summary.total_inflections,
+            r.summary.max_abs_curvature,
+            if r.summary.cuttable_without_segmentation {
+                "cuttable in one piece"
+            } else {
+                "needs segmentation"
+            }
+        ),
+    );
+    let reasons = surface_reasons(r, units);
+    if !reasons.is_empty() {
+        doc.text(
+            (MARGIN, 44.0),
+            12.0,
+            "#c00000",
+            &format!("{} (block dashed red)", reasons.join("; ")),
+        );
+    }
+    doc.text(
+        (MARGIN, MARGIN + 22.0),
+        12.0,
+        "#444",
+        "plan (x right, y up): inflections red, curvature maxima blue, offending sections orange",
+    );
 }

@@ -131,59 +131,36 @@ fn block_svg(
         .iter()
         .map(|c| c.pieces[piece].design.p)
         .collect();
+    let blades: Vec<Vec<[f64; 2]>> = res
+        .stations
+        .iter()
+        .map(|c| {
+            c.pieces[piece]
+                .blade
+                .segment
+                .sample(200)
+                .unwrap_or_default()
+        })
+        .collect();
+    // the viewport holds everything drawn, the blade's extension included
     let (wlo, whi) = bounds(
         outline
             .iter()
             .chain(curves.iter().flat_map(|(d, e)| d.iter().chain(e)))
             .chain(polygons.iter().flatten())
+            .chain(blades.iter().flatten())
             .map(|p| (p[0], p[1])),
     );
     let vp = Viewport::fit(wlo, whi, (40.0, 90.0, W - 80.0, H - 150.0));
     let map = |pts: &[[f64; 2]]| pts.iter().map(|p| vp.map(p[0], p[1])).collect::<Vec<_>>();
-    let worst = res
-        .stations
-        .iter()
-        .map(|c| &c.pieces[piece].proxy)
-        .fold((0.0f64, 0.0f64), |(d, e), p| {
-            (d.max(p.max_deviation), e.max(p.eq11_residual))
-        });
-    doc.text(
-        (30.0, 28.0),
-        16.0,
-        "black",
-        &format!(
-            "block {} — cut `{}` through {} block(s), piece {} of {}",
-            b.id,
-            r.id,
-            r.blocks.len(),
-            piece + 1,
-            r.blocks.len()
-        ),
-    );
-    doc.text(
-        (30.0, 50.0),
-        12.0,
-        "#444",
-        &format!(
-            "design vs elastica: max {:.4} {units} ({:.3} % of the length) · eq. (11) residual ≤ {:.3} · {} station(s), entry black",
-            worst.0,
-            100.0 * worst.0 / res.stations[0].pieces[piece].proxy.length.max(f64::MIN_POSITIVE),
-            worst.1,
-            res.stations.len()
-        ),
-    );
-    doc.text(
-        (30.0, 68.0),
-        12.0,
-        "#444",
-        "design curve solid · control polygon thin grey · elastica red dashed · blade extension light grey · block outline",
-    );
+    block_header(&mut doc, b, r, res, piece, units);
     doc.polyline(&map(&outline), "#888888", 1.0, Some("block outline"));
-    for (i, (c, (design, elastica))) in res.stations.iter().zip(&curves).enumerate() {
+    for (i, ((c, (design, elastica)), blade)) in
+        res.stations.iter().zip(&curves).zip(&blades).enumerate()
+    {
         let p = &c.pieces[piece];
-        let blade = p.blade.segment.sample(200).unwrap_or_default();
         doc.polyline(
-            &map(&blade),
+            &map(blade),
             "#cccccc",
             1.0,
             Some("blade extended to its length"),
@@ -207,6 +184,7 @@ fn block_svg(
             Some(&format!("elastica, station {i}")),
         );
     }
+    doc.scale_bar(&vp, (40.0, H - 40.0), W - 80.0, units);
     doc.text(
         (30.0, H - 24.0),
         12.0,
@@ -325,4 +303,53 @@ pub(super) fn scene(run: &super::DesignRun, n: usize, tol: f64) -> Vec<Mesh> {
         }
     }
     meshes
+}
+
+/// The title and legend lines of a design block's drawing.
+fn block_header(
+    doc: &mut SvgDoc,
+    b: &Block,
+    r: &ResolvedCut,
+    res: &CutResult,
+    piece: usize,
+    units: &str,
+) {
+    let worst = res
+        .stations
+        .iter()
+        .map(|c| &c.pieces[piece].proxy)
+        .fold((0.0f64, 0.0f64), |(d, e), p| {
+            (d.max(p.max_deviation), e.max(p.eq11_residual))
+        });
+    doc.text(
+        (30.0, 28.0),
+        16.0,
+        "black",
+        &format!(
+            "block {} — cut `{}` through {} block(s), piece {} of {}",
+            b.id,
+            r.id,
+            r.blocks.len(),
+            piece + 1,
+            r.blocks.len()
+        ),
+    );
+    doc.text(
+        (30.0, 50.0),
+        12.0,
+        "#444",
+        &format!(
+            "design vs elastica: max {:.4} {units} ({:.3} % of the length) · eq. (11) residual ≤ {:.3} · {} station(s), entry black",
+            worst.0,
+            100.0 * worst.0 / res.stations[0].pieces[piece].proxy.length.max(f64::MIN_POSITIVE),
+            worst.1,
+            res.stations.len()
+        ),
+    );
+    doc.text(
+        (30.0, 68.0),
+        12.0,
+        "#444",
+        "design curve solid · control polygon thin grey · elastica red dashed · blade extension light grey · block outline",
+    );
 }

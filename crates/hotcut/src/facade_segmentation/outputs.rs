@@ -175,6 +175,7 @@ fn plan_svg(run: &SegmentationRun, r: &SegmentationReport, units: &str) -> SvgDo
     );
     let page = (M, TOP, inner, h);
     let vp = Viewport::fit(lo, hi, page);
+    doc.scale_bar(&vp, (M, TOP + h + 24.0), inner, units);
     let map = |p: (f64, f64)| vp.map(p.0, p.1);
     for piece in &run.segmentation.pieces {
         draw_piece(&mut doc, piece, &plan, &map, half);

@@ -42,44 +42,7 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
     let top = MARGIN + 44.0;
     let height = top + rows as f64 * cell_h + MARGIN;
     let mut doc = SvgDoc::new(WIDTH, height);
-    let s = &r.summary;
-    doc.text(
-        (MARGIN, 24.0),
-        16.0,
-        "black",
-        &format!(
-            "{} — {} curves, {:?}: {} elastica, {} arc(s), {} line(s), {} failed",
-            r.job,
-            s.curves,
-            r.constraint,
-            s.inflectional + s.noninflectional,
-            s.arcs,
-            s.lines,
-            s.failed,
-        ),
-    );
-    doc.text(
-        (MARGIN, MARGIN + 14.0),
-        12.0,
-        "#444",
-        &format!(
-            "RMS median {:.3e}, max {:.3e} {units}",
-            s.median_rms, s.max_rms
-        ),
-    );
-    doc.text(
-        (MARGIN, MARGIN + 30.0),
-        12.0,
-        "#444",
-        &format!(
-            "input points grey; fit: elastica blue, arc green, line purple; inflections red{}",
-            if r.numerical.is_some() {
-                "; numerical spline orange, dashed"
-            } else {
-                ""
-            }
-        ),
-    );
+    fit_header(&mut doc, r, units);
     for (k, (c, e)) in run.curves.iter().zip(&r.curves).enumerate() {
         let (col, row) = (k % cols, k / cols);
         let (x0, y0) = (MARGIN + col as f64 * cell_w, top + row as f64 * cell_h);
@@ -152,4 +115,46 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
         }
     }
     doc
+}
+
+/// The title and legend lines of `fit.svg`.
+fn fit_header(doc: &mut SvgDoc, r: &FitCurvesReport, units: &str) {
+    let s = &r.summary;
+    doc.text(
+        (MARGIN, 24.0),
+        16.0,
+        "black",
+        &format!(
+            "{} — {} curves, {:?}: {} elastica, {} arc(s), {} line(s), {} failed",
+            r.job,
+            s.curves,
+            r.constraint,
+            s.inflectional + s.noninflectional,
+            s.arcs,
+            s.lines,
+            s.failed,
+        ),
+    );
+    doc.text(
+        (MARGIN, MARGIN + 14.0),
+        12.0,
+        "#444",
+        &format!(
+            "RMS median {:.3e}, max {:.3e} {units}",
+            s.median_rms, s.max_rms
+        ),
+    );
+    doc.text(
+        (MARGIN, MARGIN + 30.0),
+        12.0,
+        "#444",
+        &format!(
+            "input points grey; fit: elastica blue, arc green, line purple; inflections red{}",
+            if r.numerical.is_some() {
+                "; numerical spline orange, dashed"
+            } else {
+                ""
+            }
+        ),
+    );
 }

@@ -75,17 +75,7 @@ pub struct NumericalCurve {
 /// Largest distance from the points `a` to the polyline `b`.
 fn distance_to_polyline(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
     a.iter()
-        .map(|p| {
-            b.windows(2)
-                .map(|w| {
-                    let d = [w[1][0] - w[0][0], w[1][1] - w[0][1]];
-                    let e = [p[0] - w[0][0], p[1] - w[0][1]];
-                    let t = ((d[0] * e[0] + d[1] * e[1]) / (d[0] * d[0] + d[1] * d[1]).max(1e-300))
-                        .clamp(0.0, 1.0);
-                    (e[0] - t * d[0]).hypot(e[1] - t * d[1])
-                })
-                .fold(f64::INFINITY, f64::min)
-        })
+        .map(|p| crate::output::distance_to_polyline(*p, b))
         .fold(0.0, f64::max)
 }
 

@@ -162,23 +162,6 @@ pub(super) fn scene(run: &Rationalization, tol: f64) -> Vec<Mesh> {
     meshes
 }
 
-/// Distance from each point of `pts` to the polyline `line`.
-fn distances(pts: &[[f64; 2]], line: &[[f64; 2]]) -> Vec<f64> {
-    pts.iter()
-        .map(|p| {
-            line.windows(2)
-                .map(|w| {
-                    let d = [w[1][0] - w[0][0], w[1][1] - w[0][1]];
-                    let e = [p[0] - w[0][0], p[1] - w[0][1]];
-                    let t = ((d[0] * e[0] + d[1] * e[1]) / (d[0] * d[0] + d[1] * d[1]).max(1e-300))
-                        .clamp(0.0, 1.0);
-                    (e[0] - t * d[0]).hypot(e[1] - t * d[1])
-                })
-                .fold(f64::INFINITY, f64::min)
-        })
-        .collect()
-}
-
 /// Design section and fitted elastica of the block's worst section (largest L2), with the
 /// blade's extension dashed in grey and a scale bar; below, the distance from the design to
 /// the fit against arc length, so deviations of hundredths of a millimetre, invisible at
@@ -259,7 +242,10 @@ fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
     doc.scale_bar(&vp, (30.0, TOP + 360.0 + 26.0), W - 60.0, units);
     // the deviation against arc length
     let pts = &sec.design.points;
-    let dev = distances(pts, &fitted);
+    let dev: Vec<f64> = pts
+        .iter()
+        .map(|p| crate::output::distance_to_polyline(*p, &fitted))
+        .collect();
     let mut s = vec![0.0];
     for w in pts.windows(2) {
         s.push(s[s.len() - 1] + (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]));
