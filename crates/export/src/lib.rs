@@ -13,6 +13,8 @@
 pub mod csv;
 /// glTF 2.0 (JSON with an embedded buffer) for meshes with colours.
 pub mod gltf;
+/// A self-contained HTML report page (no script, no network).
+pub mod html;
 /// Deterministic JSON with rounded floats.
 pub mod json;
 /// Wavefront OBJ writer for meshes and polylines.

@@ -68,6 +68,11 @@ pub struct Context {
     pub tolerance: Tolerance,
     /// Seed of every random choice.
     pub seed: u64,
+    /// The job as read, pretty-printed RON with every default filled in (`report.html`
+    /// shows it).
+    pub job_ron: String,
+    /// The job file's text as written, when the job was read from a file.
+    pub job_file: Option<String>,
 }
 
 impl Context {

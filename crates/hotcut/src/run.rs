@@ -109,6 +109,7 @@ pub fn run_task<T: Task>(
     out: &Path,
     progress: &dyn Progress,
 ) -> Result<TaskOutcome<T>> {
+    let start = std::time::Instant::now();
     let params = task.params(job)?;
     let run = T::run(&params, job, progress)?;
     if let Some(why) = T::nothing_to_cut(&run) {
@@ -136,7 +137,7 @@ pub fn run_task<T: Task>(
         list.push(kept.clone());
         kept
     };
-    let rendered = render(&done, outputs, &kept);
+    let rendered = render(&done, outputs, &kept, start);
     let placed = match rendered {
         Ok(files) => place(&kept, &dir).map(|()| files),
         Err((file, source)) => Err(HotcutError::Export {
@@ -166,14 +167,17 @@ type FileError = (String, export::ExportError);
 
 /// Writes every output into `dir`, in the job's order, through the task's declared
 /// writers; an output the task does not declare is an error (validation rejects it first).
-/// Returns the file names in order.
+/// `report.html` comes last, whatever its place in the list, so it can link every other
+/// file and give the run time since `start`. Returns the file names in order.
 fn render<T: Task>(
     done: &Finished<'_, T>,
     outputs: &[OutputSpec],
     dir: &Path,
+    start: std::time::Instant,
 ) -> std::result::Result<Vec<String>, FileError> {
     let mut files = Files::new(dir);
-    for o in outputs {
+    let html = outputs.iter().any(|o| o.kind() == OutputKind::Html);
+    for o in outputs.iter().filter(|o| o.kind() != OutputKind::Html) {
         let before = files.len();
         let result = if o.kind() == OutputKind::Report {
             files.json("report.json", done.report, REPORT_DIGITS)
@@ -193,6 +197,10 @@ fn render<T: Task>(
             _ => o.name().to_string(),
         };
         result.map_err(|e| (failed(&files), e))?;
+    }
+    if html {
+        crate::output::page::write::<T>(done, &mut files, start.elapsed())
+            .map_err(|e| (crate::output::page::NAME.to_string(), e))?;
     }
     Ok(files.into_names())
 }

@@ -68,6 +68,10 @@ pub trait Task: Sized + 'static {
 
     /// What the CLI prints after a run: lines without a trailing newline.
     fn summary(report: &Self::Report, job: &Context) -> String;
+
+    /// What `report.html` shows of a run: the verdict, counts, constraints, notes and
+    /// tables (the runner adds the drawings, files, run time and job).
+    fn page(report: &Self::Report, job: &Context) -> export::html::Body;
 }
 
 /// A finished run, as the writers see it.
@@ -100,9 +104,10 @@ impl<T: Task> Output<T> {
     }
 }
 
-/// The output kinds `T` writes, `Report` first.
+/// The output kinds `T` writes, `Report` and `Html` (every task's) first.
 pub fn output_kinds<T: Task>() -> Vec<OutputKind> {
-    std::iter::once(OutputKind::Report)
+    [OutputKind::Report, OutputKind::Html]
+        .into_iter()
         .chain(T::OUTPUTS.iter().map(|o| o.kind))
         .collect()
 }

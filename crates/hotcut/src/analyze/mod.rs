@@ -22,6 +22,8 @@
 
 /// Its files: `sections.svg`, `sections.obj`.
 mod outputs;
+/// What `report.html` shows of it.
+mod page;
 /// Its report.
 pub mod report;
 
@@ -177,6 +179,10 @@ impl Task for Analyze {
             summary: run.survey.summary.clone(),
             sections: run.survey.reports.clone(),
         }
+    }
+
+    fn page(r: &AnalyzeReport, job: &Context) -> export::html::Body {
+        page::body(r, job)
     }
 
     fn summary(r: &AnalyzeReport, job: &Context) -> String {

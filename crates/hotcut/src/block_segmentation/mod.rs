@@ -16,6 +16,8 @@
 
 /// Its files: `blocks.json`, `blocks.obj`, `model.gltf`, `progress.svg`.
 mod outputs;
+/// What `report.html` shows of it.
+mod page;
 
 /// `blocks.json` (schema `schemas/blocks.schema.json`).
 #[derive(Debug, Serialize, JsonSchema)]
@@ -276,6 +278,10 @@ impl Task for BlockSegmentation {
             params: params.clone(),
             segmentation: run.segmentation.clone(),
         }
+    }
+
+    fn page(r: &BlockSegReport, job: &Context) -> export::html::Body {
+        page::body(r, job)
     }
 
     fn summary(r: &BlockSegReport, job: &Context) -> String {

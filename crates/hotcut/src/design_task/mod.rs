@@ -11,6 +11,8 @@ pub mod file;
 pub mod multi;
 /// Its files: SVG per block, glTF, robot targets, RAPID.
 mod outputs;
+/// What `report.html` shows of it.
+mod page;
 /// Its report.
 pub mod report;
 
@@ -379,6 +381,10 @@ impl Task for Design {
             cuts,
             cell: run.cell.as_ref().map(|c| c.report.clone()),
         }
+    }
+
+    fn page(r: &DesignReport, job: &Context) -> export::html::Body {
+        page::body(r, job)
     }
 
     fn summary(r: &DesignReport, job: &Context) -> String {

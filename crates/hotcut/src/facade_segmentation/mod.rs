@@ -27,6 +27,8 @@
 /// Its files: `segmentation.svg`, `model.gltf`, `segmentation.obj`, `sections.csv`, robot
 /// files.
 mod outputs;
+/// What `report.html` shows of it.
+mod page;
 /// Its report.
 pub mod report;
 
@@ -384,6 +386,10 @@ impl Task for FacadeSegmentation {
                 .collect(),
             cell: run.cell.as_ref().map(|c| c.report.clone()),
         }
+    }
+
+    fn page(r: &SegmentationReport, job: &Context) -> export::html::Body {
+        page::body(r, job)
     }
 
     fn summary(r: &SegmentationReport, job: &Context) -> String {

@@ -6,6 +6,8 @@
 pub mod curves;
 /// Its file: `fit.svg`.
 mod outputs;
+/// What `report.html` shows of it.
+mod page;
 /// Its report.
 pub mod report;
 
@@ -312,6 +314,10 @@ impl Task for FitCurves {
             curves: entries,
             numerical,
         }
+    }
+
+    fn page(r: &FitCurvesReport, job: &Context) -> export::html::Body {
+        page::body(r, job)
     }
 
     fn summary(r: &FitCurvesReport, job: &Context) -> String {

@@ -5,6 +5,8 @@
 
 /// Its files: robot targets, RAPID, OBJ, glTF, SVG, CSV.
 mod outputs;
+/// What `report.html` shows of it.
+mod page;
 /// Its report.
 pub mod report;
 
@@ -343,6 +345,10 @@ impl Task for HotBlade {
             blocks: cut.blocks.iter().map(|b| b.report.clone()).collect(),
             cell: run.cell.as_ref().map(|c| c.report.clone()),
         }
+    }
+
+    fn page(r: &HotBladeReport, job: &Context) -> export::html::Body {
+        page::body(r, job)
     }
 
     fn summary(r: &HotBladeReport, job: &Context) -> String {

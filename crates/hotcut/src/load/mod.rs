@@ -131,7 +131,10 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
     if !errors.is_empty() {
         return Err(errors);
     }
+    let job_ron = pretty_job(&job);
     let context = Context {
+        job_ron,
+        job_file: None,
         path: path.to_path_buf(),
         blade: blade_of(job.blade.as_ref(), job.units),
         name: job.name,
@@ -211,5 +214,15 @@ pub fn load_job_with(path: &Path, limits: &Limits) -> Result<ResolvedJob, Vec<Jo
     })?;
     let job = parse_job(path, &text).map_err(|e| vec![e])?;
     validate_schema(path, &job)?;
-    resolve_with(path, job, limits)
+    let mut resolved = resolve_with(path, job, limits)?;
+    resolved.context.job_file = Some(text);
+    Ok(resolved)
+}
+
+/// The job as RON, pretty-printed with struct names and every default filled in.
+fn pretty_job(job: &Job) -> String {
+    let config = ron::ser::PrettyConfig::new()
+        .struct_names(true)
+        .indentor("    ".to_string());
+    ron::ser::to_string_pretty(job, config).unwrap_or_else(|e| format!("(not printable: {e})"))
 }

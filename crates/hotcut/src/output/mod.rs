@@ -3,6 +3,8 @@
 //! Format-generic helpers (glTF meshes from `geom` meshes and boxes, SVG bounds) live in
 //! the `export` crate.
 
+/// `report.html`, and the number formats of the tasks' pages.
+pub mod page;
 /// Robot targets and RAPID programs from blade poses.
 pub mod robot;
 
@@ -67,19 +69,44 @@ pub fn block_material() -> export::gltf::Material {
 /// The files of one run, written one by one into the run's (temporary) output folder in
 /// the order the job lists its outputs: each is rendered into memory, written, and
 /// dropped, so a run holds one file at a time.
+/// A run can also render files into memory ([`Files::in_memory`]), as `report.html` does
+/// with the drawings it inlines.
 #[derive(Debug)]
 pub struct Files {
-    dir: PathBuf,
+    /// The folder written into; `None` keeps the files in `kept`.
+    dir: Option<PathBuf>,
     names: Vec<String>,
+    kept: Vec<(String, Vec<u8>)>,
 }
 
 impl Files {
     /// Files written into `dir`.
     pub fn new(dir: &Path) -> Self {
         Self {
-            dir: dir.to_path_buf(),
+            dir: Some(dir.to_path_buf()),
             names: Vec::new(),
+            kept: Vec::new(),
         }
+    }
+
+    /// Files kept in memory (see [`Files::into_kept`]).
+    pub fn in_memory() -> Self {
+        Self {
+            dir: None,
+            names: Vec::new(),
+            kept: Vec::new(),
+        }
+    }
+
+    /// The files kept in memory, (name, bytes) in order (empty for files written to a
+    /// folder).
+    pub fn into_kept(self) -> Vec<(String, Vec<u8>)> {
+        self.kept
+    }
+
+    /// The folder files are written into (`None` in memory).
+    pub fn dir(&self) -> Option<&Path> {
+        self.dir.as_deref()
     }
 
     /// Renders file `name` with `write` and writes it. On error the file is the last
@@ -98,11 +125,13 @@ impl Files {
                 "two outputs would both be written as {name}"
             )));
         }
-        let path = self.dir.join(&name);
-        self.names.push(name);
+        self.names.push(name.clone());
         let mut buf = Vec::new();
         write(&mut buf)?;
-        std::fs::write(path, buf)?;
+        match &self.dir {
+            Some(dir) => std::fs::write(dir.join(&name), buf)?,
+            None => self.kept.push((name, buf)),
+        }
         Ok(())
     }
 
@@ -146,6 +175,11 @@ impl Files {
     /// Name of the last file (the one that failed, after an error).
     pub fn last_name(&self) -> Option<&str> {
         self.names.last().map(String::as_str)
+    }
+
+    /// The names named so far, in order.
+    pub fn names(&self) -> &[String] {
+        &self.names
     }
 
     /// The names written, in order.

@@ -19,6 +19,8 @@ mod machine;
 /// Its files: `precut.json`, `sections.svg`, `precut.obj`, `model.gltf`, wire G-code with
 /// its preview, and CSV.
 mod outputs;
+/// What `report.html` shows of it.
+mod page;
 
 /// `precut.json` (schema `schemas/precut.schema.json`).
 #[derive(Debug, Serialize, JsonSchema)]
@@ -467,6 +469,10 @@ impl Task for PreCut {
                 })
                 .collect(),
         }
+    }
+
+    fn page(r: &PreCutReport, job: &Context) -> export::html::Body {
+        page::body(r, job)
     }
 
     fn summary(r: &PreCutReport, job: &Context) -> String {

@@ -147,6 +147,76 @@ impl CellReport {
         }
         out
     }
+
+    /// The cell's row of a `report.html` constraint table: every move reached.
+    pub fn constraint(&self) -> export::html::Constraint {
+        let models: Vec<&str> = self.robots.iter().map(|r| r.model.as_str()).collect();
+        let bad = self.problems().len();
+        export::html::Constraint {
+            name: format!("robot cell ({})", models.join(" + ")),
+            limit: "every move reached, no configuration change, no joint jump".into(),
+            measured: if bad == 0 {
+                format!("{} synchronized moves, all clean", self.moves)
+            } else {
+                format!("{bad} block/robot pair(s) with problems")
+            },
+            ok: self.clean,
+        }
+    }
+
+    /// The per-block table of the cell for `report.html` (what each robot reaches), rows
+    /// with a problem flagged.
+    pub fn table(&self) -> export::html::Table {
+        let mut columns = vec![
+            "block".to_string(),
+            "moves".into(),
+            "air clearance (mm)".into(),
+        ];
+        for r in 0..self.robots.len() {
+            columns.push(format!(
+                "robot {} out of reach / config. changes / jumps",
+                r + 1
+            ));
+            columns.push(format!("robot {} joint margin", r + 1));
+        }
+        let rows = self
+            .blocks
+            .iter()
+            .map(|b| {
+                let mut cells = vec![
+                    b.block.to_string(),
+                    b.moves.to_string(),
+                    crate::output::page::num(b.air_clearance),
+                ];
+                let mut why = Vec::new();
+                for c in &b.robots {
+                    cells.push(format!(
+                        "{} / {} / {}",
+                        c.out_of_reach, c.configuration_changes, c.joint_jumps
+                    ));
+                    cells.push(c.margin_deg.map_or("—".into(), |m| {
+                        format!("{}°", crate::output::page::num(m))
+                    }));
+                    if c.out_of_reach > 0 {
+                        why.push("out of reach");
+                    }
+                    if c.configuration_changes > 0 {
+                        why.push("configuration change");
+                    }
+                    if c.joint_jumps > 0 {
+                        why.push("joint jump");
+                    }
+                }
+                why.dedup();
+                export::html::Row::new(cells, why)
+            })
+            .collect();
+        export::html::Table {
+            title: "Robot cell: what the robots reach, per block or piece".into(),
+            columns,
+            rows,
+        }
+    }
 }
 
 /// The report of a planned cell.

@@ -340,6 +340,11 @@ pub enum OutputSpec {
     /// `precut.json` (PreCut): per direction, per section along the cut, the polygon of
     /// rulings as 3D points, so anyone can re-check the cut.
     PreCut,
+    /// `report.html` (every task): one self-contained page — the verdict first (can it be
+    /// cut, with how many blocks, pieces or cuts), the constraints, the drawings inlined,
+    /// the per-block/piece/curve tables with flagged rows highlighted, links to every other
+    /// file written, the run time and the job. No script, no network needed.
+    Html,
 }
 
 /// The up axis of an OBJ output.
@@ -366,6 +371,7 @@ impl OutputSpec {
             Self::GCode => OutputKind::GCode,
             Self::Blocks => OutputKind::Blocks,
             Self::PreCut => OutputKind::PreCut,
+            Self::Html => OutputKind::Html,
         }
     }
 
@@ -399,6 +405,8 @@ pub enum OutputKind {
     Blocks,
     /// `precut.json`.
     PreCut,
+    /// `report.html`, written by every task.
+    Html,
 }
 
 impl OutputKind {
@@ -415,6 +423,7 @@ impl OutputKind {
             Self::GCode => "GCode",
             Self::Blocks => "Blocks",
             Self::PreCut => "PreCut",
+            Self::Html => "Html",
         }
     }
 }

@@ -1,0 +1,145 @@
+//! What `report.html` shows of a `BlockSegmentation` run.
+
+use blocks::StopReason;
+use export::html::{Body, Constraint, Row, Table, Verdict};
+
+use super::BlockSegReport;
+use crate::context::Context;
+use crate::output::page::{len, num};
+
+/// The verdict (how many blocks cover the model), the coverage and count against the lower
+/// bound, a row per block and per restart.
+pub fn body(r: &BlockSegReport, job: &Context) -> Body {
+    let s = &r.segmentation;
+    let size = r.params.block_size;
+    let samples =
+        s.sampling.counts.vertices + s.sampling.counts.surface + s.sampling.counts.interior;
+    let text = format!(
+        "Cuttable from {} block(s) of {} × {} × {} ({} fewer than the initial grid of {}; no cover can use fewer than {}).",
+        s.final_blocks,
+        len(size[0], job),
+        len(size[1], job),
+        len(size[2], job),
+        s.initial_blocks.saturating_sub(s.final_blocks),
+        s.initial_blocks,
+        s.lower_bound
+    );
+    let counts = vec![
+        ("blocks".to_string(), s.final_blocks.to_string()),
+        ("initial grid".into(), s.initial_blocks.to_string()),
+        (
+            "reduction".into(),
+            format!("{} %", num(s.reduction_percent)),
+        ),
+        ("lower bound".into(), s.lower_bound.to_string()),
+        ("restarts".into(), s.restarts.len().to_string()),
+        (
+            "model volume".into(),
+            format!("{} {}³", num(r.model.volume), job.units.symbol()),
+        ),
+    ];
+    let constraints = vec![
+        Constraint {
+            name: format!(
+                "coverage: every sample of the model in a block ({:?})",
+                r.params.coverage
+            ),
+            limit: format!(
+                "{samples} samples, blocks shrunk by {}",
+                len(s.sampling.margin, job)
+            ),
+            measured: "all covered (kept by every operation)".into(),
+            ok: true,
+        },
+        Constraint {
+            name: "block count vs the volume bound".into(),
+            limit: format!("≥ {} (model volume / block volume)", s.lower_bound),
+            measured: format!(
+                "{} block(s), {} above the bound",
+                s.final_blocks,
+                s.final_blocks.saturating_sub(s.lower_bound)
+            ),
+            ok: s.final_blocks >= s.lower_bound,
+        },
+    ];
+    let u = job.units.symbol();
+    let rows = s
+        .blocks
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            let q = b.rotation;
+            let angle = 2.0 * q[0].abs().clamp(0.0, 1.0).acos();
+            Row::new(
+                vec![
+                    (i + 1).to_string(),
+                    format!(
+                        "{}, {}, {}",
+                        num(b.center[0]),
+                        num(b.center[1]),
+                        num(b.center[2])
+                    ),
+                    format!("{}°", num(angle.to_degrees())),
+                    format!(
+                        "{} × {} × {}",
+                        num(b.size[0]),
+                        num(b.size[1]),
+                        num(b.size[2])
+                    ),
+                ],
+                Vec::new(),
+            )
+        })
+        .collect();
+    let blocks = Table {
+        title: "Blocks (blocks.json holds their exact frames)".into(),
+        columns: vec![
+            "block".into(),
+            format!("centre ({u})"),
+            "turned by".into(),
+            format!("size ({u})"),
+        ],
+        rows,
+    };
+    let restarts = Table {
+        title: "Restarts".into(),
+        columns: vec![
+            "restart".into(),
+            "seed".into(),
+            "blocks".into(),
+            "energy E".into(),
+            "iterations".into(),
+            "stopped by".into(),
+        ],
+        rows: s
+            .restarts
+            .iter()
+            .enumerate()
+            .map(|(i, x)| {
+                let why = match x.stop {
+                    StopReason::Converged => vec![],
+                    StopReason::IterationCap => vec!["stopped at max_iterations before converging"],
+                    StopReason::TimeCap => vec!["stopped at time_limit before converging"],
+                };
+                Row::new(
+                    vec![
+                        format!("{}{}", i, if i == s.best_restart { " (kept)" } else { "" }),
+                        x.seed.to_string(),
+                        x.blocks.to_string(),
+                        num(x.energy),
+                        x.iterations.to_string(),
+                        format!("{:?}", x.stop),
+                    ],
+                    why,
+                )
+            })
+            .collect(),
+    };
+    Body {
+        verdict: Verdict { ok: true, text },
+        counts,
+        constraints,
+        notes: Vec::new(),
+        tables: vec![blocks, restarts],
+    }
+}

@@ -1,0 +1,185 @@
+//! What `report.html` shows of a `Design` run.
+
+use export::html::{Body, Constraint, Row, Table, Verdict};
+
+use super::report::DesignReport;
+use crate::context::Context;
+use crate::output::page::{curv, num};
+
+/// The verdict (every blade within its limits), the blade constraints and the design's
+/// closeness to its elastica, a row per design curve and per block.
+pub fn body(r: &DesignReport, job: &Context) -> Body {
+    let s = &r.summary;
+    let set = &r.settings;
+    let cell_ok = r.cell.as_ref().is_none_or(|k| k.clean);
+    let ok = s.all_ok && cell_ok;
+    let text = if ok {
+        format!(
+            "Cuttable: {} cut(s) over {} block(s), {} blade pose(s); every blade within its curvature and inflection limits{}.",
+            s.cuts,
+            r.blocks.len(),
+            s.poses,
+            if r.cell.is_some() { ", and the robots reach every move" } else { "" }
+        )
+    } else if !s.all_ok {
+        format!(
+            "Not cuttable as designed: blades break a limit (strain {}, inflections {}).",
+            s.strain_flags, s.inflection_flags
+        )
+    } else {
+        "Not cuttable as planned: the robot cell has problems.".to_string()
+    };
+    let counts = vec![
+        ("cuts".to_string(), s.cuts.to_string()),
+        ("blocks".into(), r.blocks.len().to_string()),
+        ("design curves".into(), s.curves.to_string()),
+        ("blade poses".into(), s.poses.to_string()),
+        ("resolution".into(), format!("{:?}", set.resolution)),
+    ];
+    let inflections = r
+        .cuts
+        .iter()
+        .map(|c| c.planes.blade_inflections)
+        .max()
+        .unwrap_or(0);
+    let mut constraints = vec![
+        Constraint {
+            name: "blade strain: |curvature| of the extended blade".into(),
+            limit: format!("≤ {}", curv(set.max_curvature, job)),
+            measured: format!(
+                "{} plane(s) above; largest {}",
+                s.strain_flags,
+                curv(s.blade_max_curvature, job)
+            ),
+            ok: s.strain_flags == 0,
+        },
+        Constraint {
+            name: "shape: inflections on the blade".into(),
+            limit: format!("≤ {}", set.max_inflections),
+            measured: format!("{} plane(s) above; most {inflections}", s.inflection_flags),
+            ok: s.inflection_flags == 0,
+        },
+        Constraint {
+            name: "design vs its elastica (information)".into(),
+            limit: "the Bézier proxy holds within 1 % below an eq. (11) residual of 0.19".into(),
+            measured: format!(
+                "≤ {} % of the length; eq. (11) residual ≤ {}",
+                num(s.max_deviation_percent),
+                num(s.max_eq11_residual)
+            ),
+            ok: true,
+        },
+    ];
+    let mut tables = vec![curves(r, job), blocks(r, job)];
+    if let Some(cell) = &r.cell {
+        constraints.push(cell.constraint());
+        tables.push(cell.table());
+    }
+    let notes = r
+        .blocks
+        .iter()
+        .flat_map(|b| {
+            b.cuts.iter().filter_map(move |c| {
+                c.note
+                    .as_ref()
+                    .map(|n| format!("block {}: cut `{}` dropped: {n}", b.id, c.cut))
+            })
+        })
+        .collect();
+    Body {
+        verdict: Verdict { ok, text },
+        counts,
+        constraints,
+        notes,
+        tables,
+    }
+}
+
+fn curves(r: &DesignReport, job: &Context) -> Table {
+    let u = job.units.symbol();
+    let rows = r
+        .cuts
+        .iter()
+        .flat_map(|c| c.curves.iter().map(move |x| (c, x)))
+        .map(|(c, x)| {
+            let mut why = Vec::new();
+            if x.strain_flag {
+                why.push("blade strain");
+            }
+            if x.inflection_flag {
+                why.push("shape");
+            }
+            Row::new(
+                vec![
+                    c.id.clone(),
+                    x.station.to_string(),
+                    x.block.clone(),
+                    num(x.length),
+                    num(x.max_deviation),
+                    num(x.max_deviation_percent),
+                    num(x.eq11_residual),
+                    num(x.blade_max_curvature),
+                    x.blade_inflections.to_string(),
+                ],
+                why,
+            )
+        })
+        .collect();
+    Table {
+        title: "Design curves and their elastica".into(),
+        columns: vec![
+            "cut".into(),
+            "station".into(),
+            "block".into(),
+            format!("length ({u})"),
+            format!("max deviation ({u})"),
+            "max deviation (% of length)".into(),
+            "eq. (11) residual".into(),
+            format!("blade max |κ| (/{u})"),
+            "blade inflections".into(),
+        ],
+        rows,
+    }
+}
+
+fn blocks(r: &DesignReport, job: &Context) -> Table {
+    let u = job.units.symbol();
+    Table {
+        title: "Blocks".into(),
+        columns: vec![
+            "block".into(),
+            format!("size ({u})"),
+            "cuts (primary first)".into(),
+            format!("top: elastica vs design ({u})"),
+            format!("crease moved ({u})"),
+        ],
+        rows: r
+            .blocks
+            .iter()
+            .map(|b| {
+                let kept: Vec<&str> = b
+                    .cuts
+                    .iter()
+                    .filter(|c| c.note.is_none())
+                    .map(|c| c.cut.as_str())
+                    .collect();
+                let e = b.envelope.as_ref();
+                Row::new(
+                    vec![
+                        b.id.clone(),
+                        format!(
+                            "{} × {} × {}",
+                            num(b.max[0] - b.min[0]),
+                            num(b.max[1] - b.min[1]),
+                            num(b.max[2] - b.min[2])
+                        ),
+                        kept.join(" → "),
+                        e.map_or("—".into(), |e| num(e.max_deviation)),
+                        e.and_then(|e| e.crease_deviation).map_or("—".into(), num),
+                    ],
+                    Vec::new(),
+                )
+            })
+            .collect(),
+    }
+}

@@ -1,0 +1,181 @@
+//! What `report.html` shows of a `FacadeSegmentation` run.
+
+use export::html::{Body, Constraint, Row, Table, Verdict};
+
+use super::report::SegmentationReport;
+use crate::context::Context;
+use crate::output::page::{curv, len, num};
+
+/// The verdict, the four constraints of thesis §5.1 (and the cell), and a row per piece.
+pub fn body(r: &SegmentationReport, job: &Context) -> Body {
+    let c = &r.counts;
+    let s = &r.settings;
+    let f = &c.failing;
+    let cell_ok = r.cell.as_ref().is_none_or(|k| k.clean);
+    let ok = c.all_ok && cell_ok;
+    let text = if ok {
+        format!(
+            "Cuttable: {} piece(s) from {} block(s), every piece meets every constraint{}.",
+            c.pieces,
+            c.blocks,
+            if r.cell.is_some() {
+                " and the robots reach every move"
+            } else {
+                ""
+            }
+        )
+    } else if !c.all_ok {
+        format!(
+            "Not cuttable as asked: pieces break a constraint (dimension {}, approximation {}, shape {}, blade strain {}) of {} piece(s).",
+            f.dimension, f.approximation, f.shape, f.blade_strain, c.pieces
+        )
+    } else {
+        format!(
+            "Not cuttable as planned: the robot cell has problems ({} piece(s) from {} block(s) meet every constraint).",
+            c.pieces, c.blocks
+        )
+    };
+    let mut counts = vec![
+        ("pieces".to_string(), c.pieces.to_string()),
+        ("blocks".into(), c.blocks.to_string()),
+        ("bands × rows".into(), format!("{} × {}", c.bands, c.rows)),
+        ("section parts".into(), c.parts.to_string()),
+        ("algorithm".into(), s.algorithm.name().to_string()),
+    ];
+    if s.rationalized {
+        counts.push(("blade poses".into(), c.poses.to_string()));
+        counts.push(("slivers not posed".into(), c.unposed.to_string()));
+    }
+    let sections = || r.pieces.iter().flat_map(|p| &p.sections);
+    let longest = sections().map(|x| x.length).fold(0.0, f64::max);
+    let inflections = sections().map(|x| x.inflections).max().unwrap_or(0);
+    let kappa = sections().map(|x| x.max_abs_curvature).fold(0.0, f64::max);
+    let fit = r
+        .pieces
+        .iter()
+        .filter_map(|p| p.max_blade_fit)
+        .fold(0.0, f64::max);
+    let of = |n: usize| format!("{n} of {} piece(s) fail", c.pieces);
+    let mut constraints = vec![
+        Constraint {
+            name: "dimension: piece fits its block".into(),
+            limit: format!(
+                "block {} × {} × {}",
+                len(s.block[0], job),
+                len(s.block[1], job),
+                len(s.block[2], job)
+            ),
+            measured: format!(
+                "{}; longest section part {}",
+                of(f.dimension),
+                len(longest, job)
+            ),
+            ok: f.dimension == 0,
+        },
+        Constraint {
+            name: "approximation: elastica fit".into(),
+            limit: format!(
+                "RMS {}, max {}",
+                len(s.tolerance_rms, job),
+                len(s.tolerance_max, job)
+            ),
+            measured: if s.rationalized {
+                format!(
+                    "{}; largest blade fit distance {}",
+                    of(f.approximation),
+                    len(fit, job)
+                )
+            } else {
+                of(f.approximation)
+            },
+            ok: f.approximation == 0,
+        },
+        Constraint {
+            name: "shape: inflections per section part".into(),
+            limit: format!("≤ {}", s.max_inflections),
+            measured: format!("{}; most {inflections}", of(f.shape)),
+            ok: f.shape == 0,
+        },
+        Constraint {
+            name: "blade strain: |curvature|".into(),
+            limit: format!("≤ {}", curv(s.max_curvature, job)),
+            measured: format!("{}; largest {}", of(f.blade_strain), curv(kappa, job)),
+            ok: f.blade_strain == 0,
+        },
+    ];
+    let mut tables = vec![pieces(r, job)];
+    if let Some(cell) = &r.cell {
+        constraints.push(cell.constraint());
+        tables.push(cell.table());
+    }
+    Body {
+        verdict: Verdict { ok, text },
+        counts,
+        constraints,
+        notes: r.surface.warnings.clone(),
+        tables,
+    }
+}
+
+fn pieces(r: &SegmentationReport, job: &Context) -> Table {
+    let u = job.units.symbol();
+    let rows = r
+        .pieces
+        .iter()
+        .map(|p| {
+            let v = &p.verdicts;
+            let mut why = Vec::new();
+            if !v.dimension {
+                why.push("dimension");
+            }
+            if v.approximation == Some(false) {
+                why.push("approximation");
+            }
+            if !v.shape {
+                why.push("shape");
+            }
+            if !v.blade_strain {
+                why.push("blade strain");
+            }
+            let longest = p.sections.iter().map(|x| x.length).fold(0.0, f64::max);
+            let kappa = p
+                .sections
+                .iter()
+                .map(|x| x.max_abs_curvature)
+                .fold(0.0, f64::max);
+            let infl = p.sections.iter().map(|x| x.inflections).max().unwrap_or(0);
+            let used = p.block.used;
+            Row::new(
+                vec![
+                    p.id.to_string(),
+                    p.band.to_string(),
+                    p.row.to_string(),
+                    p.block.number.to_string(),
+                    format!("{} × {} × {}", num(used[0]), num(used[1]), num(used[2])),
+                    p.sections.len().to_string(),
+                    num(longest),
+                    infl.to_string(),
+                    num(kappa),
+                    p.max_blade_fit.map_or("—".into(), num),
+                ],
+                why,
+            )
+        })
+        .collect();
+    Table {
+        title: "Pieces".into(),
+        columns: vec![
+            "piece".into(),
+            "band".into(),
+            "row".into(),
+            "block".into(),
+            format!("block used ({u})"),
+            "sections".into(),
+            format!("longest part ({u})"),
+            "most inflections".into(),
+            format!("max |κ| (/{u})"),
+            format!("blade fit max ({u})"),
+        ],
+        rows,
+    }
+}
