@@ -27,6 +27,7 @@ use crate::output::Files;
 use crate::progress::Progress;
 use crate::spec::{OutputKind, OutputSpec};
 use crate::task::{Finished, Task, Visit};
+use export::html::{Drawing, Page};
 
 /// What a run of any task produced.
 #[derive(Debug, Clone)]
@@ -199,10 +200,81 @@ fn render<T: Task>(
         result.map_err(|e| (failed(&files), e))?;
     }
     if html {
-        crate::output::page::write::<T>(done, &mut files, start.elapsed())
-            .map_err(|e| (crate::output::page::NAME.to_string(), e))?;
+        write_page::<T>(done, &mut files, start.elapsed()).map_err(|e| (PAGE.to_string(), e))?;
     }
     Ok(files.into_names())
+}
+
+/// The page's file name.
+const PAGE: &str = "report.html";
+
+/// Writes `report.html` of a finished run into `files`, after every other file: the
+/// drawings are rendered again into memory through the task's `Svg` writer (so the page
+/// has them whether or not the job writes `Svg`), followed by any other drawing the run
+/// wrote (PreCut's G-code previews); the files listed are the ones in `files`.
+///
+/// # Errors
+/// The drawing writer's, or the file system's.
+fn write_page<T: Task>(
+    done: &Finished<'_, T>,
+    files: &mut Files,
+    elapsed: std::time::Duration,
+) -> export::Result<()> {
+    let mut drawings = Vec::new();
+    if let Some(w) = T::OUTPUTS.iter().find(|w| w.kind == OutputKind::Svg) {
+        let mut memory = Files::in_memory();
+        (w.write)(done, &OutputSpec::Svg, &mut memory)?;
+        drawings = memory
+            .into_kept()
+            .into_iter()
+            .map(|(name, svg)| Drawing { name, svg })
+            .collect();
+    }
+    // drawings other outputs wrote (PreCut's G-code previews)
+    for name in files.names().iter().filter(|n| n.ends_with(".svg")) {
+        if drawings.iter().any(|d| &d.name == name) {
+            continue;
+        }
+        if let Some(dir) = files.dir() {
+            let svg = std::fs::read(dir.join(name))?;
+            drawings.push(Drawing {
+                name: name.clone(),
+                svg,
+            });
+        }
+    }
+    let listed = files
+        .names()
+        .iter()
+        .map(|name| {
+            let bytes = files
+                .dir()
+                .and_then(|d| std::fs::metadata(d.join(name)).ok())
+                .map_or(0, |m| m.len());
+            (name.clone(), bytes)
+        })
+        .collect();
+    let job = done.job;
+    let page = Page {
+        title: job.name.clone(),
+        subtitle: format!(
+            "{} · units {} · hotcut {} · job file {}",
+            T::NAME,
+            job.units.name(),
+            crate::report::VERSION,
+            job.path.file_name().map_or_else(
+                || job.path.display().to_string(),
+                |f| f.to_string_lossy().into_owned()
+            )
+        ),
+        body: T::page(done.report, job),
+        drawings,
+        files: listed,
+        run_time: format!("{:.2} s", elapsed.as_secs_f64()),
+        job: job.job_ron.clone(),
+        job_as_written: job.job_file.clone(),
+    };
+    files.text(PAGE, export::html::render(&page))
 }
 
 /// Temporary folders of this process's runs in progress.

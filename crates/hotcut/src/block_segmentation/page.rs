@@ -62,8 +62,19 @@ pub fn body(r: &BlockSegReport, job: &Context) -> Body {
             ok: s.final_blocks >= s.lower_bound,
         },
     ];
+    Body {
+        verdict: Verdict { ok: true, text },
+        counts,
+        constraints,
+        notes: Vec::new(),
+        tables: vec![blocks(r, job), restarts(r)],
+    }
+}
+
+fn blocks(r: &BlockSegReport, job: &Context) -> Table {
     let u = job.units.symbol();
-    let rows = s
+    let rows = r
+        .segmentation
         .blocks
         .iter()
         .enumerate()
@@ -91,7 +102,7 @@ pub fn body(r: &BlockSegReport, job: &Context) -> Body {
             )
         })
         .collect();
-    let blocks = Table {
+    Table {
         title: "Blocks (blocks.json holds their exact frames)".into(),
         columns: vec![
             "block".into(),
@@ -100,8 +111,12 @@ pub fn body(r: &BlockSegReport, job: &Context) -> Body {
             format!("size ({u})"),
         ],
         rows,
-    };
-    let restarts = Table {
+    }
+}
+
+fn restarts(r: &BlockSegReport) -> Table {
+    let s = &r.segmentation;
+    Table {
         title: "Restarts".into(),
         columns: vec![
             "restart".into(),
@@ -134,12 +149,5 @@ pub fn body(r: &BlockSegReport, job: &Context) -> Body {
                 )
             })
             .collect(),
-    };
-    Body {
-        verdict: Verdict { ok: true, text },
-        counts,
-        constraints,
-        notes: Vec::new(),
-        tables: vec![blocks, restarts],
     }
 }

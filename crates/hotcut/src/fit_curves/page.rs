@@ -78,6 +78,23 @@ pub fn body(r: &FitCurvesReport, job: &Context) -> Body {
             ok: long == 0,
         },
     ];
+    let mut tables = vec![curves(r, job)];
+    if let Some(list) = &r.numerical {
+        tables.push(numerical(list, job.units.symbol()));
+    }
+    Body {
+        verdict: Verdict { ok, text },
+        counts,
+        constraints,
+        notes: Vec::new(),
+        tables,
+    }
+}
+
+fn curves(r: &FitCurvesReport, job: &Context) -> Table {
+    let t = &job.tolerance;
+    let b = &job.blade;
+    let over = |f: &elastica::fit::describe::FittedCurve| f.rms > t.rms || f.max > t.max;
     let u = job.units.symbol();
     let rows = r
         .curves
@@ -132,7 +149,7 @@ pub fn body(r: &FitCurvesReport, job: &Context) -> Body {
             },
         })
         .collect();
-    let mut tables = vec![Table {
+    Table {
         title: "Curves".into(),
         columns: vec![
             "curve".into(),
@@ -145,16 +162,6 @@ pub fn body(r: &FitCurvesReport, job: &Context) -> Body {
             format!("max |κ| (/{u})"),
         ],
         rows,
-    }];
-    if let Some(list) = &r.numerical {
-        tables.push(numerical(list, u));
-    }
-    Body {
-        verdict: Verdict { ok, text },
-        counts,
-        constraints,
-        notes: Vec::new(),
-        tables,
     }
 }
 

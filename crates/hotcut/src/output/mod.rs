@@ -3,7 +3,7 @@
 //! Format-generic helpers (glTF meshes from `geom` meshes and boxes, SVG bounds) live in
 //! the `export` crate.
 
-/// `report.html`, and the number formats of the tasks' pages.
+/// The number formats of the tasks' `report.html` pages.
 pub mod page;
 /// Robot targets and RAPID programs from blade poses.
 pub mod robot;

@@ -186,7 +186,7 @@ impl CellReport {
                 let mut cells = vec![
                     b.block.to_string(),
                     b.moves.to_string(),
-                    crate::output::page::num(b.air_clearance),
+                    format!("{:.1}", b.air_clearance),
                 ];
                 let mut why = Vec::new();
                 for c in &b.robots {
@@ -194,9 +194,7 @@ impl CellReport {
                         "{} / {} / {}",
                         c.out_of_reach, c.configuration_changes, c.joint_jumps
                     ));
-                    cells.push(c.margin_deg.map_or("—".into(), |m| {
-                        format!("{}°", crate::output::page::num(m))
-                    }));
+                    cells.push(c.margin_deg.map_or("—".into(), |m| format!("{m:.1}°")));
                     if c.out_of_reach > 0 {
                         why.push("out of reach");
                     }
