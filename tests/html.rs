@@ -3,8 +3,9 @@
 //!
 //! - Read as text: no script, no address outside the output folder, every link leads to a
 //!   file of the run and every file of the run is linked, every drawing is inlined as a
-//!   `data:` image equal byte for byte to the job's `.svg` file, and the verdict, the run
-//!   time and the job are there.
+//!   `data:` image equal byte for byte to the job's `.svg` file, the verdict, the run
+//!   time and the job are there, and the highlighted rows are exactly the pieces, blocks
+//!   or sections the report fails (`seg-wavy-45-longest` and `wave-facade` have some).
 //! - In a browser: Debian's `chromium`, headless, loads each page and saves a screenshot
 //!   under `target/html-screenshots/<job>.png`; any console message (a script error, a
 //!   refused resource) fails the test. When no chromium is found the browser part is
@@ -197,6 +198,69 @@ fn page_problems(dir: &Path, report: &serde_json::Value) -> Vec<String> {
         .count();
     if images.len() < svgs.min(export::html::MAX_DRAWINGS) {
         out.push(format!("{} drawing(s) inlined of {svgs}", images.len()));
+    }
+    out.extend(flagged_rows_problems(&html, report));
+    out
+}
+
+/// The rows a page highlights against the report's own verdicts: pieces with a failed
+/// constraint (FacadeSegmentation), blocks with a flag (HotBlade), sections with a
+/// violation (Analyze).
+fn flagged_rows_problems(html: &str, report: &serde_json::Value) -> Vec<String> {
+    let list = |key: &str| report[key].as_array().cloned().unwrap_or_default();
+    let (table, rows, failing) = match report["task"].as_str().unwrap_or("") {
+        "FacadeSegmentation" => {
+            let p = list("pieces");
+            let bad = p
+                .iter()
+                .filter(|x| {
+                    x["verdicts"]
+                        .as_object()
+                        .unwrap()
+                        .values()
+                        .any(|v| v == &serde_json::Value::Bool(false))
+                })
+                .count();
+            ("Pieces", p.len(), bad)
+        }
+        "HotBlade" => {
+            let b = list("blocks");
+            let bad = b
+                .iter()
+                .filter(|x| {
+                    x["flags"]
+                        .as_object()
+                        .unwrap()
+                        .values()
+                        .any(|v| v == &serde_json::Value::Bool(true))
+                })
+                .count();
+            ("Blocks (drawing block_NNN.svg each)", b.len(), bad)
+        }
+        "Analyze" => {
+            let s = list("sections");
+            let bad = s
+                .iter()
+                .filter(|x| !x["violations"].as_array().unwrap().is_empty())
+                .count();
+            ("Sections", s.len(), bad)
+        }
+        _ => return Vec::new(),
+    };
+    let want = format!("<h2>{table}</h2>\n<p>{rows} row(s), {failing} flagged");
+    let mut out = Vec::new();
+    if !html.contains(&want) {
+        out.push(format!("table {table}: expected `{want}`"));
+    }
+    let start = html.find(&format!("<h2>{table}</h2>")).unwrap_or(0);
+    let end = html[start..]
+        .find("</table>")
+        .map_or(html.len(), |e| start + e);
+    let shown = html[start..end].matches("<tr class=\"flagged\">").count();
+    if shown != failing {
+        out.push(format!(
+            "table {table}: {shown} row(s) highlighted, the report fails {failing}"
+        ));
     }
     out
 }

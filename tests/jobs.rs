@@ -63,3 +63,25 @@ fn every_job_runs_matches_its_snapshot_and_is_reproducible() {
         });
     });
 }
+
+/// A tool for drawing work, not a check: prints what [`outputs_check::svg_problems`] finds
+/// in every output folder under `HOTCUT_CHECK_DIR` (e.g. `hotcut run jobs/*.ron --out DIR`).
+/// `HOTCUT_CHECK_DIR=/tmp/out cargo test --test jobs -- --ignored --nocapture`
+#[test]
+#[ignore = "a tool: set HOTCUT_CHECK_DIR"]
+fn drawings_in_a_folder() {
+    let Some(root) = std::env::var_os("HOTCUT_CHECK_DIR") else {
+        return;
+    };
+    let mut dirs: Vec<_> = std::fs::read_dir(root)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_dir())
+        .collect();
+    dirs.sort();
+    for d in dirs {
+        for p in outputs_check::svg_problems(&d) {
+            println!("{}: {p}", d.display());
+        }
+    }
+}

@@ -279,6 +279,9 @@ fn segment_meets_box(a: (f64, f64), b: (f64, f64), bx: (f64, f64, f64, f64)) -> 
 /// above its baseline to 0.2 em below) must lie on the page, clear of every other text's
 /// box and of every drawn segment (polyline and polygon edges, rectangle edges, circles as
 /// their boxes). The page's white background and a text's own halo are not geometry.
+/// Every drawing must also carry a scale (`<g class="scale-bar">` or
+/// `<g class="chart-axes">`), its axes (`<g class="axes">` or a chart's) and a legend
+/// (`<g class="legend">`), as `export::svg` draws them.
 pub fn svg_problems(dir: &Path) -> Vec<String> {
     let mut out = Vec::new();
     let mut names: Vec<_> = std::fs::read_dir(dir)
@@ -351,6 +354,18 @@ pub fn svg_problems(dir: &Path) -> Vec<String> {
                 segments.push(((x - r, y), (x + r, y)));
                 segments.push(((x, y - r), (x, y + r)));
             }
+        }
+        // what makes a drawing readable: a scale (a scale bar in job units, or a chart's
+        // axes with values), the axes' directions (or the chart's), and a legend
+        let has = |class: &str| text.contains(&format!("<g class=\"{class}\">"));
+        if !has("scale-bar") && !has("chart-axes") {
+            out.push(format!("{name}: no scale bar and no chart axes"));
+        }
+        if !has("axes") && !has("chart-axes") {
+            out.push(format!("{name}: no axis labels"));
+        }
+        if !has("legend") {
+            out.push(format!("{name}: no legend"));
         }
         for (k, (t, b)) in boxes.iter().enumerate() {
             if b.0 < -0.5 || b.1 < -0.5 || b.2 > w + 0.5 || b.3 > h + 0.5 {

@@ -176,8 +176,9 @@ table{border-collapse:collapse;margin:.5em 0;font-size:.9em}th,td{border:1px sol
 th{background:#f2f2f2}td:first-child,th:first-child{text-align:left}#constraints td,#constraints th{text-align:left}
 tr.flagged td{background:#fde2dd}td.why{text-align:left;color:#a02a1a}
 td.ok{color:#276b27;font-weight:600;text-align:center}td.bad{color:#b03020;font-weight:600;text-align:center}
-.scroll{max-height:32em;overflow:auto;display:inline-block;max-width:100%}
-figure{margin:1em 0}figure img{max-width:100%;border:1px solid #ddd;background:#fff}figcaption{font-size:.9em;color:#555}
+.scroll{overflow-x:auto;max-width:100%}td{white-space:nowrap}td.why{white-space:normal}#constraints td{white-space:normal}
+@media print{.scroll{overflow:visible}}
+.grid{display:grid;grid-template-columns:1fr 1fr;gap:0 1.5em}figure{margin:1em 0}figure img{max-width:100%;border:1px solid #ddd;background:#fff}figcaption{font-size:.9em;color:#555}
 pre{background:#f6f6f6;padding:.8em;overflow:auto;font-size:.85em}
 ul.notes li{color:#8a5a00}
 ";
@@ -213,7 +214,7 @@ pub fn render(page: &Page) -> String {
     }
     files(&mut h, &page.files);
     h.push_str(
-        "<section id=\"job\">\n<h2>The job</h2>\n<p>As hotcut read it, defaults filled in:</p>\n",
+        "<section id=\"job\">\n<h2>The job</h2>\n<p>As hotcut read it: every field with its value or default; <code>None</code> where the job leaves it to the task (its default is in the README and the schema).</p>\n",
     );
     h.push_str(&format!("<pre>{}</pre>\n", escape(&page.job)));
     if let Some(text) = &page.job_as_written {
@@ -276,6 +277,11 @@ fn drawings(h: &mut String, list: &[Drawing]) {
         return;
     }
     h.push_str("<section id=\"drawings\">\n<h2>Drawings</h2>\n");
+    // many drawings (one per block) two to a row
+    let grid = list.len() > 2;
+    if grid {
+        h.push_str("<div class=\"grid\">\n");
+    }
     for d in list.iter().take(MAX_DRAWINGS) {
         h.push_str(&format!(
             "<figure>\n<img alt=\"{}\" src=\"data:image/svg+xml;base64,{}\">\n<figcaption><a href=\"{}\">{}</a></figcaption>\n</figure>\n",
@@ -284,6 +290,9 @@ fn drawings(h: &mut String, list: &[Drawing]) {
             href(&d.name),
             escape(&d.name)
         ));
+    }
+    if grid {
+        h.push_str("</div>\n");
     }
     if list.len() > MAX_DRAWINGS {
         h.push_str(&format!(

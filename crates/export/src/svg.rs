@@ -33,6 +33,64 @@ pub fn nice_length(at_most: f64) -> f64 {
         .unwrap_or(p)
 }
 
+/// Tick values between `lo` and `hi` at a nice step (about four ticks), each with its
+/// place along the axis in `[0, 1]`; none for an empty or non-finite range.
+pub fn ticks(lo: f64, hi: f64) -> Vec<(f64, f64)> {
+    let span = hi - lo;
+    if !(span > 0.0) || !span.is_finite() {
+        return Vec::new();
+    }
+    let step = nice_length(span / 3.0);
+    if !(step > 0.0) {
+        return Vec::new();
+    }
+    let first = (lo / step).ceil() as i64;
+    let last = (hi / step).floor() as i64;
+    (first..=last.min(first + 20))
+        .map(|k| {
+            let v = k as f64 * step;
+            // -0 and float dust print as 0
+            let v = if v.abs() < 1e-9 * step { 0.0 } else { v };
+            (v, (v - lo) / span)
+        })
+        .collect()
+}
+
+/// How a [`Legend`] entry is marked.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mark {
+    /// A solid line.
+    Line,
+    /// A dashed line.
+    Dashed,
+    /// A dot.
+    Dot,
+    /// A filled box.
+    Swatch,
+}
+
+/// One entry of a legend: its mark, colour and label.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Legend<'a> {
+    /// How it is marked.
+    pub mark: Mark,
+    /// The mark's colour.
+    pub colour: &'a str,
+    /// What it means.
+    pub label: &'a str,
+}
+
+impl<'a> Legend<'a> {
+    /// An entry.
+    pub const fn new(mark: Mark, colour: &'a str, label: &'a str) -> Self {
+        Self {
+            mark,
+            colour,
+            label,
+        }
+    }
+}
+
 /// Maps world coordinates `(x, y)` (y up) into a page rectangle, preserving aspect ratio.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Viewport {
@@ -236,7 +294,8 @@ impl SvgDoc {
 
     /// A scale bar under a drawing of viewport `vp`: a bar of a "nice" world length about a
     /// fifth of `max_width` page units, its left end at page point `at` (the bar's
-    /// baseline), labelled with the length and `units` to its right.
+    /// baseline), labelled with the length and `units` to its right. Grouped as
+    /// `<g class="scale-bar">`.
     pub fn scale_bar(
         &mut self,
         vp: &Viewport,
@@ -250,6 +309,7 @@ impl SvgDoc {
             return self;
         }
         let (x, y) = at;
+        self.body.push_str("<g class=\"scale-bar\">\n");
         self.polyline(
             &[(x, y - 4.0), (x, y), (x + w, y), (x + w, y - 4.0)],
             "black",
@@ -257,7 +317,117 @@ impl SvgDoc {
             None,
         );
         let label = format!("{} {units}", crate::fmt_float(len, 6));
-        self.text((x + w + 6.0, y), 10.0, "black", &label)
+        self.text((x + w + 6.0, y), 10.0, "black", &label);
+        self.body.push_str("</g>\n");
+        self
+    }
+
+    /// The drawing's world axes: from page point `at`, an arrow to the right labelled
+    /// `right` and one up labelled `up` (e.g. `x` and `y` in plan, `y` and `z` in a
+    /// section). Grouped as `<g class="axes">`; takes about 40 × 44 page units above and
+    /// right of `at`.
+    pub fn axes_key(&mut self, at: (f64, f64), right: &str, up: &str) -> &mut Self {
+        let (x, y) = at;
+        let l = 24.0;
+        self.body.push_str("<g class=\"axes\">\n");
+        self.polyline(&[(x, y), (x + l, y)], "#333333", 1.0, None);
+        self.polygon(
+            &[(x + l + 5.0, y), (x + l, y - 2.5), (x + l, y + 2.5)],
+            "#333333",
+            "none",
+            0.0,
+            None,
+        );
+        self.polyline(&[(x, y), (x, y - l)], "#333333", 1.0, None);
+        self.polygon(
+            &[(x, y - l - 5.0), (x - 2.5, y - l), (x + 2.5, y - l)],
+            "#333333",
+            "none",
+            0.0,
+            None,
+        );
+        self.text((x + l + 8.0, y + 4.0), 10.0, "#333333", right);
+        self.text((x - 3.0, y - l - 9.0), 10.0, "#333333", up);
+        self.body.push_str("</g>\n");
+        self
+    }
+
+    /// A legend: `entries` in rows from page point `at` (the top left), wrapped before
+    /// `max_width`; each is its mark and its label (10 units high). Grouped as
+    /// `<g class="legend">`. Returns the height used.
+    pub fn legend(&mut self, at: (f64, f64), max_width: f64, entries: &[Legend<'_>]) -> f64 {
+        let (x0, y0) = at;
+        let row = 14.0;
+        let (mut x, mut y) = (x0, y0 + 10.0);
+        self.body.push_str("<g class=\"legend\">\n");
+        for e in entries {
+            let w = 20.0 + 6.0 * e.label.chars().count() as f64 + 14.0;
+            if x > x0 && x + w > x0 + max_width {
+                x = x0;
+                y += row;
+            }
+            let mid = y - 3.5;
+            match e.mark {
+                Mark::Line => {
+                    self.polyline(&[(x, mid), (x + 14.0, mid)], e.colour, 2.0, None);
+                }
+                Mark::Dashed => {
+                    self.dashed_polyline(&[(x, mid), (x + 14.0, mid)], e.colour, 1.5, 3.0, None);
+                }
+                Mark::Dot => {
+                    self.circle((x + 7.0, mid), 3.0, e.colour, None);
+                }
+                Mark::Swatch => {
+                    let r = [
+                        (x, mid - 4.0),
+                        (x + 14.0, mid - 4.0),
+                        (x + 14.0, mid + 4.0),
+                        (x, mid + 4.0),
+                    ];
+                    self.polygon(&r, e.colour, "#666666", 0.5, None);
+                }
+            }
+            self.text((x + 18.0, y), 10.0, "#222222", e.label);
+            x += w;
+        }
+        self.body.push_str("</g>\n");
+        y - y0 + 4.0
+    }
+
+    /// A chart's frame `(left, top, width, height)` with ticks and values on both axes:
+    /// `x` and `y` are the world values at the left/right and bottom/top edges; the axis
+    /// titles go under the x values (right-aligned) and above the frame (left-aligned).
+    /// Grouped as `<g class="chart-axes">`.
+    pub fn chart_axes(
+        &mut self,
+        frame: (f64, f64, f64, f64),
+        x: (f64, f64),
+        y: (f64, f64),
+        x_title: &str,
+        y_title: &str,
+    ) -> &mut Self {
+        let (l, t, w, h) = frame;
+        self.body.push_str("<g class=\"chart-axes\">\n");
+        self.rect(frame, "#999999", "none");
+        for (v, along) in ticks(x.0, x.1) {
+            let px = l + along * w;
+            self.polyline(&[(px, t + h), (px, t + h + 4.0)], "#666666", 1.0, None);
+            let label = crate::fmt_float(v, 6);
+            let half = 3.0 * label.chars().count() as f64;
+            self.text((px - half, t + h + 14.0), 9.0, "#444444", &label);
+        }
+        for (v, along) in ticks(y.0, y.1) {
+            let py = t + h - along * h;
+            self.polyline(&[(l - 4.0, py), (l, py)], "#666666", 1.0, None);
+            let label = crate::fmt_float(v, 6);
+            let width = 5.4 * label.chars().count() as f64;
+            self.text((l - 6.0 - width, py + 3.0), 9.0, "#444444", &label);
+        }
+        let xw = 6.0 * x_title.chars().count() as f64;
+        self.text((l + w - xw, t + h + 27.0), 10.0, "#222222", x_title);
+        self.text((l, t - 5.0), 10.0, "#222222", y_title);
+        self.body.push_str("</g>\n");
+        self
     }
 
     /// Writes the document.
@@ -287,6 +457,21 @@ mod tests {
         let v = Viewport::fit((0.0, 0.0), (10.0, 5.0), (0.0, 0.0, 100.0, 100.0));
         assert_eq!(v.map(0.0, 0.0), (0.0, 75.0));
         assert_eq!(v.map(10.0, 5.0), (100.0, 25.0));
+    }
+
+    #[test]
+    fn ticks_are_round_and_inside() {
+        let t = ticks(0.0, 10.0);
+        assert_eq!(
+            t.iter().map(|p| p.0).collect::<Vec<_>>(),
+            vec![0.0, 2.0, 4.0, 6.0, 8.0, 10.0]
+        );
+        assert!(t.iter().all(|p| (0.0..=1.0).contains(&p.1)));
+        let t = ticks(-0.013, 0.021);
+        assert!(t.iter().any(|p| p.0 == 0.0));
+        assert!(ticks(1.0, 1.0).is_empty());
+        assert!(ticks(0.0, f64::NAN).is_empty());
+        assert!(ticks(0.0, 1e300).len() <= 21);
     }
 
     #[test]

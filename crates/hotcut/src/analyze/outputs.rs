@@ -5,7 +5,7 @@
 //! sections as 3D polylines.
 
 use export::json::REPORT_DIGITS;
-use export::svg::{bounds, SvgDoc, Viewport};
+use export::svg::{bounds, Legend, Mark, SvgDoc, Viewport};
 use geom::planar::PlanarCurve;
 use geom::slice::PlaneFrame;
 use geom::surface::Section;
@@ -96,10 +96,10 @@ fn sections_svg(a: &Analysis, r: &AnalyzeReport, units: &str) -> SvgDoc {
     let inner = WIDTH - 2.0 * MARGIN;
     let plan_h = (inner * (pmax.1 - pmin.1) / (pmax.0 - pmin.0).max(1e-9)).clamp(150.0, 700.0);
     let prof_h = (inner * (qmax.1 - qmin.1) / (qmax.0 - qmin.0).max(1e-9)).clamp(120.0, 400.0);
-    let height = MARGIN * 4.0 + plan_h + prof_h + 46.0;
+    let height = MARGIN * 4.0 + plan_h + prof_h + 46.0 + 14.0 + 40.0;
     let mut doc = SvgDoc::new(WIDTH, height);
     sections_header(&mut doc, r, units);
-    let plan_page = (MARGIN, MARGIN + 32.0, inner, plan_h);
+    let plan_page = (MARGIN, MARGIN + 46.0, inner, plan_h);
     doc.rect(plan_page, "#ccc", "none");
     let vp = Viewport::fit(pmin, pmax, plan_page);
     if let Some(outline) = block_outline {
@@ -112,7 +112,7 @@ fn sections_svg(a: &Analysis, r: &AnalyzeReport, units: &str) -> SvgDoc {
             Some("the block, at the surface's corner"),
         );
     }
-    let prof_top = MARGIN * 2.0 + 32.0 + plan_h + 20.0;
+    let prof_top = MARGIN * 2.0 + 46.0 + plan_h + 20.0;
     doc.text(
         (MARGIN, prof_top - 8.0),
         12.0,
@@ -124,6 +124,16 @@ fn sections_svg(a: &Analysis, r: &AnalyzeReport, units: &str) -> SvgDoc {
     let vq = Viewport::fit(qmin, qmax, prof_page);
     doc.scale_bar(&vp, (MARGIN, plan_page.1 + plan_h + 20.0), inner, units);
     doc.scale_bar(&vq, (MARGIN, prof_top + prof_h + 24.0), inner, units);
+    doc.axes_key(
+        (WIDTH - MARGIN - 60.0, plan_page.1 + plan_h + 46.0),
+        "x",
+        "y (plan)",
+    );
+    doc.axes_key(
+        (WIDTH - MARGIN - 60.0, prof_top + prof_h + 50.0),
+        "u",
+        "v (section plane)",
+    );
 
     for (k, ((s, an), rep)) in a.survey.sections.iter().zip(&r.sections).enumerate() {
         let bad = !rep.violations.is_empty();
@@ -224,10 +234,15 @@ fn sections_header(doc: &mut SvgDoc, r: &AnalyzeReport, units: &str) {
             &format!("{} (block dashed red)", reasons.join("; ")),
         );
     }
-    doc.text(
-        (MARGIN, MARGIN + 22.0),
-        12.0,
-        "#444",
-        "plan (x right, y up): inflections red, curvature maxima blue, offending sections orange",
+    doc.legend(
+        (MARGIN, 50.0),
+        WIDTH - 2.0 * MARGIN,
+        &[
+            Legend::new(Mark::Line, "#333333", "section"),
+            Legend::new(Mark::Line, "#e07000", "section breaking a constraint"),
+            Legend::new(Mark::Dot, "#e01010", "inflection"),
+            Legend::new(Mark::Dot, "#1060e0", "curvature maximum"),
+            Legend::new(Mark::Dashed, "#c00000", "block, at the surface's corner"),
+        ],
     );
 }

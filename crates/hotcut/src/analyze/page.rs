@@ -13,8 +13,12 @@ pub fn body(r: &AnalyzeReport, job: &Context) -> Body {
     let s = &r.summary;
     let c = &r.constraints;
     let ok = s.cuttable_without_segmentation;
+    let sections_ok =
+        s.sections_too_long + s.sections_too_many_inflections + s.sections_too_curved == 0;
     let text = if ok {
         "Cuttable with one blade from one block: every section meets every constraint.".to_string()
+    } else if sections_ok {
+        "Needs more than one block: the surface is larger than the block (see below); every section is within the blade's limits.".to_string()
     } else {
         "Needs segmentation or another tool: the flagged constraints below break.".to_string()
     };
@@ -113,8 +117,8 @@ fn sections(r: &AnalyzeReport, job: &Context) -> Table {
             why.dedup();
             Row::new(
                 vec![
-                    x.index.to_string(),
-                    x.piece.to_string(),
+                    (x.index + 1).to_string(),
+                    (x.piece + 1).to_string(),
                     num(x.offset),
                     num(x.length),
                     x.inflections.len().to_string(),

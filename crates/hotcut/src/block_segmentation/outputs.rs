@@ -5,7 +5,7 @@
 use blocks::Phase;
 use export::gltf::{write_gltf, Material, Mesh};
 use export::json::REPORT_DIGITS;
-use export::svg::SvgDoc;
+use export::svg::{Legend, Mark, SvgDoc};
 
 use super::BlockSegmentation;
 use crate::output::Files;
@@ -72,21 +72,21 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
     })
 }
 
-/// Blocks per iteration as a step line, alignment passes marked, the lower bound dashed.
+/// Blocks per iteration as a step line, alignment passes marked, the lower bound dashed;
+/// a chart with ticks on both axes and a legend.
 fn progress_svg(seg: &blocks::Segmentation) -> SvgDoc {
-    let (w, h) = (640.0, 360.0);
+    let (w, h) = (640.0, 380.0);
+    let (l, t) = (60.0, 60.0);
+    let (fw, fh) = (w - 90.0, h - 120.0);
     let mut doc = SvgDoc::new(w, h);
     let last = seg.history.last().map_or(1, |r| r.iteration.max(1)) as f64;
     let top = seg.initial_blocks.max(1) as f64;
     let bottom = (seg.lower_bound as f64).min(seg.final_blocks as f64);
-    // Independent scales on the two axes (a chart, not a drawing).
-    let span = (top - bottom).max(1.0);
-    let map = |it: f64, n: f64| {
-        (
-            60.0 + it / last * (w - 80.0),
-            30.0 + (top - n) / span * (h - 80.0),
-        )
-    };
+    // Independent scales on the two axes (a chart, not a drawing); a margin of a tenth
+    // above and below so the lines do not run on the frame.
+    let pad = 0.1 * (top - bottom).max(1.0);
+    let (lo, hi) = ((bottom - pad).max(0.0), top + pad);
+    let map = |it: f64, n: f64| (l + it / last * fw, t + (hi - n) / (hi - lo) * fh);
     let pts: Vec<(f64, f64)> = seg
         .history
         .windows(2)
@@ -99,7 +99,24 @@ fn progress_svg(seg: &blocks::Segmentation) -> SvgDoc {
             ]
         })
         .collect();
-    doc.rect((60.0, 30.0, w - 80.0, h - 80.0), "#999999", "none");
+    doc.text(
+        (l, 18.0),
+        12.0,
+        "#000000",
+        &format!(
+            "blocks per iteration: {} → {} ({:.1} % fewer); lower bound {}",
+            seg.initial_blocks, seg.final_blocks, seg.reduction_percent, seg.lower_bound
+        ),
+    );
+    doc.chart_axes((l, t, fw, fh), (0.0, last), (lo, hi), "iteration", "blocks");
+    let lb = seg.lower_bound as f64;
+    doc.dashed_polyline(
+        &[map(0.0, lb), map(last, lb)],
+        "#888888",
+        1.0,
+        4.0,
+        Some("lower bound"),
+    );
     if pts.len() >= 2 {
         doc.polyline(&pts, "#1f5fa8", 2.0, Some("blocks"));
     } else if let Some(r) = seg.history.first() {
@@ -114,39 +131,18 @@ fn progress_svg(seg: &blocks::Segmentation) -> SvgDoc {
             Some(&title),
         );
     }
-    let lb = seg.lower_bound as f64;
-    doc.polyline(
-        &[map(0.0, lb), map(last, lb)],
-        "#888888",
-        1.0,
-        Some("lower bound"),
-    );
-    doc.text(
-        (60.0, 20.0),
-        12.0,
-        "#000000",
-        &format!(
-            "blocks per iteration: {} → {} ({:.1} % fewer); lower bound {}",
-            seg.initial_blocks, seg.final_blocks, seg.reduction_percent, seg.lower_bound
-        ),
-    );
-    doc.text(
-        (60.0, h - 30.0),
-        11.0,
-        "#000000",
-        &format!("iteration (0 – {last}); orange: alignment passes"),
-    );
-    doc.text(
-        (6.0, map(0.0, top).1 + 4.0),
-        11.0,
-        "#000000",
-        &format!("{}", seg.initial_blocks),
-    );
-    doc.text(
-        (6.0, map(0.0, bottom).1 + 4.0),
-        11.0,
-        "#000000",
-        &format!("{}", bottom),
+    doc.legend(
+        (l, h - 26.0),
+        fw,
+        &[
+            Legend::new(Mark::Line, "#1f5fa8", "blocks"),
+            Legend::new(Mark::Dot, "#d95f02", "alignment pass"),
+            Legend::new(
+                Mark::Dashed,
+                "#888888",
+                "lower bound (model volume / block volume)",
+            ),
+        ],
     );
     doc
 }

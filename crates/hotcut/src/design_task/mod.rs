@@ -5,6 +5,8 @@
 //! station and cutting plane, extends it to the blade and poses it; this module reads the
 //! file, checks it, and reports and writes the result.
 
+/// Its drawings, `block_<id>.svg`.
+mod drawing;
 /// The design file.
 pub mod file;
 /// Blocks cut several times.

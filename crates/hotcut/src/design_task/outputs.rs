@@ -3,11 +3,10 @@
 //! design surface and the elastica surface coloured by its deviation), and the robot files
 //! ([`crate::output::robot`]).
 
-use design::cut::{CurveResult, CutResult};
+use design::cut::CutResult;
 use elastica::sweep::frame_quaternion;
 use export::gltf::{f32s, write_gltf, Material, Mesh};
 use export::robot::{Targets, TargetsBlock};
-use export::svg::{bounds, SvgDoc, Viewport};
 use nalgebra::{Vector2, Vector3};
 
 use super::file::{Block, ResolvedCut};
@@ -64,11 +63,6 @@ pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> expor
     robot::write(files, &t, done.run.cell.as_ref(), &done.job.name, o.kind())
 }
 
-/// Piece `k` of curve `c`: design and elastica at `n` equal arc-length fractions.
-fn sampled(c: &CurveResult, k: usize, n: usize) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
-    c.sampled(k, n)
-}
-
 /// `block_<id>.svg` (`block_<id>_<cut>.svg` for a block cut several times): the cut's
 /// piece in the block at every station: design curve (black), control polygon (grey),
 /// elastica (red, dashed), blade extension (light grey), over the block's outline.
@@ -78,7 +72,7 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
     for (r, res) in &done.run.cuts {
         for (piece, &k) in r.blocks.iter().enumerate() {
             let b = &done.run.blocks[k];
-            let doc = block_svg(b, r, res, piece, n, units);
+            let doc = super::drawing::block_svg(b, r, res, piece, n, units);
             // a block cut several times gets one drawing per cut
             let name = if done.run.multi[k].cuts.len() > 1 {
                 format!("block_{}_{}.svg", file_name(&b.id), file_name(&r.id))
@@ -102,96 +96,6 @@ fn file_name(id: &str) -> String {
             }
         })
         .collect()
-}
-
-const STATION_COLOURS: [&str; 4] = ["#000000", "#1f5fbf", "#2a8a2a", "#8a4a00"];
-
-fn block_svg(
-    b: &Block,
-    r: &ResolvedCut,
-    res: &CutResult,
-    piece: usize,
-    n: usize,
-    units: &str,
-) -> SvgDoc {
-    const W: f64 = 900.0;
-    const H: f64 = 600.0;
-    let mut doc = SvgDoc::new(W, H);
-    let (lo, hi) = (r.faces[piece], r.faces[piece + 1]);
-    let outline = [
-        [lo, b.min.z],
-        [hi, b.min.z],
-        [hi, b.max.z],
-        [lo, b.max.z],
-        [lo, b.min.z],
-    ];
-    let curves: Vec<_> = res.stations.iter().map(|c| sampled(c, piece, n)).collect();
-    let polygons: Vec<[[f64; 2]; 4]> = res
-        .stations
-        .iter()
-        .map(|c| c.pieces[piece].design.p)
-        .collect();
-    let blades: Vec<Vec<[f64; 2]>> = res
-        .stations
-        .iter()
-        .map(|c| {
-            c.pieces[piece]
-                .blade
-                .segment
-                .sample(200)
-                .unwrap_or_default()
-        })
-        .collect();
-    // the viewport holds everything drawn, the blade's extension included
-    let (wlo, whi) = bounds(
-        outline
-            .iter()
-            .chain(curves.iter().flat_map(|(d, e)| d.iter().chain(e)))
-            .chain(polygons.iter().flatten())
-            .chain(blades.iter().flatten())
-            .map(|p| (p[0], p[1])),
-    );
-    let vp = Viewport::fit(wlo, whi, (40.0, 90.0, W - 80.0, H - 150.0));
-    let map = |pts: &[[f64; 2]]| pts.iter().map(|p| vp.map(p[0], p[1])).collect::<Vec<_>>();
-    block_header(&mut doc, b, r, res, piece, units);
-    doc.polyline(&map(&outline), "#888888", 1.0, Some("block outline"));
-    for (i, ((c, (design, elastica)), blade)) in
-        res.stations.iter().zip(&curves).zip(&blades).enumerate()
-    {
-        let p = &c.pieces[piece];
-        doc.polyline(
-            &map(blade),
-            "#cccccc",
-            1.0,
-            Some("blade extended to its length"),
-        );
-        doc.polyline(&map(&p.design.p), "#999999", 0.6, Some("control polygon"));
-        for q in &p.design.p {
-            doc.circle(vp.map(q[0], q[1]), 2.5, "#999999", Some("control point"));
-        }
-        let colour = STATION_COLOURS[i % STATION_COLOURS.len()];
-        doc.polyline(
-            &map(design),
-            colour,
-            2.2,
-            Some(&format!("design curve, station {i}")),
-        );
-        doc.dashed_polyline(
-            &map(elastica),
-            "#e01010",
-            1.4,
-            6.0,
-            Some(&format!("elastica, station {i}")),
-        );
-    }
-    doc.scale_bar(&vp, (40.0, H - 40.0), W - 80.0, units);
-    doc.text(
-        (30.0, H - 24.0),
-        12.0,
-        "#444",
-        &format!("across the cut (horizontal) and height (vertical), {units}; faces at {lo:.1} and {hi:.1}"),
-    );
-    doc
 }
 
 /// A grid mesh of `rows × cols` points (row-major).
@@ -276,7 +180,7 @@ pub(super) fn scene(run: &super::DesignRun, n: usize, tol: f64) -> Vec<Mesh> {
             }
             let (mut design, mut elastica, mut colors) = (Vec::new(), Vec::new(), Vec::new());
             for c in &res.planes {
-                let (d, e) = sampled(c, piece, n);
+                let (d, e) = c.sampled(piece, n);
                 for (p, q) in d.iter().zip(&e) {
                     let w = |v: &[f64; 2]| r.frame.to_world(c.offset, &Vector2::new(v[0], v[1]));
                     design.push(f32s(&w(p)));
@@ -303,53 +207,4 @@ pub(super) fn scene(run: &super::DesignRun, n: usize, tol: f64) -> Vec<Mesh> {
         }
     }
     meshes
-}
-
-/// The title and legend lines of a design block's drawing.
-fn block_header(
-    doc: &mut SvgDoc,
-    b: &Block,
-    r: &ResolvedCut,
-    res: &CutResult,
-    piece: usize,
-    units: &str,
-) {
-    let worst = res
-        .stations
-        .iter()
-        .map(|c| &c.pieces[piece].proxy)
-        .fold((0.0f64, 0.0f64), |(d, e), p| {
-            (d.max(p.max_deviation), e.max(p.eq11_residual))
-        });
-    doc.text(
-        (30.0, 28.0),
-        16.0,
-        "black",
-        &format!(
-            "block {} — cut `{}` through {} block(s), piece {} of {}",
-            b.id,
-            r.id,
-            r.blocks.len(),
-            piece + 1,
-            r.blocks.len()
-        ),
-    );
-    doc.text(
-        (30.0, 50.0),
-        12.0,
-        "#444",
-        &format!(
-            "design vs elastica: max {:.4} {units} ({:.3} % of the length) · eq. (11) residual ≤ {:.3} · {} station(s), entry black",
-            worst.0,
-            100.0 * worst.0 / res.stations[0].pieces[piece].proxy.length.max(f64::MIN_POSITIVE),
-            worst.1,
-            res.stations.len()
-        ),
-    );
-    doc.text(
-        (30.0, 68.0),
-        12.0,
-        "#444",
-        "design curve solid · control polygon thin grey · elastica red dashed · blade extension light grey · block outline",
-    );
 }

@@ -6,7 +6,7 @@
 use export::csv::Table;
 use export::gltf::{f32s, write_gltf, Material, Mesh, SourceUnits};
 use export::obj::ObjWriter;
-use export::svg::{bounds, SvgDoc, Viewport};
+use export::svg::{bounds, Legend, Mark, SvgDoc, Viewport};
 use facade_seg::Piece;
 use nalgebra::Vector3;
 
@@ -142,8 +142,8 @@ fn plan_svg(run: &SegmentationRun, r: &SegmentationReport, units: &str) -> SvgDo
     let inner = W - 2.0 * M;
     let h = (inner * (hi.1 - lo.1) / (hi.0 - lo.0).max(1e-9)).clamp(200.0, 1400.0);
     // header: title, counts and verdict, legend; then the plan
-    const TOP: f64 = 76.0;
-    let mut doc = SvgDoc::new(W, TOP + h + M);
+    const TOP: f64 = 90.0;
+    let mut doc = SvgDoc::new(W, TOP + h + M + 16.0);
     doc.text(
         (M, 22.0),
         16.0,
@@ -167,15 +167,26 @@ fn plan_svg(run: &SegmentationRun, r: &SegmentationReport, units: &str) -> SvgDo
             }
         ),
     );
-    doc.text(
-        (M, 60.0),
-        12.0,
-        "#444",
-        &format!("plan in the facade frame ({units}): cut left to right; sections grey, inflections red, seams black, blocks blue"),
+    doc.legend(
+        (M, 50.0),
+        inner,
+        &[
+            Legend::new(Mark::Swatch, "#a6cee3", "piece (one colour each)"),
+            Legend::new(Mark::Line, "#777777", "section"),
+            Legend::new(Mark::Dot, "#e01010", "inflection"),
+            Legend::new(Mark::Line, "#000000", "seam"),
+            Legend::new(Mark::Line, "#3050a0", "block"),
+            Legend::new(Mark::Line, "#d00000", "piece breaking a constraint"),
+        ],
+    );
+    doc.axes_key(
+        (W - M - 150.0, TOP + h + 48.0),
+        "along the cut",
+        "across the cut",
     );
     let page = (M, TOP, inner, h);
     let vp = Viewport::fit(lo, hi, page);
-    doc.scale_bar(&vp, (M, TOP + h + 24.0), inner, units);
+    doc.scale_bar(&vp, (M, TOP + h + 30.0), inner, units);
     let map = |p: (f64, f64)| vp.map(p.0, p.1);
     for piece in &run.segmentation.pieces {
         draw_piece(&mut doc, piece, &plan, &map, half);

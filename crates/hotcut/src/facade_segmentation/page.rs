@@ -49,7 +49,12 @@ pub fn body(r: &SegmentationReport, job: &Context) -> Body {
     let sections = || r.pieces.iter().flat_map(|p| &p.sections);
     let longest = sections().map(|x| x.length).fold(0.0, f64::max);
     let inflections = sections().map(|x| x.inflections).max().unwrap_or(0);
-    let kappa = sections().map(|x| x.max_abs_curvature).fold(0.0, f64::max);
+    // what strains the blade: the bent blade's curvature where the piece was posed, else
+    // the section's own
+    let kappa = sections().map(strain).fold(0.0, f64::max);
+    let rms = sections()
+        .filter_map(|x| x.blade_fit.as_ref().map(|f| f.rms))
+        .fold(0.0, f64::max);
     let fit = r
         .pieces
         .iter()
@@ -81,9 +86,10 @@ pub fn body(r: &SegmentationReport, job: &Context) -> Body {
             ),
             measured: if s.rationalized {
                 format!(
-                    "{}; largest blade fit distance {}",
+                    "{}; largest blade fit distance {}, RMS {}",
                     of(f.approximation),
-                    len(fit, job)
+                    len(fit, job),
+                    len(rms, job)
                 )
             } else {
                 of(f.approximation)
@@ -97,7 +103,17 @@ pub fn body(r: &SegmentationReport, job: &Context) -> Body {
             ok: f.shape == 0,
         },
         Constraint {
-            name: "blade strain: |curvature|".into(),
+            name: "dimension: section part within the blade".into(),
+            limit: len(s.blade_length, job),
+            measured: format!("longest section part {}", len(longest, job)),
+            ok: longest <= s.blade_length,
+        },
+        Constraint {
+            name: if s.rationalized {
+                "blade strain: |curvature| of the bent blade".into()
+            } else {
+                "blade strain: |curvature| of the sections".into()
+            },
             limit: format!("≤ {}", curv(s.max_curvature, job)),
             measured: format!("{}; largest {}", of(f.blade_strain), curv(kappa, job)),
             ok: f.blade_strain == 0,
@@ -115,6 +131,14 @@ pub fn body(r: &SegmentationReport, job: &Context) -> Body {
         notes: r.surface.warnings.clone(),
         tables,
     }
+}
+
+/// The curvature that strains the blade on a section part: the bent blade's when the
+/// part was posed, else the part's own.
+fn strain(x: &facade_seg::report::PieceSection) -> f64 {
+    x.blade_fit
+        .as_ref()
+        .map_or(x.max_abs_curvature, |f| f.max_abs_curvature)
 }
 
 fn pieces(r: &SegmentationReport, job: &Context) -> Table {
@@ -173,7 +197,7 @@ fn pieces(r: &SegmentationReport, job: &Context) -> Table {
             "sections".into(),
             format!("longest part ({u})"),
             "most inflections".into(),
-            format!("max |κ| (/{u})"),
+            format!("blade max |κ| (/{u})"),
             format!("blade fit max ({u})"),
         ],
         rows,

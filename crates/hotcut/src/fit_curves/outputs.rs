@@ -1,6 +1,6 @@
 //! `fit.svg`, after fig. 15 of "Hot Blade Cuttings": every curve with its fit overlaid.
 
-use export::svg::{bounds, SvgDoc, Viewport};
+use export::svg::{bounds, Legend, Mark, SvgDoc, Viewport};
 
 use super::report::FitCurvesReport;
 use super::{FitCurves, FitRun};
@@ -39,7 +39,7 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
     let inner = WIDTH - 2.0 * MARGIN;
     let cell_w = inner / cols as f64;
     let cell_h = cell_w * 0.75;
-    let top = MARGIN + 44.0;
+    let top = MARGIN + 66.0;
     let height = top + rows as f64 * cell_h + MARGIN;
     let mut doc = SvgDoc::new(WIDTH, height);
     fit_header(&mut doc, r, units);
@@ -65,7 +65,8 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
                 .chain(numerical)
                 .map(|p| (p[0], p[1])),
         );
-        let vp = Viewport::fit(lo, hi, (x0 + 10.0, y0 + 38.0, cell_w - 20.0, cell_h - 48.0));
+        let vp = Viewport::fit(lo, hi, (x0 + 10.0, y0 + 38.0, cell_w - 20.0, cell_h - 64.0));
+        doc.scale_bar(&vp, (x0 + 10.0, y0 + cell_h - 10.0), cell_w - 20.0, units);
         // the panel's title on two lines, inside its frame
         let title = match &e.fit {
             Some(f) => format!("{}, RMS {:.2e} {units}", f.family, f.rms),
@@ -110,7 +111,7 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
                 } else {
                     msg.to_string()
                 };
-                doc.text((x0 + 8.0, y0 + cell_h - 10.0), 9.0, "#c00000", &shown);
+                doc.text((x0 + 8.0, y0 + cell_h - 26.0), 9.0, "#c00000", &shown);
             }
         }
     }
@@ -144,17 +145,24 @@ fn fit_header(doc: &mut SvgDoc, r: &FitCurvesReport, units: &str) {
             s.median_rms, s.max_rms
         ),
     );
-    doc.text(
-        (MARGIN, MARGIN + 30.0),
-        12.0,
-        "#444",
-        &format!(
-            "input points grey; fit: elastica blue, arc green, line purple; inflections red{}",
-            if r.numerical.is_some() {
-                "; numerical spline orange, dashed"
-            } else {
-                ""
-            }
-        ),
+    let mut legend = vec![
+        Legend::new(Mark::Dot, "#999999", "input points"),
+        Legend::new(Mark::Line, "#1060e0", "elastica"),
+        Legend::new(Mark::Line, "#10a040", "arc"),
+        Legend::new(Mark::Line, "#8030c0", "line"),
+        Legend::new(Mark::Dot, "#e01010", "inflection"),
+    ];
+    if r.numerical.is_some() {
+        legend.push(Legend::new(
+            Mark::Dashed,
+            "#f08000",
+            "numerical spline (eq. 13)",
+        ));
+    }
+    doc.legend(
+        (MARGIN, MARGIN + 22.0),
+        WIDTH - 2.0 * MARGIN - 140.0,
+        &legend,
     );
+    doc.axes_key((WIDTH - MARGIN - 60.0, MARGIN + 56.0), "x", "y");
 }

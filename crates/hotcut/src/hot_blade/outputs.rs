@@ -5,7 +5,7 @@
 
 use export::csv::Table;
 use export::gltf::{f32s, write_gltf, Material, Mesh, SourceUnits};
-use export::svg::{bounds, SvgDoc, Viewport};
+use export::svg::{bounds, Legend, Mark, SvgDoc, Viewport};
 use hotblade::{BlockResult, Rationalization};
 use nalgebra::Vector3;
 
@@ -211,11 +211,15 @@ fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
             if r.flags.any() { "see report" } else { "none" }
         ),
     );
-    doc.text(
-        (30.0, 62.0),
-        12.0,
-        "#444",
-        "design black, fitted elastica red, blade extension grey, held ends blue",
+    doc.legend(
+        (30.0, 52.0),
+        W - 60.0,
+        &[
+            Legend::new(Mark::Line, "black", "design section"),
+            Legend::new(Mark::Line, "#e01010", "fitted elastica"),
+            Legend::new(Mark::Line, "#bbbbbb", "blade extended to its length"),
+            Legend::new(Mark::Dot, "#1060e0", "held blade end"),
+        ],
     );
     let map = |pts: &[[f64; 2]]| pts.iter().map(|p| vp.map(p[0], p[1])).collect::<Vec<_>>();
     doc.polyline(
@@ -240,6 +244,7 @@ fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
         );
     }
     doc.scale_bar(&vp, (30.0, TOP + 360.0 + 26.0), W - 60.0, units);
+    doc.axes_key((W - 110.0, TOP + 360.0 + 30.0), "u", "v (section plane)");
     // the deviation against arc length
     let pts = &sec.design.points;
     let dev: Vec<f64> = pts
@@ -251,14 +256,20 @@ fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
         s.push(s[s.len() - 1] + (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]));
     }
     let (len, top_dev) = (s[s.len() - 1], dev.iter().copied().fold(0.0, f64::max));
-    let (x0, y0, pw, ph) = (90.0, 500.0, W - 130.0, 200.0);
+    let (x0, y0, pw, ph) = (90.0, 520.0, W - 130.0, 190.0);
     doc.text(
-        (30.0, y0 - 22.0),
+        (30.0, y0 - 24.0),
         12.0,
         "black",
-        &format!("distance from the design to the fit along the section ({units}), largest {top_dev:.3e}"),
+        &format!("deviation along the section: largest {top_dev:.3e} {units}"),
     );
-    doc.rect((x0, y0, pw, ph), "#999", "none");
+    doc.chart_axes(
+        (x0, y0, pw, ph),
+        (0.0, len),
+        (0.0, top_dev),
+        &format!("arc length along the design section ({units})"),
+        &format!("distance from the design to the fit ({units})"),
+    );
     if len > 0.0 && top_dev > 0.0 {
         let line: Vec<(f64, f64)> = s
             .iter()
@@ -267,19 +278,5 @@ fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
             .collect();
         doc.polyline(&line, "#e01010", 1.2, Some("distance design → fit"));
     }
-    doc.text(
-        (x0 - 58.0, y0 + 10.0),
-        10.0,
-        "#444",
-        &format!("{top_dev:.2e}"),
-    );
-    doc.text((x0 - 14.0, y0 + ph), 10.0, "#444", "0");
-    doc.text((x0, y0 + ph + 16.0), 10.0, "#444", "0");
-    doc.text(
-        (x0 + pw - 110.0, y0 + ph + 16.0),
-        10.0,
-        "#444",
-        &format!("arc length {len:.1} {units}"),
-    );
     doc
 }

@@ -82,7 +82,17 @@ pub fn body(r: &HotBladeReport, job: &Context) -> Body {
         Constraint {
             name: "blade length".into(),
             limit: len(set.blade_length, job),
-            measured: n(f.blade_length),
+            measured: format!(
+                "{}; longest section {}",
+                n(f.blade_length),
+                len(
+                    r.blocks
+                        .iter()
+                        .map(|b| b.section_length.max)
+                        .fold(0.0, f64::max),
+                    job
+                )
+            ),
             ok: f.blade_length == 0,
         },
         Constraint {
@@ -145,8 +155,8 @@ fn blocks(r: &HotBladeReport, job: &Context) -> Table {
             Row::new(
                 vec![
                     format!("{:03}", b.block),
-                    b.row.to_string(),
-                    b.column.to_string(),
+                    (b.row + 1).to_string(),
+                    (b.column + 1).to_string(),
                     b.sections.to_string(),
                     b.missing_sections.to_string(),
                     num(b.max_rms),
@@ -170,7 +180,7 @@ fn blocks(r: &HotBladeReport, job: &Context) -> Table {
             "missing".into(),
             format!("max RMS ({u})"),
             format!("max fit distance ({u})"),
-            format!("max deviation ({u})"),
+            format!("cut surface vs design ({u})"),
             format!("max |κ| (/{u})"),
             "most inflections".into(),
             "plane angle (°)".into(),

@@ -7,7 +7,7 @@
 use export::gltf::{write_gltf, Material, Mesh, SourceUnits};
 use export::json::REPORT_DIGITS;
 use export::obj::ObjWriter;
-use export::svg::{SvgDoc, Viewport};
+use export::svg::{Legend, Mark, SvgDoc, Viewport};
 use geom::mesh::TriMesh;
 use nalgebra::Vector3;
 
@@ -35,7 +35,7 @@ pub(super) fn precut_json(
 /// `sections.svg`: cross sections per direction.
 pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
     files.add("sections.svg", |buf| {
-        sections_svg(done.run, &done.params.block, buf)
+        sections_svg(done.run, &done.params.block, done.job.units.symbol(), buf)
     })
 }
 
@@ -171,23 +171,44 @@ pub(super) fn wire(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export
 const PANELS: usize = 5;
 
 /// One row per direction, `PANELS` cross sections each: block outline, design curve
-/// (black), convex hull (grey, dashed look by colour), the cut polygon (red).
-fn sections_svg(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> export::Result<()> {
+/// (black), convex hull (grey), the cut polygon (red); a legend, and per row the axes and
+/// a scale bar in `units`.
+fn sections_svg(
+    run: &PreCutRun,
+    block: &ruled::Block,
+    units: &str,
+    buf: &mut Vec<u8>,
+) -> export::Result<()> {
     let to_err = |e: ruled::PreCutError| export::ExportError::Data(e.to_string());
     let height = ruled::Height::new(&run.surface).map_err(to_err)?;
     let (_, hull) = ruled::volume::hull_top(&height, block, 100).map_err(to_err)?;
-    let (pw, ph, pad) = (260.0, 180.0, 16.0);
+    let (pw, ph, pad, left, head) = (260.0, 210.0, 16.0, 70.0, 56.0);
     let rows = run.cut.directions.len();
-    let mut doc = SvgDoc::new(PANELS as f64 * pw, rows as f64 * ph + 24.0);
+    let width = left + PANELS as f64 * pw;
+    let mut doc = SvgDoc::new(width, rows as f64 * ph + head);
     doc.text(
-        (8.0, 16.0),
-        11.0,
+        (8.0, 18.0),
+        13.0,
         "#000",
-        "pre-cut sections: design (black), convex hull (grey), cut polygon (red), block (blue)",
+        &format!(
+            "pre-cut cross sections: {rows} direction(s), {PANELS} sections each along the cut"
+        ),
+    );
+    doc.legend(
+        (8.0, 28.0),
+        width - 16.0,
+        &[
+            Legend::new(Mark::Line, "#000000", "design surface"),
+            Legend::new(Mark::Line, "#909090", "convex hull"),
+            Legend::new(Mark::Line, "#d02020", "wire cut (ruled surface)"),
+            Legend::new(Mark::Line, "#1060e0", "block"),
+        ],
     );
     let (z0, z1) = (block.min[2], block.max[2]);
     for (row, d) in run.cut.directions.iter().enumerate() {
         let n = d.sections.len();
+        let top = head + row as f64 * ph;
+        doc.axes_key((16.0, top + ph - 60.0), "across", "z");
         for k in 0..PANELS.min(n) {
             let s = &d.sections[(k * (n - 1)) / (PANELS - 1).max(1)];
             let along = nalgebra::Vector2::new(d.direction[0], d.direction[1]);
@@ -197,17 +218,25 @@ fn sections_svg(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> exp
                 continue;
             };
             let (w0, w1) = (w_of(first), w_of(last));
-            let top = 24.0 + row as f64 * ph;
+            let x0 = left + k as f64 * pw;
+            doc.text(
+                (x0 + pad, top + 14.0),
+                10.0,
+                "#333",
+                &format!(
+                    "direction {} · u = {} {units} along it",
+                    row + 1,
+                    export::fmt_float(s.offset, 1)
+                ),
+            );
             let vp = Viewport::fit(
                 (w0, z0),
                 (w1, z1),
-                (
-                    k as f64 * pw + pad,
-                    top + pad,
-                    pw - 2.0 * pad,
-                    ph - 2.0 * pad,
-                ),
+                (x0 + pad, top + 24.0, pw - 2.0 * pad, ph - 60.0),
             );
+            if k == 0 {
+                doc.scale_bar(&vp, (x0 + pad, top + ph - 14.0), 2.0 * pw, units);
+            }
             doc.polygon(
                 &[
                     vp.map(w0, z0),
@@ -241,12 +270,6 @@ fn sections_svg(run: &PreCutRun, block: &ruled::Block, buf: &mut Vec<u8>) -> exp
                 .map(|p| vp.map(w_of(p), p[2].min(z1)))
                 .collect();
             doc.polyline(&poly, "#d02020", 1.4, Some("cut polygon"));
-            doc.text(
-                (k as f64 * pw + pad, top + ph - 4.0),
-                9.0,
-                "#333",
-                &format!("direction {} · u = {:.4}", row + 1, s.offset),
-            );
         }
     }
     doc.write(buf)

@@ -19,23 +19,25 @@ pub fn body(r: &PreCutReport, job: &Context) -> Body {
     let ok = clearance > 0.0 && cuts > 0;
     let text = if ok {
         format!(
-            "Cuttable: {cuts} hot-wire cut(s) in {} direction(s) remove {} % of the block; {} % of it is left for milling.",
+            "Cuttable: {cuts} hot-wire cut(s) in {} direction(s) leave {} % of the block's volume for milling, against {} % milling from the block alone: {} % less foam to mill.",
             r.directions.len(),
-            num(v.more_than_box_percent),
-            num(100.0 * v.ruled / v.bounding_box.max(f64::MIN_POSITIVE))
+            num(100.0 * v.ruled),
+            num(100.0 * v.bounding_box),
+            num(v.more_than_box_percent)
         )
     } else {
         "Not cuttable as planned: a cut reaches the design (see the clearance).".to_string()
     };
     let u = job.units.symbol();
+    let pct = |f: f64| format!("{} % of the block", num(100.0 * f));
     let counts = vec![
         ("wire cuts".to_string(), cuts.to_string()),
         ("directions".into(), r.directions.len().to_string()),
         ("programs".into(), r.programs.len().to_string()),
-        (format!("left for milling ({u}³)"), num(v.ruled)),
-        (format!("convex hull ({u}³)"), num(v.convex_hull)),
-        (format!("block ({u}³)"), num(v.bounding_box)),
-        (format!("model ({u}³)"), num(v.model)),
+        ("left for milling".into(), pct(v.ruled)),
+        ("after cutting the convex hull".into(), pct(v.convex_hull)),
+        ("milling from the block".into(), pct(v.bounding_box)),
+        ("model".into(), pct(v.model)),
     ];
     let constraints = vec![Constraint {
         name: "no cut into the design: least height of a cut above it".into(),
@@ -60,7 +62,7 @@ pub fn body(r: &PreCutReport, job: &Context) -> Body {
             .map(|(i, d)| {
                 Row::new(
                     vec![
-                        i.to_string(),
+                        (i + 1).to_string(),
                         format!(
                             "{}, {}, {}",
                             num(d.direction[0]),
@@ -124,8 +126,8 @@ fn programs(r: &PreCutReport) -> Table {
                 Row::new(
                     vec![
                         p.file.clone(),
-                        s.direction.to_string(),
-                        s.cut.to_string(),
+                        (s.direction + 1).to_string(),
+                        (s.cut + 1).to_string(),
                         s.cutting_moves.to_string(),
                         num(s.cut_length_mm),
                         num(s.cut_minutes),

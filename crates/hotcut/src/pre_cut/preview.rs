@@ -1,25 +1,15 @@
 //! `wire_dD_cC.svg`: one program drawn in the machine's plane (along → right, up → up,
 //! millimetres): tower A's path (blue) and tower B's (red) over one another, the rapids
-//! (light), the block's outline, the machine's travel and a scale bar.
+//! (light), the block's outline, the machine's travel, a legend, the axes and a scale bar
+//! (`export::svg::nice_length`, tested there).
 
-use export::svg::{bounds, SvgDoc, Viewport};
+use export::svg::{bounds, Legend, Mark, SvgDoc, Viewport};
 use ruled::wire::{Machine, Program, WireParams, WirePath};
 
 /// Page size of a preview.
 const PAGE: (f64, f64) = (900.0, 560.0);
-/// Margins: left/right, top (title), bottom (scale and legend).
-const MARGIN: (f64, f64, f64) = (30.0, 50.0, 60.0);
-
-/// A scale bar's length: 1, 2 or 5 × 10ᵏ mm, about a fifth of `span`.
-fn scale_length(span: f64) -> f64 {
-    let target = (span / 5.0).max(1e-9);
-    let k = 10f64.powf(target.log10().floor());
-    [5.0, 2.0, 1.0]
-        .into_iter()
-        .map(|m| m * k)
-        .find(|&l| l <= target)
-        .unwrap_or(k)
-}
+/// Margins: left/right, top (title and legend), bottom (scale, times, axes).
+const MARGIN: (f64, f64, f64) = (30.0, 72.0, 70.0);
 
 /// Draws one program. `(floor, top)` are the block's floor and top (job units).
 pub(super) fn preview(
@@ -90,15 +80,33 @@ pub(super) fn preview(
     let map = |pts: &[(f64, f64)]| pts.iter().map(|&(x, y)| vp.map(x, y)).collect::<Vec<_>>();
     let mut doc = SvgDoc::new(PAGE.0, PAGE.1);
     let [a0, a1, b0, b1] = m.axes;
-    doc.text((MARGIN.0, 20.0), 13.0, "#000", title);
     doc.text(
-        (MARGIN.0, 38.0),
-        11.0,
-        "#333",
-        &format!(
-            "{}: tower A {a0}/{a1} (blue), tower B {b0}/{b1} (red), rapids (light), block (black), travel (grey); along → right, up ↑, mm",
-            m.profile
-        ),
+        (MARGIN.0, 20.0),
+        13.0,
+        "#000",
+        &format!("{title} · {}, mm", m.profile),
+    );
+    let (tower_a, tower_b) = (
+        format!("tower A {a0}/{a1} cut"),
+        format!("tower B {b0}/{b1} cut"),
+    );
+    doc.legend(
+        (MARGIN.0, 28.0),
+        PAGE.0 - 2.0 * MARGIN.0,
+        &[
+            Legend::new(Mark::Line, "#1f5fd0", &tower_a),
+            Legend::new(Mark::Line, "#d02424", &tower_b),
+            Legend::new(Mark::Line, "#9db8e8", "tower A rapid"),
+            Legend::new(Mark::Line, "#eba3a3", "tower B rapid"),
+            Legend::new(Mark::Dot, "#1f5fd0", "lead-in: heat on"),
+            Legend::new(Mark::Swatch, "#f4f0e6", "block"),
+            Legend::new(Mark::Line, "#9a9a9a", "machine travel"),
+        ],
+    );
+    doc.axes_key(
+        (PAGE.0 - MARGIN.0 - 110.0, PAGE.1 - 16.0),
+        &format!("along ({a0}, {b0})"),
+        &format!("up ({a1}, {b1})"),
     );
     if let Some(t) = &m.travel {
         // once when both towers travel alike
@@ -137,24 +145,11 @@ pub(super) fn preview(
         "#d02424",
         Some("tower B lead-in: heat on"),
     );
-    scale_and_times(&mut doc, &vp, hi.0 - lo.0, &program.summary);
-    doc.write(buf)
-}
-
-/// The scale bar under the drawing, and the program's moves and times.
-fn scale_and_times(doc: &mut SvgDoc, vp: &Viewport, span: f64, s: &ruled::wire::ProgramSummary) {
-    let len = scale_length(span);
-    let y = PAGE.1 - 30.0;
-    let (x0, x1) = (MARGIN.0, MARGIN.0 + len * vp.scale());
-    doc.polyline(
-        &[(x0, y - 5.0), (x0, y), (x1, y), (x1, y - 5.0)],
-        "#000",
-        1.2,
-        Some("scale"),
-    );
-    doc.text((x1 + 8.0, y + 4.0), 11.0, "#000", &format!("{len} mm"));
+    let y = PAGE.1 - 34.0;
+    doc.scale_bar(&vp, (MARGIN.0, y), PAGE.0 - 2.0 * MARGIN.0, "mm");
+    let s = &program.summary;
     doc.text(
-        (x1 + 90.0, y + 4.0),
+        (MARGIN.0 + 260.0, y),
         11.0,
         "#333",
         &format!(
@@ -162,17 +157,5 @@ fn scale_and_times(doc: &mut SvgDoc, vp: &Viewport, span: f64, s: &ruled::wire::
             s.cutting_moves, s.cut_length_mm, s.cut_minutes, s.preheat_s
         ),
     );
-}
-
-#[cfg(test)]
-mod tests {
-    use super::scale_length;
-
-    #[test]
-    fn scale_bars_are_round_numbers() {
-        assert_eq!(scale_length(1000.0), 200.0);
-        assert_eq!(scale_length(2600.0), 500.0);
-        assert_eq!(scale_length(40.0), 5.0);
-        assert_eq!(scale_length(0.9), 0.1);
-    }
+    doc.write(buf)
 }

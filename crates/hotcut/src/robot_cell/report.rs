@@ -152,13 +152,18 @@ impl CellReport {
     pub fn constraint(&self) -> export::html::Constraint {
         let models: Vec<&str> = self.robots.iter().map(|r| r.model.as_str()).collect();
         let bad = self.problems().len();
+        let assumed = if self.assumed {
+            " — default cell: placement and tool data assumed, check them on the controller"
+        } else {
+            ""
+        };
         export::html::Constraint {
             name: format!("robot cell ({})", models.join(" + ")),
             limit: "every move reached, no configuration change, no joint jump".into(),
             measured: if bad == 0 {
-                format!("{} synchronized moves, all clean", self.moves)
+                format!("{} synchronized moves, all clean{assumed}", self.moves)
             } else {
-                format!("{bad} block/robot pair(s) with problems")
+                format!("{bad} block/robot pair(s) with problems{assumed}")
             },
             ok: self.clean,
         }
@@ -210,7 +215,7 @@ impl CellReport {
             })
             .collect();
         export::html::Table {
-            title: "Robot cell: what the robots reach, per block or piece".into(),
+            title: "Robot cell: what the robots reach, per placement of a block in the cell".into(),
             columns,
             rows,
         }
