@@ -56,6 +56,7 @@ fn open_in_browser(browser: &Path, page: &Path, png: &Path) -> Vec<String> {
             "--headless",
             "--no-sandbox",
             "--disable-gpu",
+            "--disable-dev-shm-usage",
             "--hide-scrollbars",
             "--no-first-run",
             "--disable-extensions",

@@ -56,6 +56,24 @@ pub fn ticks(lo: f64, hi: f64) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// A tick's value printed with as many decimals as the step between `ticks` needs, or in
+/// scientific notation for steps below 10⁻³ or from 10⁶.
+pub fn tick_label(v: f64, ticks: &[(f64, f64)]) -> String {
+    let step = match ticks {
+        [a, b, ..] => (b.0 - a.0).abs(),
+        _ => v.abs(),
+    };
+    if v == 0.0 {
+        return "0".into();
+    }
+    if (1e-3..1e6).contains(&step) {
+        let decimals = (-step.log10().floor()).clamp(0.0, 6.0) as usize;
+        format!("{v:.decimals$}")
+    } else {
+        format!("{v:.1e}")
+    }
+}
+
 /// How a [`Legend`] entry is marked.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mark {
@@ -409,17 +427,19 @@ impl SvgDoc {
         let (l, t, w, h) = frame;
         self.body.push_str("<g class=\"chart-axes\">\n");
         self.rect(frame, "#999999", "none");
-        for (v, along) in ticks(x.0, x.1) {
+        let xt = ticks(x.0, x.1);
+        for &(v, along) in &xt {
             let px = l + along * w;
             self.polyline(&[(px, t + h), (px, t + h + 4.0)], "#666666", 1.0, None);
-            let label = crate::fmt_float(v, 6);
+            let label = tick_label(v, &xt);
             let half = 3.0 * label.chars().count() as f64;
             self.text((px - half, t + h + 14.0), 9.0, "#444444", &label);
         }
-        for (v, along) in ticks(y.0, y.1) {
+        let yt = ticks(y.0, y.1);
+        for &(v, along) in &yt {
             let py = t + h - along * h;
             self.polyline(&[(l - 4.0, py), (l, py)], "#666666", 1.0, None);
-            let label = crate::fmt_float(v, 6);
+            let label = tick_label(v, &yt);
             let width = 5.4 * label.chars().count() as f64;
             self.text((l - 6.0 - width, py + 3.0), 9.0, "#444444", &label);
         }
@@ -472,6 +492,18 @@ mod tests {
         assert!(ticks(1.0, 1.0).is_empty());
         assert!(ticks(0.0, f64::NAN).is_empty());
         assert!(ticks(0.0, 1e300).len() <= 21);
+    }
+
+    #[test]
+    fn tick_labels_show_their_step() {
+        let t = ticks(0.0, 2.2e-6);
+        let labels: Vec<String> = t.iter().map(|p| tick_label(p.0, &t)).collect();
+        assert_eq!(labels, vec!["0", "5.0e-7", "1.0e-6", "1.5e-6", "2.0e-6"]);
+        let t = ticks(0.0, 0.03);
+        let labels: Vec<String> = t.iter().map(|p| tick_label(p.0, &t)).collect();
+        assert_eq!(labels, vec!["0", "0.01", "0.02", "0.03"]);
+        let t = ticks(0.0, 600.0);
+        assert_eq!(tick_label(t[1].0, &t), "200");
     }
 
     #[test]

@@ -96,10 +96,12 @@ fn sections_svg(a: &Analysis, r: &AnalyzeReport, units: &str) -> SvgDoc {
     let inner = WIDTH - 2.0 * MARGIN;
     let plan_h = (inner * (pmax.1 - pmin.1) / (pmax.0 - pmin.0).max(1e-9)).clamp(150.0, 700.0);
     let prof_h = (inner * (qmax.1 - qmin.1) / (qmax.0 - qmin.0).max(1e-9)).clamp(120.0, 400.0);
-    let height = MARGIN * 4.0 + plan_h + prof_h + 46.0 + 14.0 + 40.0;
+    let lines = reason_lines(&surface_reasons(r, units));
+    let extra = 16.0 * lines.len().saturating_sub(1) as f64;
+    let height = MARGIN * 4.0 + plan_h + prof_h + 46.0 + 14.0 + 40.0 + extra;
     let mut doc = SvgDoc::new(WIDTH, height);
-    sections_header(&mut doc, r, units);
-    let plan_page = (MARGIN, MARGIN + 46.0, inner, plan_h);
+    sections_header(&mut doc, r, &lines, units);
+    let plan_page = (MARGIN, MARGIN + 46.0 + extra, inner, plan_h);
     doc.rect(plan_page, "#ccc", "none");
     let vp = Viewport::fit(pmin, pmax, plan_page);
     if let Some(outline) = block_outline {
@@ -112,7 +114,7 @@ fn sections_svg(a: &Analysis, r: &AnalyzeReport, units: &str) -> SvgDoc {
             Some("the block, at the surface's corner"),
         );
     }
-    let prof_top = MARGIN * 2.0 + 46.0 + plan_h + 20.0;
+    let prof_top = MARGIN * 2.0 + 46.0 + extra + plan_h + 20.0;
     doc.text(
         (MARGIN, prof_top - 8.0),
         12.0,
@@ -138,13 +140,17 @@ fn sections_svg(a: &Analysis, r: &AnalyzeReport, units: &str) -> SvgDoc {
     for (k, ((s, an), rep)) in a.survey.sections.iter().zip(&r.sections).enumerate() {
         let bad = !rep.violations.is_empty();
         let (stroke, w) = if bad { ("#e07000", 1.6) } else { ("#333", 0.8) };
-        let title = format!(
+        let mut title = format!(
             "section {} piece {}: length {:.1}, {} inflections",
             s.index,
             s.piece,
             rep.length,
             rep.inflections.len()
         );
+        for v in &rep.violations {
+            title.push_str("; ");
+            title.push_str(&violation(v, units));
+        }
         let pts: Vec<(f64, f64)> = plan[k].iter().map(|&(x, y)| vp.map(x, y)).collect();
         doc.polyline(&pts, stroke, w, Some(&title));
         let pts: Vec<(f64, f64)> = profiles[k].iter().map(|&(x, y)| vq.map(x, y)).collect();
@@ -190,24 +196,64 @@ fn block_outline(r: &AnalyzeReport) -> Option<[(f64, f64); 5]> {
 /// Why the surface as a whole breaks the rules, one phrase per violation (sections name
 /// their own reasons).
 fn surface_reasons(r: &AnalyzeReport, units: &str) -> Vec<String> {
-    // why the surface as a whole breaks the rules (sections name their own reasons)
-    r.summary
+    // why the surface as a whole breaks the rules, then how many sections break which rule
+    let s = &r.summary;
+    let mut out: Vec<String> = s
         .surface_violations
         .iter()
-        .map(|v| match v {
-            facade_seg::survey::Violation::Dimension { what, value, limit } => {
-                format!(
-                    "{}: {value:.1} vs {limit:.1} {units}",
-                    what.replace('_', " ")
-                )
+        .map(|v| violation(v, units))
+        .collect();
+    for (n, what) in [
+        (s.sections_too_long, "longer than the blade"),
+        (s.sections_too_many_inflections, "with too many inflections"),
+        (s.sections_too_curved, "too curved for the blade"),
+    ] {
+        if n > 0 {
+            out.push(format!("{n} section(s) {what} (orange)"));
+        }
+    }
+    out
+}
+
+/// The reasons joined into lines that fit the page (12-unit text).
+fn reason_lines(reasons: &[String]) -> Vec<String> {
+    let fits = ((WIDTH - 2.0 * MARGIN) / (0.6 * 12.0)) as usize;
+    let mut lines: Vec<String> = Vec::new();
+    for r in reasons {
+        match lines.last_mut() {
+            Some(l) if l.chars().count() + 2 + r.chars().count() <= fits => {
+                l.push_str("; ");
+                l.push_str(r);
             }
-            other => format!("{other:?}"),
-        })
-        .collect()
+            _ => lines.push(r.clone()),
+        }
+    }
+    lines
+}
+
+/// What a violation says, for people.
+fn violation(v: &facade_seg::survey::Violation, units: &str) -> String {
+    use facade_seg::survey::Violation;
+    match v {
+        Violation::Dimension { what, value, limit } => {
+            format!(
+                "{}: {value:.1} vs {limit:.1} {units}",
+                what.replace('_', " ")
+            )
+        }
+        Violation::Shape { inflections, limit } => {
+            format!("{inflections} inflections, the blade takes {limit}")
+        }
+        Violation::BladeStrain {
+            max_abs_curvature,
+            limit,
+            ..
+        } => format!("|curvature| {max_abs_curvature:.3e} /{units} above {limit:.3e} /{units}"),
+    }
 }
 
 /// The title, the surface's reasons (if any) and the legend of `sections.svg`.
-fn sections_header(doc: &mut SvgDoc, r: &AnalyzeReport, units: &str) {
+fn sections_header(doc: &mut SvgDoc, r: &AnalyzeReport, reasons: &[String], units: &str) {
     doc.text(
         (MARGIN, 24.0),
         16.0,
@@ -225,17 +271,12 @@ fn sections_header(doc: &mut SvgDoc, r: &AnalyzeReport, units: &str) {
             }
         ),
     );
-    let reasons = surface_reasons(r, units);
-    if !reasons.is_empty() {
-        doc.text(
-            (MARGIN, 44.0),
-            12.0,
-            "#c00000",
-            &format!("{} (block dashed red)", reasons.join("; ")),
-        );
+    for (i, line) in reasons.iter().enumerate() {
+        doc.text((MARGIN, 44.0 + 16.0 * i as f64), 12.0, "#c00000", line);
     }
+    let extra = 16.0 * reasons.len().saturating_sub(1) as f64;
     doc.legend(
-        (MARGIN, 50.0),
+        (MARGIN, 50.0 + extra),
         WIDTH - 2.0 * MARGIN,
         &[
             Legend::new(Mark::Line, "#333333", "section"),

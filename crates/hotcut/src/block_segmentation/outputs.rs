@@ -68,13 +68,13 @@ pub(super) fn scene(run: &super::BlockSegRun) -> export::Result<Vec<Mesh>> {
 /// `progress.svg`: blocks and E per iteration.
 pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
     files.add("progress.svg", |buf| {
-        progress_svg(&done.run.segmentation).write(buf)
+        progress_svg(&done.run.segmentation, &done.job.name).write(buf)
     })
 }
 
 /// Blocks per iteration as a step line, alignment passes marked, the lower bound dashed;
 /// a chart with ticks on both axes and a legend.
-fn progress_svg(seg: &blocks::Segmentation) -> SvgDoc {
+fn progress_svg(seg: &blocks::Segmentation, job: &str) -> SvgDoc {
     let (w, h) = (640.0, 380.0);
     let (l, t) = (60.0, 60.0);
     let (fw, fh) = (w - 90.0, h - 120.0);
@@ -85,7 +85,7 @@ fn progress_svg(seg: &blocks::Segmentation) -> SvgDoc {
     // Independent scales on the two axes (a chart, not a drawing); a margin of a tenth
     // above and below so the lines do not run on the frame.
     let pad = 0.1 * (top - bottom).max(1.0);
-    let (lo, hi) = ((bottom - pad).max(0.0), top + pad);
+    let (lo, hi) = (0.0, top + pad);
     let map = |it: f64, n: f64| (l + it / last * fw, t + (hi - n) / (hi - lo) * fh);
     let pts: Vec<(f64, f64)> = seg
         .history
@@ -104,7 +104,7 @@ fn progress_svg(seg: &blocks::Segmentation) -> SvgDoc {
         12.0,
         "#000000",
         &format!(
-            "blocks per iteration: {} → {} ({:.1} % fewer); lower bound {}",
+            "{job} · blocks per iteration: {} → {} ({:.1} % fewer); lower bound {}",
             seg.initial_blocks, seg.final_blocks, seg.reduction_percent, seg.lower_bound
         ),
     );

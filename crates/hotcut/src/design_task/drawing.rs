@@ -21,6 +21,7 @@ pub(super) fn block_svg(
     res: &CutResult,
     piece: usize,
     n: usize,
+    job: &str,
     units: &str,
 ) -> SvgDoc {
     const W: f64 = 900.0;
@@ -62,8 +63,8 @@ pub(super) fn block_svg(
     );
     let vp = Viewport::fit(wlo, whi, (40.0, 104.0, W - 80.0, 400.0));
     let map = |pts: &[[f64; 2]]| pts.iter().map(|p| vp.map(p[0], p[1])).collect::<Vec<_>>();
-    block_header(&mut doc, b, r, res, piece, units);
-    doc.polyline(&map(&outline), "#888888", 1.0, Some("block outline"));
+    block_header(&mut doc, (job, b), r, res, piece, units);
+    doc.dashed_polyline(&map(&outline), "#888888", 1.0, 5.0, Some("block outline"));
     for (i, ((c, (design, elastica)), blade)) in
         res.stations.iter().zip(&curves).zip(&blades).enumerate()
     {
@@ -173,7 +174,7 @@ fn deviation_panel(
 /// The title and legend lines of a design block's drawing.
 fn block_header(
     doc: &mut SvgDoc,
-    b: &Block,
+    (job, b): (&str, &Block),
     r: &ResolvedCut,
     res: &CutResult,
     piece: usize,
@@ -191,7 +192,7 @@ fn block_header(
         16.0,
         "black",
         &format!(
-            "block {} — cut `{}` through {} block(s), piece {} of {}",
+            "{job} · block {} — cut `{}` through {} block(s), piece {} of {}",
             b.id,
             r.id,
             r.blocks.len(),
@@ -229,7 +230,7 @@ fn block_header(
         Legend::new(Mark::Dashed, "#e01010", "elastica"),
         Legend::new(Mark::Line, "#999999", "control polygon"),
         Legend::new(Mark::Line, "#cccccc", "blade extension"),
-        Legend::new(Mark::Line, "#888888", "block outline"),
+        Legend::new(Mark::Dashed, "#888888", "block outline"),
     ]);
     doc.legend((30.0, 58.0), 840.0, &legend);
 }

@@ -72,7 +72,7 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
     for (r, res) in &done.run.cuts {
         for (piece, &k) in r.blocks.iter().enumerate() {
             let b = &done.run.blocks[k];
-            let doc = super::drawing::block_svg(b, r, res, piece, n, units);
+            let doc = super::drawing::block_svg(b, r, res, piece, n, &done.job.name, units);
             // a block cut several times gets one drawing per cut
             let name = if done.run.multi[k].cuts.len() > 1 {
                 format!("block_{}_{}.svg", file_name(&b.id), file_name(&r.id))

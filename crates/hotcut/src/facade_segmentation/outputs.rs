@@ -189,7 +189,14 @@ fn plan_svg(run: &SegmentationRun, r: &SegmentationReport, units: &str) -> SvgDo
     doc.scale_bar(&vp, (M, TOP + h + 30.0), inner, units);
     let map = |p: (f64, f64)| vp.map(p.0, p.1);
     for piece in &run.segmentation.pieces {
-        draw_piece(&mut doc, piece, &plan, &map, half);
+        // the report's verdicts: the blade fits' approximation included
+        let broken = r
+            .pieces
+            .iter()
+            .find(|p| p.id == piece.id)
+            .map(|p| broken_constraints(&p.verdicts))
+            .unwrap_or_default();
+        draw_piece(&mut doc, piece, &broken, &plan, &map, half);
     }
     for (j, pts) in sections.iter().enumerate() {
         let page: Vec<(f64, f64)> = pts.iter().copied().map(map).collect();
@@ -222,12 +229,26 @@ fn plan_svg(run: &SegmentationRun, r: &SegmentationReport, units: &str) -> SvgDo
     doc
 }
 
+/// The constraints a piece's report verdicts break.
+fn broken_constraints(v: &facade_seg::constraints::Verdicts) -> Vec<&'static str> {
+    [
+        (v.dimension, "dimension"),
+        (v.approximation != Some(false), "approximation"),
+        (v.shape, "shape"),
+        (v.blade_strain, "blade strain"),
+    ]
+    .into_iter()
+    .filter_map(|(ok, what)| (!ok).then_some(what))
+    .collect()
+}
+
 /// A piece in the plan: its region filled in its colour (outlined red when it breaks a
 /// constraint), reaching `half` beyond its first and last section, and its part
 /// boundaries as seams.
 fn draw_piece(
     doc: &mut SvgDoc,
     piece: &Piece,
+    broken: &[&str],
     plan: &dyn Fn(&Vector3<f64>) -> (f64, f64),
     map: &dyn Fn((f64, f64)) -> (f64, f64),
     half: f64,
@@ -254,23 +275,19 @@ fn draw_piece(
     poly.extend(ends.iter().rev().copied());
     poly.push(shift(ends[0], -half));
     let title = format!(
-        "piece {} (band {}, row {}): {} sections, verdicts {}",
+        "piece {} (band {}, row {}): {} sections, {}",
         piece.id,
         piece.band,
         piece.row,
         n,
-        if piece.verdicts.all() {
-            "all met"
+        if broken.is_empty() {
+            "every constraint met".to_string()
         } else {
-            "broken"
+            format!("breaks {}", broken.join(", "))
         }
     );
     let pts: Vec<(f64, f64)> = poly.into_iter().map(map).collect();
-    let stroke = if piece.verdicts.all() {
-        "none"
-    } else {
-        "#d00000"
-    };
+    let stroke = if broken.is_empty() { "none" } else { "#d00000" };
     doc.polygon(&pts, &hex(colour(piece.id)), stroke, 1.5, Some(&title));
     // the part boundaries of the piece, as seams
     for side in [&starts, &ends] {

@@ -11,30 +11,7 @@ pub fn body(r: &SegmentationReport, job: &Context) -> Body {
     let c = &r.counts;
     let s = &r.settings;
     let f = &c.failing;
-    let cell_ok = r.cell.as_ref().is_none_or(|k| k.clean);
-    let ok = c.all_ok && cell_ok;
-    let text = if ok {
-        format!(
-            "Cuttable: {} piece(s) from {} block(s), every piece meets every constraint{}.",
-            c.pieces,
-            c.blocks,
-            if r.cell.is_some() {
-                " and the robots reach every move"
-            } else {
-                ""
-            }
-        )
-    } else if !c.all_ok {
-        format!(
-            "Not cuttable as asked: pieces break a constraint (dimension {}, approximation {}, shape {}, blade strain {}) of {} piece(s).",
-            f.dimension, f.approximation, f.shape, f.blade_strain, c.pieces
-        )
-    } else {
-        format!(
-            "Not cuttable as planned: the robot cell has problems ({} piece(s) from {} block(s) meet every constraint).",
-            c.pieces, c.blocks
-        )
-    };
+    let verdict = verdict(r);
     let mut counts = vec![
         ("pieces".to_string(), c.pieces.to_string()),
         ("blocks".into(), c.blocks.to_string()),
@@ -125,12 +102,43 @@ pub fn body(r: &SegmentationReport, job: &Context) -> Body {
         tables.push(cell.table());
     }
     Body {
-        verdict: Verdict { ok, text },
+        verdict,
         counts,
         constraints,
         notes: r.surface.warnings.clone(),
         tables,
     }
+}
+
+/// Can it be cut: every piece meets every constraint, and the robots reach every move.
+fn verdict(r: &SegmentationReport) -> Verdict {
+    let c = &r.counts;
+    let f = &c.failing;
+    let cell_ok = r.cell.as_ref().is_none_or(|k| k.clean);
+    let ok = c.all_ok && cell_ok;
+    let text = if ok {
+        format!(
+            "Cuttable: {} piece(s) from {} block(s), every piece meets every constraint{}.",
+            c.pieces,
+            c.blocks,
+            if r.cell.is_some() {
+                " and the robots reach every move"
+            } else {
+                ""
+            }
+        )
+    } else if !c.all_ok {
+        format!(
+            "Not cuttable as asked: pieces break a constraint (dimension {}, approximation {}, shape {}, blade strain {}) of {} piece(s).",
+            f.dimension, f.approximation, f.shape, f.blade_strain, c.pieces
+        )
+    } else {
+        format!(
+            "Not cuttable as planned: the robot cell has problems ({} piece(s) from {} block(s) meet every constraint).",
+            c.pieces, c.blocks
+        )
+    };
+    Verdict { ok, text }
 }
 
 /// The curvature that strains the blade on a section part: the bent blade's when the

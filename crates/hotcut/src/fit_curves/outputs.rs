@@ -78,10 +78,6 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
         for p in c.points.iter().step_by(step) {
             doc.circle(vp.map(p[0], p[1]), 1.4, "#999", None);
         }
-        if !numerical.is_empty() {
-            let pts: Vec<(f64, f64)> = numerical.iter().map(|p| vp.map(p[0], p[1])).collect();
-            doc.dashed_polyline(&pts, "#f08000", 1.2, 4.0, Some("numerical spline (eq. 13)"));
-        }
         match &e.fit {
             Some(f) => {
                 let colour = match f.family.as_str() {
@@ -113,6 +109,11 @@ fn fit_svg(run: &FitRun, r: &FitCurvesReport, units: &str) -> SvgDoc {
                 };
                 doc.text((x0 + 8.0, y0 + cell_h - 26.0), 9.0, "#c00000", &shown);
             }
+        }
+        // drawn last: it lies on the fit where the two agree
+        if !numerical.is_empty() {
+            let pts: Vec<(f64, f64)> = numerical.iter().map(|p| vp.map(p[0], p[1])).collect();
+            doc.dashed_polyline(&pts, "#f08000", 1.2, 4.0, Some("numerical spline (eq. 13)"));
         }
     }
     doc

@@ -67,7 +67,7 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
     let units = done.job.units.symbol();
     for b in &done.run.cut.blocks {
         files.add(format!("block_{:03}.svg", b.report.block), |buf| {
-            block_svg(b, units).write(buf)
+            block_svg(b, &done.job.name, units).write(buf)
         })?;
     }
     Ok(())
@@ -166,7 +166,7 @@ pub(super) fn scene(run: &Rationalization, tol: f64) -> Vec<Mesh> {
 /// blade's extension dashed in grey and a scale bar; below, the distance from the design to
 /// the fit against arc length, so deviations of hundredths of a millimetre, invisible at
 /// the section's scale, can be read.
-fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
+fn block_svg(b: &BlockResult, job: &str, units: &str) -> SvgDoc {
     const W: f64 = 900.0;
     const H: f64 = 760.0;
     const TOP: f64 = 76.0;
@@ -191,7 +191,7 @@ fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
         16.0,
         "black",
         &format!(
-            "block {} (row {}, column {}) — worst section: pose {} of {}",
+            "{job} · block {} (row {}, column {}) — worst section: pose {} of {}",
             r.block,
             r.row + 1,
             r.column + 1,
@@ -204,9 +204,9 @@ fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
         12.0,
         "#444",
         &format!(
-            "L2 {:.4} · max distance {:.4} {units} · {} · flags: {}",
+            "L2 {:.4} · max distance {} {units} · {} · flags: {}",
             sec.fit.l2,
-            sec.fit.max,
+            crate::output::page::num(sec.fit.max),
             sec.fit.segment.kind(),
             if r.flags.any() { "see report" } else { "none" }
         ),
@@ -244,12 +244,15 @@ fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
         );
     }
     doc.scale_bar(&vp, (30.0, TOP + 360.0 + 26.0), W - 60.0, units);
-    doc.axes_key((W - 110.0, TOP + 360.0 + 30.0), "u", "v (section plane)");
+    doc.axes_key((W - 110.0, TOP + 360.0 + 44.0), "u", "v (section plane)");
     // the deviation against arc length
+    // the fit sampled finely enough that its chords' sag (length² · κ / 8 per chord) stays
+    // far below the deviations plotted
+    let fine = sec.fit.segment.sample(8000).unwrap_or_default();
     let pts = &sec.design.points;
     let dev: Vec<f64> = pts
         .iter()
-        .map(|p| crate::output::distance_to_polyline(*p, &fitted))
+        .map(|p| crate::output::distance_to_polyline(*p, &fine))
         .collect();
     let mut s = vec![0.0];
     for w in pts.windows(2) {
@@ -261,7 +264,10 @@ fn block_svg(b: &BlockResult, units: &str) -> SvgDoc {
         (30.0, y0 - 24.0),
         12.0,
         "black",
-        &format!("deviation along the section: largest {top_dev:.3e} {units}"),
+        &format!(
+            "deviation along the section, at the design's points: largest {} {units}",
+            crate::output::page::num(top_dev)
+        ),
     );
     doc.chart_axes(
         (x0, y0, pw, ph),

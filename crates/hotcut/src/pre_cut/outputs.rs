@@ -35,7 +35,8 @@ pub(super) fn precut_json(
 /// `sections.svg`: cross sections per direction.
 pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
     files.add("sections.svg", |buf| {
-        sections_svg(done.run, &done.params.block, done.job.units.symbol(), buf)
+        let names = (done.job.name.as_str(), done.job.units.symbol());
+        sections_svg(done.run, &done.params.block, names, buf)
     })
 }
 
@@ -176,7 +177,7 @@ const PANELS: usize = 5;
 fn sections_svg(
     run: &PreCutRun,
     block: &ruled::Block,
-    units: &str,
+    (job, units): (&str, &str),
     buf: &mut Vec<u8>,
 ) -> export::Result<()> {
     let to_err = |e: ruled::PreCutError| export::ExportError::Data(e.to_string());
@@ -191,7 +192,7 @@ fn sections_svg(
         13.0,
         "#000",
         &format!(
-            "pre-cut cross sections: {rows} direction(s), {PANELS} sections each along the cut"
+            "{job} · pre-cut cross sections: {rows} direction(s), {PANELS} sections each along the cut, at one scale"
         ),
     );
     doc.legend(
@@ -205,19 +206,45 @@ fn sections_svg(
         ],
     );
     let (z0, z1) = (block.min[2], block.max[2]);
+    // one scale for every panel: the widest section fits its panel
+    let width_of = |d: &ruled::DirectionCut, s: &ruled::SectionPolygon| {
+        let across = nalgebra::Vector2::new(d.across[0], d.across[1]);
+        let w_of = |p: &[f64; 3]| across.dot(&nalgebra::Vector2::new(p[0], p[1]));
+        match (s.polygon.first(), s.polygon.last()) {
+            (Some(a), Some(b)) => (w_of(a), w_of(b)),
+            _ => (0.0, 0.0),
+        }
+    };
+    let widest = run
+        .cut
+        .directions
+        .iter()
+        .flat_map(|d| d.sections.iter().map(move |s| (d, s)))
+        .map(|(d, s)| {
+            let (a, b) = width_of(d, s);
+            (b - a).abs()
+        })
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
     for (row, d) in run.cut.directions.iter().enumerate() {
-        let n = d.sections.len();
+        // sections of (nearly) zero width, at the ends of a turned block, are not drawn
+        let shown: Vec<&ruled::SectionPolygon> = d
+            .sections
+            .iter()
+            .filter(|s| {
+                let (a, b) = width_of(d, s);
+                (b - a).abs() > 1e-3 * widest
+            })
+            .collect();
+        let n = shown.len();
         let top = head + row as f64 * ph;
         doc.axes_key((16.0, top + ph - 60.0), "across", "z");
         for k in 0..PANELS.min(n) {
-            let s = &d.sections[(k * (n - 1)) / (PANELS - 1).max(1)];
+            let s = shown[(k * (n - 1)) / (PANELS - 1).max(1)];
             let along = nalgebra::Vector2::new(d.direction[0], d.direction[1]);
             let across = nalgebra::Vector2::new(d.across[0], d.across[1]);
             let w_of = |p: &[f64; 3]| across.dot(&nalgebra::Vector2::new(p[0], p[1]));
-            let (Some(first), Some(last)) = (s.polygon.first(), s.polygon.last()) else {
-                continue;
-            };
-            let (w0, w1) = (w_of(first), w_of(last));
+            let (w0, w1) = width_of(d, s);
             let x0 = left + k as f64 * pw;
             doc.text(
                 (x0 + pad, top + 14.0),
@@ -229,9 +256,10 @@ fn sections_svg(
                     export::fmt_float(s.offset, 1)
                 ),
             );
+            let mid = 0.5 * (w0 + w1);
             let vp = Viewport::fit(
-                (w0, z0),
-                (w1, z1),
+                (mid - 0.5 * widest, z0),
+                (mid + 0.5 * widest, z1),
                 (x0 + pad, top + 24.0, pw - 2.0 * pad, ph - 60.0),
             );
             if k == 0 {

@@ -79,35 +79,7 @@ pub(super) fn preview(
     );
     let map = |pts: &[(f64, f64)]| pts.iter().map(|&(x, y)| vp.map(x, y)).collect::<Vec<_>>();
     let mut doc = SvgDoc::new(PAGE.0, PAGE.1);
-    let [a0, a1, b0, b1] = m.axes;
-    doc.text(
-        (MARGIN.0, 20.0),
-        13.0,
-        "#000",
-        &format!("{title} · {}, mm", m.profile),
-    );
-    let (tower_a, tower_b) = (
-        format!("tower A {a0}/{a1} cut"),
-        format!("tower B {b0}/{b1} cut"),
-    );
-    doc.legend(
-        (MARGIN.0, 28.0),
-        PAGE.0 - 2.0 * MARGIN.0,
-        &[
-            Legend::new(Mark::Line, "#1f5fd0", &tower_a),
-            Legend::new(Mark::Line, "#d02424", &tower_b),
-            Legend::new(Mark::Line, "#9db8e8", "tower A rapid"),
-            Legend::new(Mark::Line, "#eba3a3", "tower B rapid"),
-            Legend::new(Mark::Dot, "#1f5fd0", "lead-in: heat on"),
-            Legend::new(Mark::Swatch, "#f4f0e6", "block"),
-            Legend::new(Mark::Line, "#9a9a9a", "machine travel"),
-        ],
-    );
-    doc.axes_key(
-        (PAGE.0 - MARGIN.0 - 110.0, PAGE.1 - 16.0),
-        &format!("along ({a0}, {b0})"),
-        &format!("up ({a1}, {b1})"),
-    );
+    header(&mut doc, m, title);
     if let Some(t) = &m.travel {
         // once when both towers travel alike
         let boxes = if (t[0], t[1]) == (t[2], t[3]) { 1 } else { 2 };
@@ -158,4 +130,37 @@ pub(super) fn preview(
         ),
     );
     doc.write(buf)
+}
+
+/// The title, legend and axes of a preview.
+fn header(doc: &mut SvgDoc, m: &Machine, title: &str) {
+    let [a0, a1, b0, b1] = m.axes;
+    doc.text(
+        (MARGIN.0, 20.0),
+        13.0,
+        "#000",
+        &format!("{title} · {}, mm", m.profile),
+    );
+    let (tower_a, tower_b) = (
+        format!("tower A {a0}/{a1} cut"),
+        format!("tower B {b0}/{b1} cut"),
+    );
+    doc.legend(
+        (MARGIN.0, 28.0),
+        PAGE.0 - 2.0 * MARGIN.0,
+        &[
+            Legend::new(Mark::Line, "#1f5fd0", &tower_a),
+            Legend::new(Mark::Line, "#d02424", &tower_b),
+            Legend::new(Mark::Line, "#9db8e8", "tower A rapid"),
+            Legend::new(Mark::Line, "#eba3a3", "tower B rapid"),
+            Legend::new(Mark::Dot, "#1f5fd0", "lead-in: heat on"),
+            Legend::new(Mark::Swatch, "#f4f0e6", "block"),
+            Legend::new(Mark::Line, "#9a9a9a", "machine travel"),
+        ],
+    );
+    doc.axes_key(
+        (PAGE.0 - MARGIN.0 - 110.0, PAGE.1 - 16.0),
+        &format!("along ({a0}, {b0})"),
+        &format!("up ({a1}, {b1})"),
+    );
 }
