@@ -241,9 +241,6 @@ fn sections_svg(
         doc.axes_key((16.0, top + ph - 60.0), "across", "z");
         for k in 0..PANELS.min(n) {
             let s = shown[(k * (n - 1)) / (PANELS - 1).max(1)];
-            let along = nalgebra::Vector2::new(d.direction[0], d.direction[1]);
-            let across = nalgebra::Vector2::new(d.across[0], d.across[1]);
-            let w_of = |p: &[f64; 3]| across.dot(&nalgebra::Vector2::new(p[0], p[1]));
             let (w0, w1) = width_of(d, s);
             let x0 = left + k as f64 * pw;
             doc.text(
@@ -265,40 +262,58 @@ fn sections_svg(
             if k == 0 {
                 doc.scale_bar(&vp, (x0 + pad, top + ph - 14.0), 2.0 * pw, units);
             }
-            doc.polygon(
-                &[
-                    vp.map(w0, z0),
-                    vp.map(w1, z0),
-                    vp.map(w1, z1),
-                    vp.map(w0, z1),
-                ],
-                "none",
-                "#1060e0",
-                0.8,
-                Some("block"),
-            );
-            let samples = 200;
-            let mut design = Vec::new();
-            let mut hull_line = Vec::new();
-            for i in 0..=samples {
-                let w = w0 + (w1 - w0) * i as f64 / samples as f64;
-                let p = along * s.offset + across * w;
-                if let Some(f) = height.at(p.x, p.y) {
-                    design.push(vp.map(w, f));
-                }
-                if let Some(h) = hull.at(p.x, p.y) {
-                    hull_line.push(vp.map(w, h.min(z1)));
-                }
-            }
-            doc.polyline(&hull_line, "#909090", 1.0, Some("convex hull"));
-            doc.polyline(&design, "#000000", 1.2, Some("design surface"));
-            let poly: Vec<(f64, f64)> = s
-                .polygon
-                .iter()
-                .map(|p| vp.map(w_of(p), p[2].min(z1)))
-                .collect();
-            doc.polyline(&poly, "#d02020", 1.4, Some("cut polygon"));
+            let surfaces = (&height, &hull);
+            draw_section(&mut doc, &vp, surfaces, d, s, (w0, w1), (z0, z1));
         }
     }
     doc.write(buf)
+}
+
+/// One cross section in its panel (viewport `vp`): the block `[w0, w1] × [z0, z1]`, the
+/// design surface and its convex hull along the section, and the cut polygon.
+fn draw_section(
+    doc: &mut SvgDoc,
+    vp: &Viewport,
+    (height, hull): (&ruled::Height, &ruled::height::MeshHeight),
+    d: &ruled::DirectionCut,
+    s: &ruled::SectionPolygon,
+    (w0, w1): (f64, f64),
+    (z0, z1): (f64, f64),
+) {
+    let along = nalgebra::Vector2::new(d.direction[0], d.direction[1]);
+    let across = nalgebra::Vector2::new(d.across[0], d.across[1]);
+    let w_of = |p: &[f64; 3]| across.dot(&nalgebra::Vector2::new(p[0], p[1]));
+    doc.polygon(
+        &[
+            vp.map(w0, z0),
+            vp.map(w1, z0),
+            vp.map(w1, z1),
+            vp.map(w0, z1),
+        ],
+        "none",
+        "#1060e0",
+        0.8,
+        Some("block"),
+    );
+    let samples = 200;
+    let mut design = Vec::new();
+    let mut hull_line = Vec::new();
+    for i in 0..=samples {
+        let w = w0 + (w1 - w0) * i as f64 / samples as f64;
+        let p = along * s.offset + across * w;
+        if let Some(f) = height.at(p.x, p.y) {
+            design.push(vp.map(w, f));
+        }
+        if let Some(h) = hull.at(p.x, p.y) {
+            hull_line.push(vp.map(w, h.min(z1)));
+        }
+    }
+    doc.polyline(&hull_line, "#909090", 1.0, Some("convex hull"));
+    doc.polyline(&design, "#000000", 1.2, Some("design surface"));
+    let poly: Vec<(f64, f64)> = s
+        .polygon
+        .iter()
+        .map(|p| vp.map(w_of(p), p[2].min(z1)))
+        .collect();
+    doc.polyline(&poly, "#d02020", 1.4, Some("cut polygon"));
 }
