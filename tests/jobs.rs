@@ -64,12 +64,12 @@ fn every_job_runs_matches_its_snapshot_and_is_reproducible() {
     });
 }
 
-/// A tool for drawing work, not a check: prints what [`outputs_check::svg_problems`] finds
-/// in every output folder under `HOTCUT_CHECK_DIR` (e.g. `hotcut run jobs/*.ron --out DIR`).
-/// `HOTCUT_CHECK_DIR=/tmp/out cargo test --test jobs -- --ignored --nocapture`
+/// The drawing checks on any output folder: with `HOTCUT_CHECK_DIR` set (e.g. after
+/// `hotcut run jobs/*.ron --out DIR`), every folder under it must pass
+/// [`outputs_check::svg_problems`]; without it there is nothing to check.
+/// `HOTCUT_CHECK_DIR=/tmp/out cargo test --test jobs -- drawings_in --nocapture`
 #[test]
-#[ignore = "a tool: set HOTCUT_CHECK_DIR"]
-fn drawings_in_a_folder() {
+fn drawings_in_hotcut_check_dir() {
     let Some(root) = std::env::var_os("HOTCUT_CHECK_DIR") else {
         return;
     };
@@ -79,9 +79,11 @@ fn drawings_in_a_folder() {
         .filter(|p| p.is_dir())
         .collect();
     dirs.sort();
+    let mut problems = Vec::new();
     for d in dirs {
         for p in outputs_check::svg_problems(&d) {
-            println!("{}: {p}", d.display());
+            problems.push(format!("{}: {p}", d.display()));
         }
     }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
