@@ -275,15 +275,25 @@ fn sections_header(doc: &mut SvgDoc, r: &AnalyzeReport, reasons: &[String], unit
         doc.text((MARGIN, 44.0 + 16.0 * i as f64), 12.0, "#c00000", line);
     }
     let extra = 16.0 * reasons.len().saturating_sub(1) as f64;
-    doc.legend(
-        (MARGIN, 50.0 + extra),
-        WIDTH - 2.0 * MARGIN,
-        &[
-            Legend::new(Mark::Line, "#333333", "section"),
-            Legend::new(Mark::Line, "#e07000", "section breaking a constraint"),
-            Legend::new(Mark::Dot, "#e01010", "inflection"),
-            Legend::new(Mark::Dot, "#1060e0", "curvature maximum"),
-            Legend::new(Mark::Dashed, "#c00000", "block, at the surface's corner"),
-        ],
-    );
+    // only what is drawn
+    let mut legend = vec![Legend::new(Mark::Line, "#333333", "section")];
+    if r.sections.iter().any(|x| !x.violations.is_empty()) {
+        legend.push(Legend::new(
+            Mark::Line,
+            "#e07000",
+            "section breaking a constraint",
+        ));
+    }
+    legend.extend([
+        Legend::new(Mark::Dot, "#e01010", "inflection"),
+        Legend::new(Mark::Dot, "#1060e0", "curvature maximum"),
+    ]);
+    if block_outline(r).is_some() {
+        legend.push(Legend::new(
+            Mark::Dashed,
+            "#c00000",
+            "block, at the surface's corner",
+        ));
+    }
+    doc.legend((MARGIN, 50.0 + extra), WIDTH - 2.0 * MARGIN, &legend);
 }

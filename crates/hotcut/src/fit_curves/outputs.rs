@@ -146,13 +146,20 @@ fn fit_header(doc: &mut SvgDoc, r: &FitCurvesReport, units: &str) {
             s.median_rms, s.max_rms
         ),
     );
-    let mut legend = vec![
-        Legend::new(Mark::Dot, "#999999", "input points"),
-        Legend::new(Mark::Line, "#1060e0", "elastica"),
-        Legend::new(Mark::Line, "#10a040", "arc"),
-        Legend::new(Mark::Line, "#8030c0", "line"),
-        Legend::new(Mark::Dot, "#e01010", "inflection"),
-    ];
+    // only what is drawn
+    let mut legend = vec![Legend::new(Mark::Dot, "#999999", "input points")];
+    for (n, colour, label) in [
+        (s.inflectional + s.noninflectional, "#1060e0", "elastica"),
+        (s.arcs, "#10a040", "arc"),
+        (s.lines, "#8030c0", "line"),
+    ] {
+        if n > 0 {
+            legend.push(Legend::new(Mark::Line, colour, label));
+        }
+    }
+    if s.inflectional > 0 {
+        legend.push(Legend::new(Mark::Dot, "#e01010", "inflection"));
+    }
     if r.numerical.is_some() {
         legend.push(Legend::new(
             Mark::Dashed,
