@@ -1,34 +1,32 @@
 //! What `report.html` shows of a `Design` run.
 
-use export::html::{Body, Constraint, Row, Table, Verdict};
+use export::html::{Body, Constraint, Row, Table};
 
 use super::report::DesignReport;
 use crate::context::Context;
-use crate::output::page::{curv, num};
+use crate::output::page::{blade_verdict, curv, num};
 
 /// The verdict (every blade within its limits), the blade constraints and the design's
 /// closeness to its elastica, a row per design curve and per block.
 pub fn body(r: &DesignReport, job: &Context) -> Body {
     let s = &r.summary;
     let set = &r.settings;
-    let cell_ok = r.cell.as_ref().is_none_or(|k| k.clean);
-    let ok = s.all_ok && cell_ok;
-    let text = if ok {
+    let verdict = blade_verdict(
+        s.all_ok,
+        r.cell.as_ref().map(|k| k.clean),
         format!(
-            "Cuttable: {} cut(s) over {} block(s), {} blade pose(s); every blade within its curvature and inflection limits{}.",
+            "{} cut(s) over {} block(s), {} blade pose(s); every blade within its curvature and inflection limits",
             s.cuts,
             r.blocks.len(),
-            s.poses,
-            if r.cell.is_some() { ", and the robots reach every move" } else { "" }
-        )
-    } else if !s.all_ok {
-        format!(
-            "Not cuttable as designed: blades break a limit (strain {}, inflections {}).",
-            s.strain_flags, s.inflection_flags
-        )
-    } else {
-        "Not cuttable as planned: the robot cell has problems.".to_string()
-    };
+            s.poses
+        ),
+        || {
+            format!(
+                "Not cuttable as designed: blades break a limit (strain {}, inflections {}).",
+                s.strain_flags, s.inflection_flags
+            )
+        },
+    );
     let counts = vec![
         ("cuts".to_string(), s.cuts.to_string()),
         ("blocks".into(), r.blocks.len().to_string()),
@@ -85,7 +83,7 @@ pub fn body(r: &DesignReport, job: &Context) -> Body {
         })
         .collect();
     Body {
-        verdict: Verdict { ok, text },
+        verdict,
         counts,
         constraints,
         notes,

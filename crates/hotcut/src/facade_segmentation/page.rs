@@ -4,7 +4,7 @@ use export::html::{Body, Constraint, Row, Table, Verdict};
 
 use super::report::SegmentationReport;
 use crate::context::Context;
-use crate::output::page::{curv, len, num};
+use crate::output::page::{blade_verdict, curv, len, num};
 
 /// The verdict, the four constraints of thesis §5.1 (and the cell), and a row per piece.
 pub fn body(r: &SegmentationReport, job: &Context) -> Body {
@@ -114,31 +114,20 @@ pub fn body(r: &SegmentationReport, job: &Context) -> Body {
 fn verdict(r: &SegmentationReport) -> Verdict {
     let c = &r.counts;
     let f = &c.failing;
-    let cell_ok = r.cell.as_ref().is_none_or(|k| k.clean);
-    let ok = c.all_ok && cell_ok;
-    let text = if ok {
+    blade_verdict(
+        c.all_ok,
+        r.cell.as_ref().map(|k| k.clean),
         format!(
-            "Cuttable: {} piece(s) from {} block(s), every piece meets every constraint{}.",
-            c.pieces,
-            c.blocks,
-            if r.cell.is_some() {
-                " and the robots reach every move"
-            } else {
-                ""
-            }
-        )
-    } else if !c.all_ok {
-        format!(
-            "Not cuttable as asked: pieces break a constraint (dimension {}, approximation {}, shape {}, blade strain {}) of {} piece(s).",
-            f.dimension, f.approximation, f.shape, f.blade_strain, c.pieces
-        )
-    } else {
-        format!(
-            "Not cuttable as planned: the robot cell has problems ({} piece(s) from {} block(s) meet every constraint).",
+            "{} piece(s) from {} block(s), every piece meets every constraint",
             c.pieces, c.blocks
-        )
-    };
-    Verdict { ok, text }
+        ),
+        || {
+            format!(
+                "Not cuttable as asked: pieces break a constraint (dimension {}, approximation {}, shape {}, blade strain {}) of {} piece(s).",
+                f.dimension, f.approximation, f.shape, f.blade_strain, c.pieces
+            )
+        },
+    )
 }
 
 /// The curvature that strains the blade on a section part: the bent blade's when the

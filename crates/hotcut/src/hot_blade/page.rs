@@ -1,41 +1,31 @@
 //! What `report.html` shows of a `HotBlade` run.
 
-use export::html::{Body, Constraint, Row, Table, Verdict};
+use export::html::{Body, Constraint, Row, Table};
 
 use super::report::HotBladeReport;
 use crate::context::Context;
-use crate::output::page::{curv, deg, len, num};
+use crate::output::page::{blade_verdict, curv, deg, len, num};
 
 /// The verdict, the constraints the blocks are flagged by (and the cell), a row per block.
 pub fn body(r: &HotBladeReport, job: &Context) -> Body {
     let s = &r.summary;
     let f = &s.flagged;
     let set = &r.settings;
-    let cell_ok = r.cell.as_ref().is_none_or(|k| k.clean);
-    let ok = s.all_ok && cell_ok;
-    let text = if ok {
+    let verdict = blade_verdict(
+        s.all_ok,
+        r.cell.as_ref().map(|k| k.clean),
         format!(
-            "Cuttable: {} block(s), {} blade section(s), every block meets every constraint{}.",
-            s.blocks,
-            s.sections,
-            if r.cell.is_some() {
-                " and the robots reach every move"
-            } else {
-                ""
-            }
-        )
-    } else if !s.all_ok {
-        let bad = r.blocks.iter().filter(|b| flags(b).is_some()).count();
-        format!(
-            "Not cuttable as asked: {bad} of {} block(s) break a constraint (see the flagged rows).",
-            s.blocks
-        )
-    } else {
-        format!(
-            "Not cuttable as planned: the robot cell has problems ({} block(s) meet every constraint).",
-            s.blocks
-        )
-    };
+            "{} block(s), {} blade section(s), every block meets every constraint",
+            s.blocks, s.sections
+        ),
+        || {
+            let bad = r.blocks.iter().filter(|b| flags(b).is_some()).count();
+            format!(
+                "Not cuttable as asked: {bad} of {} block(s) break a constraint (see the flagged rows).",
+                s.blocks
+            )
+        },
+    );
     let counts = vec![
         ("blocks".to_string(), s.blocks.to_string()),
         (
@@ -120,7 +110,7 @@ pub fn body(r: &HotBladeReport, job: &Context) -> Body {
         tables.push(cell.table());
     }
     Body {
-        verdict: Verdict { ok, text },
+        verdict,
         counts,
         constraints,
         notes: r.surface.warnings.clone(),

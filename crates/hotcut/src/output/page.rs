@@ -3,6 +3,32 @@
 
 use crate::context::Context;
 
+/// The verdict of a task that poses the blade for the robot cell: `cuttable` (what would
+/// be cut, without a final stop) when its constraints hold (`constraints_ok`) and the cell,
+/// if planned (`cell = Some(clean)`), reaches every move; else `broken` when the
+/// constraints fail, else the cell's problem.
+pub fn blade_verdict(
+    constraints_ok: bool,
+    cell: Option<bool>,
+    cuttable: String,
+    broken: impl FnOnce() -> String,
+) -> export::html::Verdict {
+    let ok = constraints_ok && cell.unwrap_or(true);
+    let text = if ok {
+        let robots = if cell.is_some() {
+            ", and the robots reach every move"
+        } else {
+            ""
+        };
+        format!("Cuttable: {cuttable}{robots}.")
+    } else if !constraints_ok {
+        broken()
+    } else {
+        format!("Not cuttable as planned: the robot cell has problems (see its rows), although {cuttable}.")
+    };
+    export::html::Verdict { ok, text }
+}
+
 /// A number for people: 4 significant digits, plain notation between 1e-3 and 1e6, else
 /// scientific; `—` when not finite.
 pub fn num(v: f64) -> String {
@@ -42,7 +68,27 @@ pub fn deg(radians: f64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::num;
+    use super::{blade_verdict, num};
+
+    #[test]
+    fn blade_verdicts_name_what_fails() {
+        let v = |ok, cell| blade_verdict(ok, cell, "2 blocks".into(), || "broken".into());
+        assert_eq!(v(true, None).text, "Cuttable: 2 blocks.");
+        assert!(v(true, None).ok);
+        assert_eq!(
+            v(true, Some(true)).text,
+            "Cuttable: 2 blocks, and the robots reach every move."
+        );
+        assert_eq!(v(false, Some(true)).text, "broken");
+        let cell = v(true, Some(false));
+        assert!(
+            !cell.ok
+                && cell
+                    .text
+                    .starts_with("Not cuttable as planned: the robot cell")
+        );
+        assert!(!v(false, Some(false)).ok);
+    }
 
     #[test]
     fn numbers_read_well() {
