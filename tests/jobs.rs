@@ -8,7 +8,7 @@
 use hotcut::load::load_job;
 use hotcut::run::run_job;
 use hotcut::NoProgress;
-use hotcut_workspace_tests::{read_tree, root};
+use hotcut_workspace_tests::{read_tree, root, third_party_jobs};
 
 mod outputs_check;
 
@@ -24,44 +24,68 @@ fn without_run_time(page: &[u8]) -> Vec<u8> {
     format!("{}{}{}", &text[..i + open.len()], "…", &rest[end..]).into_bytes()
 }
 
-#[test]
-fn every_job_runs_matches_its_snapshot_and_is_reproducible() {
+/// Runs the job at `path` twice and checks its outputs (see the module docs); its report
+/// is snapshot-tested under the current insta settings.
+fn run_and_check(path: &std::path::Path) {
+    let job = load_job(path).unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
+    let a = tempfile::tempdir().unwrap();
+    let b = tempfile::tempdir().unwrap();
+    let first = run_job(&job, a.path(), &NoProgress).unwrap();
+    let second = run_job(&job, b.path(), &NoProgress).unwrap();
+    let (ta, tb) = (read_tree(&first.dir), read_tree(&second.dir));
+    assert!(!ta.is_empty());
+    assert_eq!(ta.len(), tb.len());
+    for ((na, ba), (nb, bb)) in ta.iter().zip(&tb) {
+        assert_eq!(na, nb);
+        // the page's run time is the one thing that may differ
+        let (ba, bb) = if na.ends_with("report.html") {
+            (without_run_time(ba), without_run_time(bb))
+        } else {
+            (ba.clone(), bb.clone())
+        };
+        assert!(
+            ba == bb,
+            "{}: {na} differs between two runs",
+            path.display()
+        );
+    }
+    let what = path.display().to_string();
+    outputs_check::gltf_bounds_match_the_report(&first.dir, &what);
+    outputs_check::json_files_validate(&first.dir, &root(), &what);
+    let svg = outputs_check::svg_problems(&first.dir);
+    assert!(svg.is_empty(), "{what}: drawings:\n{}", svg.join("\n"));
+    let report = std::fs::read_to_string(first.dir.join("report.json")).unwrap();
+    insta::assert_snapshot!("report", report);
+}
+
+fn snapshot_settings() -> insta::Settings {
     let mut settings = insta::Settings::clone_current();
     settings.set_snapshot_path("../snapshots");
     settings.set_prepend_module_to_snapshot(false);
-    settings.bind(|| {
-        insta::glob!("../jobs", "*.ron", |path| {
-            let job = load_job(path).unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
-            let a = tempfile::tempdir().unwrap();
-            let b = tempfile::tempdir().unwrap();
-            let first = run_job(&job, a.path(), &NoProgress).unwrap();
-            let second = run_job(&job, b.path(), &NoProgress).unwrap();
-            let (ta, tb) = (read_tree(&first.dir), read_tree(&second.dir));
-            assert!(!ta.is_empty());
-            assert_eq!(ta.len(), tb.len());
-            for ((na, ba), (nb, bb)) in ta.iter().zip(&tb) {
-                assert_eq!(na, nb);
-                // the page's run time is the one thing that may differ
-                let (ba, bb) = if na.ends_with("report.html") {
-                    (without_run_time(ba), without_run_time(bb))
-                } else {
-                    (ba.clone(), bb.clone())
-                };
-                assert!(
-                    ba == bb,
-                    "{}: {na} differs between two runs",
-                    path.display()
-                );
-            }
-            let what = path.display().to_string();
-            outputs_check::gltf_bounds_match_the_report(&first.dir, &what);
-            outputs_check::json_files_validate(&first.dir, &root(), &what);
-            let svg = outputs_check::svg_problems(&first.dir);
-            assert!(svg.is_empty(), "{what}: drawings:\n{}", svg.join("\n"));
-            let report = std::fs::read_to_string(first.dir.join("report.json")).unwrap();
-            insta::assert_snapshot!("report", report);
-        });
+    settings
+}
+
+#[test]
+fn every_job_runs_matches_its_snapshot_and_is_reproducible() {
+    snapshot_settings().bind(|| {
+        insta::glob!("../jobs", "*.ron", run_and_check);
     });
+}
+
+/// The jobs on third-party benchmark meshes (`jobs/third-party/`), the same way, when the
+/// data is present (skipped loudly otherwise; `HOTCUT_REQUIRE_DATA=1` makes it required).
+#[test]
+fn every_third_party_job_runs_matches_its_snapshot_and_is_reproducible() {
+    let Some((_dir, paths)) = third_party_jobs("every_third_party_job_runs") else {
+        return;
+    };
+    assert!(!paths.is_empty());
+    for path in &paths {
+        let mut settings = snapshot_settings();
+        // the same snapshot name insta::glob! gives a job of jobs/
+        settings.set_snapshot_suffix(path.file_name().unwrap().to_string_lossy().into_owned());
+        settings.bind(|| run_and_check(path));
+    }
 }
 
 /// The drawing checks on any output folder: with `HOTCUT_CHECK_DIR` set (e.g. after

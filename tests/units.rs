@@ -11,7 +11,7 @@ use hotcut::load::{parse_job, resolve};
 use hotcut::run::run_job;
 use hotcut::spec::{SurfaceSpec, Units};
 use hotcut::NoProgress;
-use hotcut_workspace_tests::root;
+use hotcut_workspace_tests::{root, third_party_jobs};
 use serde_json::Value;
 
 /// `x` scaled by `f`.
@@ -376,10 +376,10 @@ fn report(job: Job, path: &Path, out: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(run.dir.join("report.json")).unwrap()).unwrap()
 }
 
-/// Every job of `jobs/`, sorted.
-fn jobs() -> (PathBuf, Vec<PathBuf>) {
-    let jobs = root().join("jobs");
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(&jobs)
+/// Every job of `jobs/`, sorted, then those of `jobs/third-party/` when their data is
+/// present (laid out in a temporary folder that lives as long as the returned guard).
+fn jobs(test: &str) -> (Option<tempfile::TempDir>, Vec<PathBuf>) {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(root().join("jobs"))
         .unwrap()
         .flatten()
         .map(|e| e.path())
@@ -387,7 +387,16 @@ fn jobs() -> (PathBuf, Vec<PathBuf>) {
         .collect();
     paths.sort();
     assert!(paths.len() >= 20);
-    (jobs, paths)
+    let third = third_party_jobs(test).map(|(dir, more)| {
+        paths.extend(more);
+        dir
+    });
+    (third, paths)
+}
+
+/// The folder a job's relative paths are read from.
+fn base_of(path: &Path) -> PathBuf {
+    path.parent().map(Path::to_path_buf).unwrap_or_default()
 }
 
 /// Runs every job as written and converted by `convert(job, base, dir)`, and returns the
@@ -397,9 +406,10 @@ fn differences(
     convert: impl Fn(&Job, &Path, &Path) -> Job,
     scale: impl Fn(&Job) -> f64,
 ) -> Vec<(String, Vec<String>)> {
-    let (base, paths) = jobs();
+    let (_third, paths) = jobs("units: differences");
     let mut out = Vec::new();
     for path in &paths {
+        let base = base_of(path);
         let text = std::fs::read_to_string(path).unwrap();
         let job = prepare(&parse_job(path, &text).unwrap());
         let dir = tempfile::tempdir().unwrap();
@@ -482,9 +492,10 @@ fn every_job_is_invariant_under_an_exact_change_of_scale() {
 /// are the same numbers.
 #[test]
 fn every_job_gives_the_same_results_in_millimetres_and_in_metres() {
-    let (base, paths) = jobs();
+    let (_third, paths) = jobs("every_job_gives_the_same_results_in_millimetres_and_in_metres");
     let mut failures = Vec::new();
     for path in &paths {
+        let base = base_of(path);
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
         let job = parse_job(path, &std::fs::read_to_string(path).unwrap()).unwrap();
         let dir = tempfile::tempdir().unwrap();

@@ -1,8 +1,7 @@
-//! Block segmentation wall time on two shared meshes (torus, octopus) at a fixed
+//! Block segmentation wall time on two benchmark meshes (torus, octopus; the octopus is
+//! third-party data, skipped loudly when absent, see `testdata`) at a fixed
 //! iteration cap, and the exact overlap volume of two rotated blocks.
 //! `cargo bench -p blocks --bench segment`.
-
-use std::path::Path;
 
 use blocks::{cuboid::overlap_volume, segment, Cuboid, Params};
 use geom::mesh::TriMesh;
@@ -12,18 +11,16 @@ fn main() {
     divan::main();
 }
 
-fn mesh(name: &str) -> TriMesh {
-    TriMesh::load_obj(
-        &Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../../shared/data/meshes")
-            .join(name),
-    )
-    .expect("shared mesh")
+fn mesh(name: &str) -> Option<TriMesh> {
+    let path = testdata::mesh(name, "cargo bench -p blocks --bench segment")?;
+    Some(TriMesh::load_obj(&path).expect("benchmark mesh"))
 }
 
 #[divan::bench(args = [("torus.obj", 0.55), ("octopus.obj", 0.12)], sample_count = 3)]
 fn segment_20_iterations(bencher: divan::Bencher, (name, edge): (&str, f64)) {
-    let m = mesh(name);
+    let Some(m) = mesh(name) else {
+        return;
+    };
     let params = Params {
         block_size: [edge; 3],
         max_iterations: 20,

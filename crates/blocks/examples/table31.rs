@@ -1,4 +1,4 @@
-//! Reproduces thesis Table 3.1 (and, with `ablation`, Table 3.2) on the shared meshes:
+//! Reproduces thesis Table 3.1 (and, with `ablation`, Table 3.2) on the benchmark meshes (`testdata`; third-party ones skipped loudly when absent):
 //! for each model, a block edge is searched so that the initial grid is within ±10 % of
 //! the paper's "No B Init", then the full algorithm runs with `RESTARTS` restarts.
 //!
@@ -7,9 +7,8 @@
 //! `surface` switches to `Coverage::Surface`, `spacing=F` sets the sample spacing, `edge=F`
 //! fixes the block edge instead of searching it; with
 //! `TABLE31_VERBOSE` set, every restart's outcome and the kept run's history go to stderr.
-//! The Torus rows are the shared `torus.obj` and a generated thin torus (see [`torus`]).
+//! The Torus rows are the vendored `torus.obj` and a generated thin torus (see [`torus`]).
 
-use std::path::Path;
 use std::time::Instant;
 
 use blocks::{segment, Coverage, Operation, Params};
@@ -33,7 +32,7 @@ const PAPER: [(&str, &str, usize, usize, u32); 10] = [
 ];
 
 /// Stands for a generated torus with a thin tube (minor radius 0.1 for major radius 1),
-/// closer to the thesis's torus than the shared one (0.35).
+/// closer to the thesis's torus than the vendored one (0.35).
 const THIN_TORUS: &str = "thin torus (generated)";
 
 /// A closed torus of major radius 1 and minor radius `r`, `n × m` vertices, outward.
@@ -139,7 +138,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 && !a.starts_with("edge=")
         })
         .collect();
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/meshes");
     if !ablation {
         println!("| Model | file | block edge | init (paper) | result (paper) | reduction % (paper) | lower bound | wall time (s) |");
         println!("|---|---|---|---|---|---|---|---|");
@@ -151,7 +149,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mesh = if file == THIN_TORUS {
             torus(0.1, 144, 24)?
         } else {
-            TriMesh::load_obj(&dir.join(file))?
+            match testdata::mesh(file, "table31") {
+                Some(path) => TriMesh::load_obj(&path)?,
+                None => continue,
+            }
         };
         let (edge, init) = match fixed_edge {
             Some(e) => (e, initial(&mesh, e, (spacing, coverage))?),

@@ -6,7 +6,8 @@
 //! optimizer casts along its bounding box's z axis), plus random points on every triangle
 //! and every vertex. `Surface`: the points on triangles and the vertices.
 //!
-//! Run on every mesh of `../shared/data/meshes/` (README there).
+//! Run on every benchmark mesh (`testdata`: the vendored torus, the third-party meshes
+//! when present).
 
 use std::path::{Path, PathBuf};
 
@@ -14,8 +15,10 @@ use blocks::{segment, Coverage, Cuboid, Params, Segmentation};
 use geom::mesh::TriMesh;
 use nalgebra::Vector3;
 
-fn mesh_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/meshes")
+/// The benchmark mesh `file`, or `None` (after a loud SKIPPED line) when it is
+/// third-party data that is absent.
+fn mesh_path(file: &str, test: &str) -> Option<PathBuf> {
+    testdata::mesh(file, test)
 }
 
 /// A small deterministic generator (SplitMix64), deliberately not the optimizer's.
@@ -120,8 +123,9 @@ fn uncovered(blocks: &[Cuboid], pts: &[Vector3<f64>]) -> usize {
 
 /// Segments `file` with blocks of `edge`, then checks it with `factor ×` the optimizer's
 /// sample counts. Returns the segmentation for further checks.
-fn check(file: &str, edge: f64, coverage: Coverage, factor: usize) -> Segmentation {
-    let mesh = TriMesh::load_obj(&mesh_dir().join(file)).unwrap();
+fn check(path: &Path, edge: f64, coverage: Coverage, factor: usize) -> Segmentation {
+    let file = path.file_name().unwrap_or_default().to_string_lossy();
+    let mesh = TriMesh::load_obj(path).unwrap();
     let params = Params {
         block_size: [edge; 3],
         coverage,
@@ -158,21 +162,19 @@ fn check(file: &str, edge: f64, coverage: Coverage, factor: usize) -> Segmentati
 }
 
 /// Block edge giving a few dozen blocks: a quarter of the bounding box's longest side.
-fn edge_for(file: &str) -> f64 {
-    let mesh = TriMesh::load_obj(&mesh_dir().join(file)).unwrap();
+fn edge_for(path: &Path) -> f64 {
+    let mesh = TriMesh::load_obj(path).unwrap();
     mesh.aabb().size().max() / 4.0
 }
 
 #[test]
-fn every_shared_mesh_is_covered_solid() {
-    let mut files: Vec<String> = std::fs::read_dir(mesh_dir())
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.ends_with(".obj"))
+fn every_benchmark_mesh_is_covered_solid() {
+    let test = "every_benchmark_mesh_is_covered_solid";
+    let mut files: Vec<PathBuf> = testdata::VENDORED_MESHES
+        .iter()
+        .filter_map(|n| mesh_path(n, test))
         .collect();
-    files.sort();
-    assert!(files.len() >= 7, "{files:?}");
+    files.extend(testdata::third_party_meshes(test).unwrap_or_default());
     for f in &files {
         check(f, edge_for(f), Coverage::Solid, 2);
     }
@@ -180,12 +182,16 @@ fn every_shared_mesh_is_covered_solid() {
 
 #[test]
 fn surface_coverage_is_checked_on_the_surface() {
-    for f in ["torus.obj", "octopus.obj", "fertility.obj"] {
+    for name in ["torus.obj", "octopus.obj", "fertility.obj"] {
+        let Some(f) = mesh_path(name, "surface_coverage_is_checked_on_the_surface") else {
+            continue;
+        };
+        let f = f.as_path();
         let solid = check(f, edge_for(f), Coverage::Solid, 2);
         let surface = check(f, edge_for(f), Coverage::Surface, 3);
         assert!(
             surface.initial_blocks <= solid.initial_blocks,
-            "{f}: surface {} vs solid {}",
+            "{name}: surface {} vs solid {}",
             surface.initial_blocks,
             solid.initial_blocks
         );
@@ -197,8 +203,9 @@ fn surface_coverage_is_checked_on_the_surface() {
 /// every length of the result back in model units.
 #[test]
 fn results_come_back_in_model_units_in_any_unit_and_place() {
-    let mesh = TriMesh::load_obj(&mesh_dir().join("torus.obj")).unwrap();
-    let edge = edge_for("torus.obj");
+    let torus = mesh_path("torus.obj", "results_come_back_in_model_units").unwrap();
+    let mesh = TriMesh::load_obj(&torus).unwrap();
+    let edge = edge_for(&torus);
     let (s, o) = (1000.0, Vector3::new(5000.0, -7000.0, 300.0));
     let moved = TriMesh::try_new(
         mesh.vertices().iter().map(|v| v * s + o).collect(),

@@ -1,5 +1,5 @@
 //! The numerical spline approach ("Hot Blade Cuttings" §5.2, eq. 13) on the shared curves
-//! (`../shared/data/curves`): the result stays within ε of the input, lowers the bending
+//! (`testdata::curves_json`): the result stays within ε of the input, lowers the bending
 //! energy, keeps what it is told to keep, and is compared with the analytic elastica fit
 //! (`cargo test -p design --test numerical -- --nocapture` prints the BENCHMARKS.md table).
 
@@ -9,12 +9,8 @@ use design::numerical::{numerical_spline, NumericalParams};
 use elastica::fit::{fit_points, FitParams};
 
 fn curves() -> Vec<(String, String, Vec<[f64; 2]>)> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/data/curves/curves.json"
-    );
     let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+        serde_json::from_str(&std::fs::read_to_string(testdata::curves_json()).unwrap()).unwrap();
     v["curves"]
         .as_array()
         .unwrap()

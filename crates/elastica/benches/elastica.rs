@@ -1,5 +1,5 @@
 //! Benchmarks: one Jacobi evaluation (sn, cn, dn, am, E together) and fitting one
-//! 200-point curve of `../shared/data/curves` with each constraint option, and the generic
+//! 200-point test curve (`testdata::curves_json`) with each constraint option, and the generic
 //! 7-parameter baseline fit.
 //! Run: `cargo bench -p elastica`.
 
@@ -29,11 +29,7 @@ fn elliptic_new(bencher: divan::Bencher) {
 fn curves() -> &'static Vec<(String, Vec<[f64; 2]>)> {
     static C: OnceLock<Vec<(String, Vec<[f64; 2]>)>> = OnceLock::new();
     C.get_or_init(|| {
-        let path = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../../shared/data/curves/curves.json"
-        );
-        let text = std::fs::read_to_string(path).expect("../shared/data/curves/curves.json");
+        let text = std::fs::read_to_string(testdata::curves_json()).unwrap();
         let v: serde_json::Value = serde_json::from_str(&text).unwrap();
         v["curves"]
             .as_array()

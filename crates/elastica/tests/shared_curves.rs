@@ -1,4 +1,4 @@
-//! Fits of every curve in `../shared/data/curves/curves.json` (72 planar curves with their
+//! Fits of every curve of the vendored test curves (`testdata::curves_json`, 72 planar curves with their
 //! truth): none may fail; exact elastica are recovered to float precision; noisy ones land
 //! well below the noise level measured against the clean points.
 
@@ -6,11 +6,7 @@ use elastica::fit::{fit_points, FitConstraint, FitParams, FitResult};
 use serde_json::Value;
 
 fn load() -> Vec<Value> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/data/curves/curves.json"
-    );
-    let text = std::fs::read_to_string(path).expect("../shared/data/curves/curves.json");
+    let text = std::fs::read_to_string(testdata::curves_json()).unwrap();
     let data: Value = serde_json::from_str(&text).unwrap();
     data["curves"].as_array().unwrap().clone()
 }

@@ -3,7 +3,7 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use common::{expect_invalid, hotcut, stderr, write};
 use hotcut::load::load_job;
@@ -11,8 +11,8 @@ use hotcut::run::run_job;
 use hotcut::NoProgress;
 
 fn torus() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data/meshes/torus.obj")
+    testdata::mesh("torus.obj", "block_segmentation")
+        .unwrap()
         .canonicalize()
         .unwrap()
 }

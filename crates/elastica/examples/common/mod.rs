@@ -1,5 +1,9 @@
 //! Shared by the cross-check examples: a JSON-lines loop whose answers print every number
 //! with 17 significant digits (enough to round-trip any f64), the request's `id` first.
+//!
+//! A request with `"echo": true` is answered with every number it holds as read (in its
+//! order, 17 digits), instead of being computed: a check that numbers reach the program
+//! bit for bit (JSON is parsed with serde_json's `float_roundtrip`).
 
 use std::io::{BufRead, Write};
 
@@ -26,10 +30,22 @@ pub fn number(v: &Value, key: &str) -> Result<f64, String> {
 fn line(id: &Value, fields: &[(&str, String)]) -> String {
     let mut s = format!("{{\"id\":{id}");
     for (k, v) in fields {
-        s.push_str(&format!(",\"{k}\":{v}"));
+        // keys echoed from a request are escaped as JSON strings
+        s.push_str(&format!(",{}:{v}", Value::String(k.to_string())));
     }
     s.push('}');
     s
+}
+
+/// Every number of a request but its id, as read, with 17 significant digits.
+fn echo(v: &Value) -> Vec<(String, String)> {
+    let Some(o) = v.as_object() else {
+        return Vec::new();
+    };
+    o.iter()
+        .filter(|(k, _)| k.as_str() != "id")
+        .filter_map(|(k, x)| Some((k.clone(), num(x.as_f64()?))))
+        .collect()
 }
 
 /// Reads JSON lines on stdin and answers each with `answer(request)`: the fields it
@@ -48,9 +64,18 @@ pub fn serve(answer: impl Fn(&Value) -> Result<Vec<(&'static str, String)>, Stri
         let reply = match serde_json::from_str::<Value>(&text) {
             Ok(v) => {
                 let id = v.get("id").cloned().unwrap_or(Value::Null);
-                match answer(&v) {
-                    Ok(fields) => line(&id, &fields),
-                    Err(e) => line(&id, &[("error", Value::String(e).to_string())]),
+                if v.get("echo") == Some(&Value::Bool(true)) {
+                    let numbers = echo(&v);
+                    let fields: Vec<(&str, String)> = numbers
+                        .iter()
+                        .map(|(k, x)| (k.as_str(), x.clone()))
+                        .collect();
+                    line(&id, &fields)
+                } else {
+                    match answer(&v) {
+                        Ok(fields) => line(&id, &fields),
+                        Err(e) => line(&id, &[("error", Value::String(e).to_string())]),
+                    }
                 }
             }
             Err(e) => {

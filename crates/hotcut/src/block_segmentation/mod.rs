@@ -4,7 +4,7 @@
 //! ```no_run
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
 //! // jobs/blocks-torus.ron:
-//! //   surface: Mesh(path: "../../shared/data/meshes/torus.obj", closed: true),
+//! //   surface: Mesh(path: "models/torus.obj", closed: true),
 //! //   block: Block(size: (0.55, 0.55, 0.55)),
 //! //   task: BlockSegmentation(restarts: 2, coverage: Solid),
 //! let job = hotcut::load::load_job(std::path::Path::new("jobs/blocks-torus.ron"))
