@@ -7,6 +7,8 @@
 
 use crate::elliptic::EllipticError;
 use crate::unit::{Family, UnitElastica};
+use geom::significance::{drop_noise_lobes, rounding_floor, Floor, LobeCurve};
+use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
 /// The standard parameters of a closed-form elastica segment.
@@ -267,8 +269,38 @@ impl Segment {
     }
 
     /// Parameters t ∈ (0, 1) of the inflection points (none for lines, arcs and
-    /// non-inflectional elastica).
+    /// non-inflectional elastica): the zeros of the closed form's curvature whose lobes
+    /// depart from their chords by more than f64 rounding at the segment's scale — the
+    /// noise-floor rule every inflection count of hotcut follows
+    /// ([`geom::significance`]; an exact curve's floor is rounding). A zero a hair from
+    /// an end, or a lobe of a nearly straight segment that no evaluation can tell from
+    /// its chord, is not an inflection.
     pub fn inflections(&self) -> Result<Vec<f64>, EllipticError> {
+        let mut ts = self.curvature_zeros()?;
+        if ts.is_empty() {
+            return Ok(ts);
+        }
+        let eval = self.evaluator()?;
+        let reach = (0..=16)
+            .map(|i| {
+                let p = eval.eval(i as f64 / 16.0).p;
+                p[0].abs().max(p[1].abs())
+            })
+            .fold(0.0, f64::max);
+        let length = self.length();
+        let floor = Floor::of(rounding_floor(reach, length), length);
+        let mut bounds: Vec<f64> = std::iter::once(0.0)
+            .chain(ts.iter().copied())
+            .chain(std::iter::once(1.0))
+            .collect();
+        drop_noise_lobes(&eval, &mut bounds, &|_, _| floor, &[]);
+        ts = bounds[1..bounds.len() - 1].to_vec();
+        Ok(ts)
+    }
+
+    /// Every zero of the closed form's curvature in t ∈ (0, 1), increasing (before the
+    /// noise floor of [`Segment::inflections`]).
+    pub fn curvature_zeros(&self) -> Result<Vec<f64>, EllipticError> {
         match *self {
             Segment::Elastica(p) => {
                 let u = UnitElastica::new(p.family, p.k)?;
@@ -412,6 +444,16 @@ pub enum SegmentEval {
     Elastica(Box<ElasticaSegment>),
     /// Line or arc.
     Simple(Segment),
+}
+
+impl LobeCurve for SegmentEval {
+    fn point(&self, t: f64) -> Vector2<f64> {
+        let p = self.eval(t).p;
+        Vector2::new(p[0], p[1])
+    }
+    fn curvature(&self, t: f64) -> f64 {
+        self.eval(t).curvature
+    }
 }
 
 impl SegmentEval {

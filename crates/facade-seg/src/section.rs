@@ -152,7 +152,7 @@ impl Facade {
 }
 
 /// Curvature samples per exact section for its inflections, at least.
-pub const EXACT_SAMPLES: usize = 8192;
+pub use geom::analysis::EXACT_SAMPLES;
 
 impl PreparedSection {
     /// Tabulates the arc length and finds the inflections of one section curve.
@@ -166,11 +166,10 @@ impl PreparedSection {
     /// [`PreparedSection::new`] with the inflections found by `params`.
     ///
     /// The inflections count against `max_inflections` (the blade's shape), so on an
-    /// exact section (a height field's) every sign change of the curvature counts, as a
-    /// dense count of the exact second derivative finds them: no lobe is dropped as noise
-    /// however little it turns (small ripples on a flat stretch are real inflections the
-    /// blade must make), and the curvature is read at least every 1/[`EXACT_SAMPLES`] of
-    /// the section. `min_lobe_turning` applies to smoothed polyline sections only.
+    /// exact section (a height field's) every sign change of the curvature above f64
+    /// rounding counts, as a dense count of the exact second derivative finds them
+    /// ([`CurveAnalysisParams::for_exact`]). `min_lobe_turning` applies to smoothed
+    /// polyline sections only; the noise floor of [`geom::significance`] to every section.
     ///
     /// # Errors
     /// As [`PreparedSection::new`].
@@ -183,11 +182,7 @@ impl PreparedSection {
         let exact;
         let params = match curve {
             SectionCurve::Graph(_) => {
-                exact = CurveAnalysisParams {
-                    samples: params.samples.max(EXACT_SAMPLES),
-                    min_lobe_turning: 0.0,
-                    ..params.clone()
-                };
+                exact = params.for_exact();
                 &exact
             }
             SectionCurve::Spline(_) => params,

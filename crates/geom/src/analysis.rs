@@ -18,12 +18,63 @@
 //! On a curve fitted to a polyline, the curvature inside the first and last segment is set
 //! by the spline's end condition, not by data; sign changes there
 //! ([`CurveAnalysisParams::end_margins`](crate::analysis::CurveAnalysisParams::end_margins)) are dropped and counted the same way.
+//!
+//! # The noise floor
+//! Then every lobe, those at the ends included, must depart from its chord by more than
+//! the curve's noise floor (f64 rounding at its scale, the caller's `noise`, and half the
+//! data's allowance around it): the rule of [`crate::significance`]. This is what gives
+//! straight and planar stretches, exact or meshed, no inflections at all.
 
 use nalgebra::Vector2;
 
 use crate::ends::EndTrend;
+
+/// Standard errors taken off an end trend's curvature for the lower bound of its lobe's
+/// departure (see `add_end_inflections`).
+const CONFIDENCE: f64 = 2.0;
 use crate::error::{GeomError, Result};
 use crate::planar::{signed_curvature, ArcLength, Jet2, PlanarCurve};
+use crate::significance::{drop_noise_lobes, rounding_floor, Floor, LobeCurve, DATA_SHARE};
+
+/// A planar curve seen by the noise-floor rule.
+struct Lobes<'a>(&'a dyn PlanarCurve);
+
+impl LobeCurve for Lobes<'_> {
+    fn point(&self, t: f64) -> Vector2<f64> {
+        self.0.jet(t).p
+    }
+    fn curvature(&self, t: f64) -> f64 {
+        signed_curvature(&self.0.jet(t))
+    }
+}
+
+/// The noise floor of the lobe `[t0, t1]` (see [`crate::significance`]): `base` (rounding
+/// and the caller's floor) or [`DATA_SHARE`] × the largest precision of the data points in
+/// the lobe and the two around it, whichever is larger, as a distance and a curvature. On a
+/// curve fitted to points, a lobe holding fewer than [`RESOLVED_POINTS`] of them is not in
+/// the data (its curvature is the spline's, set by its penalty or end condition): its floor
+/// is infinite. A near-end inflection the data do show comes back through the end trends.
+fn lobe_floor(params: &CurveAnalysisParams, base: f64, length: f64, t0: f64, t1: f64) -> Floor {
+    let data = &params.data_params;
+    let mut d = base;
+    if !data.is_empty() {
+        let held = data.partition_point(|&t| t < t1) - data.partition_point(|&t| t <= t0);
+        if held < RESOLVED_POINTS {
+            return Floor::of(f64::INFINITY, length);
+        }
+    }
+    let precision = &params.data_precision;
+    if !precision.is_empty() && precision.len() == data.len() {
+        let lo = data.partition_point(|&t| t < t0).saturating_sub(1);
+        let hi = (data.partition_point(|&t| t <= t1) + 1).min(data.len());
+        let most = precision[lo..hi.max(lo)]
+            .iter()
+            .copied()
+            .fold(0.0, f64::max);
+        d = d.max(DATA_SHARE * most);
+    }
+    Floor::of(d, length)
+}
 
 /// Parameters of [`analyze_curve`].
 #[derive(Debug, Clone, PartialEq)]
@@ -47,6 +98,32 @@ pub struct CurveAnalysisParams {
     /// Where the spline's end lobe has the other sign and is more than twice as long as
     /// the data window, the inflection the data show there is added.
     pub end_trends: (Option<EndTrend>, Option<EndTrend>),
+    /// How far each data point is known to lie from the true curve (one per
+    /// `data_params`; empty for exact curves): the data's precision, which sets the noise
+    /// floor of the lobes around it ([`crate::significance`]).
+    pub data_precision: Vec<f64>,
+    /// A noise floor for the whole curve, in its units (≥ 0): lobes departing from their
+    /// chords by less are not inflections' lobes ([`crate::significance`]). f64 rounding
+    /// at the curve's scale is always a floor.
+    pub noise: f64,
+}
+
+/// Curvature samples per exact curve at least (a height field's section): every sign
+/// change of its curvature counts, so it is read at least this densely.
+pub const EXACT_SAMPLES: usize = 8192;
+
+impl CurveAnalysisParams {
+    /// These parameters for an exact curve (no data points): no lobe is dropped for
+    /// turning little (small ripples on a flat stretch are real inflections the blade must
+    /// make, and only the noise floor of f64 rounding applies), and the curvature is read
+    /// at least [`EXACT_SAMPLES`] times.
+    pub fn for_exact(&self) -> Self {
+        Self {
+            samples: self.samples.max(EXACT_SAMPLES),
+            min_lobe_turning: 0.0,
+            ..self.clone()
+        }
+    }
 }
 
 /// Data points a lobe must hold to be kept whatever its turning (three points give one
@@ -62,6 +139,8 @@ impl Default for CurveAnalysisParams {
             end_margins: (0.0, 0.0),
             data_params: Vec::new(),
             end_trends: (None, None),
+            data_precision: Vec::new(),
+            noise: 0.0,
         }
     }
 }
@@ -260,7 +339,18 @@ fn add_end_inflections(
     turns: &mut Vec<f64>,
     params: &CurveAnalysisParams,
     ts: &[f64],
+    floor: f64,
 ) -> (Option<f64>, Option<f64>) {
+    // the added end lobe, curvature falling linearly from k to 0 over z, departs from its
+    // chord by 0.064·|k|·z² (the largest of k(s²/2 − s³/6z − zs/3) over [0, z]); it must
+    // be above the floor (rounding, the caller's and the file's) by the trend's lower
+    // confidence bound (|k| less CONFIDENCE standard errors; the trend itself is
+    // SIGNIFICANCE standard errors from zero): the trend is measured against the data's
+    // residuals, so their precision is in it already
+    let above = |tr: &EndTrend, t0: f64, t1: f64| {
+        let k = (tr.curvature.abs() - CONFIDENCE * tr.standard_error).max(0.0);
+        0.064 * k * (t1 - t0).powi(2) >= floor
+    };
     let mut added = (None, None);
     if let Some(tr) = params.end_trends.0 {
         let (a, next) = (bounds[0], bounds[1]);
@@ -269,7 +359,7 @@ fn add_end_inflections(
                 .zero_at
                 .unwrap_or(params.end_margins.0)
                 .clamp(0.0, tr.window);
-            if t > a && t < next {
+            if t > a && t < next && above(&tr, a, t) {
                 bounds.insert(1, t);
                 let rest = turning(curve, t, next, ts);
                 turns.splice(0..1, [0.5 * tr.curvature * (t - a), rest]);
@@ -289,7 +379,7 @@ fn add_end_inflections(
                 .zero_at
                 .unwrap_or(params.end_margins.1)
                 .clamp(0.0, tr.window);
-            if t > prev && t < b {
+            if t > prev && t < b && above(&tr, t, b) {
                 bounds.insert(n - 1, t);
                 let rest = turning(curve, prev, t, ts);
                 turns.splice(last..=last, [rest, 0.5 * tr.curvature * (b - t)]);
@@ -402,14 +492,29 @@ pub fn analyze_curve(
         .windows(2)
         .map(|w| turning(curve, w[0], w[1], &ts))
         .collect();
-    let suppressed = in_margins
+    let mut suppressed = in_margins
         + merge_flat_lobes(
             &mut bounds,
             &mut turns,
             params.min_lobe_turning,
             &params.data_params,
         );
-    let added = add_end_inflections(curve, &mut bounds, &mut turns, params, &ts);
+    // the noise floor: every lobe must depart from its chord by more than it
+    let reach = jets
+        .iter()
+        .map(|j| j.p.x.abs().max(j.p.y.abs()))
+        .fold(0.0, f64::max);
+    let base = rounding_floor(reach, length).max(params.noise);
+    let floor = |t0: f64, t1: f64| lobe_floor(params, base, length, t0, t1);
+    let dropped = drop_noise_lobes(&Lobes(curve), &mut bounds, &floor, &ts);
+    if dropped > 0 {
+        suppressed += dropped;
+        turns = bounds
+            .windows(2)
+            .map(|w| turning(curve, w[0], w[1], &ts))
+            .collect();
+    }
+    let added = add_end_inflections(curve, &mut bounds, &mut turns, params, &ts, base);
 
     let at = |t: f64| {
         let j = curve.jet(t);
@@ -567,6 +672,7 @@ mod tests {
             curvature: -0.01,
             zero_at: Some(0.5),
             window: 1.0,
+            standard_error: 1e-3,
         };
         let a = analyze_curve(
             &Wiggle,

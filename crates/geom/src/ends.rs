@@ -13,8 +13,12 @@
 
 use nalgebra::{Matrix4, Vector2, Vector4};
 
-/// Number of points the local fit at each end uses.
+/// Number of points the local fit at each end uses, at least.
 pub const END_WINDOW: usize = 16;
+
+/// The share of the curve's parameter length the local fit at an end spans when its
+/// [`END_WINDOW`] points show no significant curvature (and it holds more of them).
+pub const END_SPAN: f64 = 0.03;
 
 /// The curvature at one end of a sampled curve, from a local cubic fit to its last points.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -26,10 +30,12 @@ pub struct EndTrend {
     pub zero_at: Option<f64>,
     /// Parameter length the local fit spans.
     pub window: f64,
+    /// The standard error of `curvature`, from the fit's residuals.
+    pub standard_error: f64,
 }
 
 /// How many standard errors the end curvature must lie from zero to count.
-const SIGNIFICANCE: f64 = 3.0;
+pub const SIGNIFICANCE: f64 = 3.0;
 
 /// Curvature trends at the start and at the end of the open polyline `points` (parameters
 /// `params`, e.g. chord length). `None` at an end when there are too few points, the
@@ -40,23 +46,55 @@ pub fn end_trends(points: &[Vector2<f64>], params: &[f64]) -> (Option<EndTrend>,
     if n < 2 * END_WINDOW || params.len() != n {
         return (None, None);
     }
-    let start = local_fit(&points[..END_WINDOW], true).map(|(k, zero, _)| EndTrend {
-        curvature: k,
-        zero_at: zero,
-        window: params[END_WINDOW - 1] - params[0],
-    });
-    let end = local_fit(&points[n - END_WINDOW..], false).map(|(k, zero, w)| EndTrend {
-        curvature: k,
-        zero_at: zero.map(|z| w - z),
-        window: params[n - 1] - params[n - END_WINDOW],
-    });
+    // END_WINDOW points; where their curvature is not significant, as many as lie within
+    // END_SPAN of the curve's parameter length from the end (a fine polyline's 16 points
+    // may span too little of the curve to show its curvature above their chordal noise),
+    // at most n/4
+    let total = params[n - 1] - params[0];
+    let reach = END_SPAN * total;
+    let cap = (n / 4).max(END_WINDOW);
+    let wide0 = params
+        .partition_point(|&t| t <= params[0] + reach)
+        .clamp(END_WINDOW, cap);
+    let wide1 = (n - params.partition_point(|&t| t < params[n - 1] - reach)).clamp(END_WINDOW, cap);
+    // the wide window speaks only of a zero beyond the narrow one: nearer the end, the
+    // narrow window's points saw nothing significant
+    let narrow0 = params[END_WINDOW - 1] - params[0];
+    let narrow1 = params[n - 1] - params[n - END_WINDOW];
+    let start = local_fit(&points[..END_WINDOW], true)
+        .map(|fit| (fit, END_WINDOW))
+        .or_else(|| {
+            local_fit(&points[..wide0], true)
+                .filter(|f| wide0 > END_WINDOW && f.2.is_some_and(|z| z > narrow0))
+                .map(|fit| (fit, wide0))
+        })
+        .map(|((k, se, zero, _), w)| EndTrend {
+            curvature: k,
+            zero_at: zero,
+            window: params[w - 1] - params[0],
+            standard_error: se,
+        });
+    let end = local_fit(&points[n - END_WINDOW..], false)
+        .map(|fit| (fit, END_WINDOW))
+        .or_else(|| {
+            local_fit(&points[n - wide1..], false)
+                .filter(|f| wide1 > END_WINDOW && f.2.is_some_and(|z| f.3 - z > narrow1))
+                .map(|fit| (fit, wide1))
+        })
+        .map(|((k, se, zero, len), w)| EndTrend {
+            curvature: k,
+            zero_at: zero.map(|z| len - z),
+            window: params[n - 1] - params[n - w],
+            standard_error: se,
+        });
     (start, end)
 }
 
 /// Cubic fit η(ξ) over the window's chord frame. Returns the curvature at the first
-/// (`at_start`) or last point, the chord distance ξ of the curvature's zero from the
-/// window's first point (if inside the window) and the window's chord length.
-fn local_fit(w: &[Vector2<f64>], at_start: bool) -> Option<(f64, Option<f64>, f64)> {
+/// (`at_start`) or last point and its standard error, the chord distance ξ of the
+/// curvature's zero from the window's first point (if inside the window) and the window's
+/// chord length.
+fn local_fit(w: &[Vector2<f64>], at_start: bool) -> Option<(f64, f64, Option<f64>, f64)> {
     let (first, last) = (w.first()?, w.last()?);
     let chord = last - first;
     let len = chord.norm();
@@ -69,8 +107,10 @@ fn local_fit(w: &[Vector2<f64>], at_start: bool) -> Option<(f64, Option<f64>, f6
         .iter()
         .map(|p| ((p - first).dot(&d) / len, (p - first).dot(&nrm) / len))
         .collect();
-    // the window must be a graph over its chord
-    if uv.windows(2).any(|q| !(q[1].0 > q[0].0)) {
+    // the window must be a graph over its chord: no step back along it (a slice through
+    // a mesh's vertex region may give crossings a hair out of order, 10⁻⁹ of the window;
+    // those are not a fold)
+    if uv.windows(2).any(|q| !(q[1].0 > q[0].0 - 1e-6)) {
         return None;
     }
     let mut ata = Matrix4::zeros();
@@ -106,7 +146,8 @@ fn local_fit(w: &[Vector2<f64>], at_start: bool) -> Option<(f64, Option<f64>, f6
         .then(|| -c[2] / (3.0 * c[3]))
         .filter(|u| *u > 0.0 && *u < uv[uv.len() - 1].0)
         .map(|u| u * len);
-    Some((kappa_unit / len, zero, len))
+    let se = var.max(0.0).sqrt() / (1.0 + slope * slope).powf(1.5) / len;
+    Some((kappa_unit / len, se, zero, len))
 }
 
 #[cfg(test)]

@@ -57,8 +57,65 @@ fn check_points<const D: usize>(points: &[SVector<f64, D>], params: &[f64]) -> R
     Ok(())
 }
 
+/// The least-squares line `a + b·t` through the points at their parameters.
+fn line_through<const D: usize>(
+    points: &[SVector<f64, D>],
+    params: &[f64],
+) -> (SVector<f64, D>, SVector<f64, D>) {
+    let m = points.len().max(1) as f64;
+    let tm = params.iter().sum::<f64>() / m;
+    let pm = points.iter().sum::<SVector<f64, D>>() / m;
+    let (mut stt, mut stp) = (0.0, SVector::<f64, D>::zeros());
+    for (p, &t) in points.iter().zip(params) {
+        stt += (t - tm) * (t - tm);
+        stp += (p - pm) * (t - tm);
+    }
+    let b = if stt > 0.0 {
+        stp / stt
+    } else {
+        SVector::zeros()
+    };
+    (pm - b * tm, b)
+}
+
 /// Assembles `BᵀB + λ DᵀD` and `Bᵀy` and solves for the control points.
+///
+/// The points' least-squares line `a + b·t` is taken out first and put back into the
+/// control points at their Greville abscissae `gᵢ` (`Σ gᵢ Nᵢ(t) = t`, and lines are the
+/// penalty's null space, so the problem is the same): the system then solves for the
+/// points' departure from a line, and its rounding scales with that departure, not with
+/// the coordinates. A straight or planar stretch comes out straight to f64 rounding
+/// however large `λ`, instead of wiggling by the solve's error (10⁻⁴ of the
+/// coordinates at `λ` ~ 10⁸).
 fn solve_penalised<const D: usize>(
+    points: &[SVector<f64, D>],
+    params: &[f64],
+    degree: usize,
+    knots: &[f64],
+    n: usize,
+    lambda: f64,
+) -> Option<Vec<SVector<f64, D>>> {
+    let (a, b) = line_through(points, params);
+    let greville: Vec<f64> = (0..n)
+        .map(|i| knots[i + 1..=i + degree].iter().sum::<f64>() / degree.max(1) as f64)
+        .collect();
+    let rest: Vec<SVector<f64, D>> = points
+        .iter()
+        .zip(params)
+        .map(|(p, &t)| p - (a + b * t))
+        .collect();
+    let control = solve_penalised_about(&rest, params, degree, knots, n, lambda)?;
+    Some(
+        control
+            .into_iter()
+            .zip(&greville)
+            .map(|(c, &g)| c + a + b * g)
+            .collect(),
+    )
+}
+
+/// [`solve_penalised`] of points already near zero.
+fn solve_penalised_about<const D: usize>(
     points: &[SVector<f64, D>],
     params: &[f64],
     degree: usize,
@@ -225,6 +282,11 @@ pub struct SplineFit<const D: usize> {
     pub max_error: f64,
     /// The smoothing weight used (relative to the data term; 0 = plain least squares).
     pub lambda: f64,
+    /// How far each point is known to lie from the true curve, whatever the tolerance: the
+    /// larger of its chordal sagitta (with `chordal`) and its known deviation (0 for exact
+    /// points). A wiggle of the curve smaller than the data's own error is not in the data
+    /// ([`crate::significance`]).
+    pub precision: Vec<f64>,
 }
 
 /// Smoothing spline through `points` (parameters by chord length when `params` is `None`):
@@ -325,22 +387,20 @@ fn fit_smoothing_at_origin<const D: usize>(
         .clamp(degree + 1, opts.max_control.max(degree + 1))
         .min(m.max(degree + 1));
     let knots = clamped_uniform_knots(degree, n, a, b);
-    let allow: Vec<f64> = if opts.chordal {
+    // each point's own error: its chordal sagitta and its known deviation
+    let mut precision: Vec<f64> = if opts.chordal {
         polyline_sagitta(points)
-            .into_iter()
-            .map(|g| g.max(opts.tolerance))
-            .collect()
     } else {
-        vec![opts.tolerance; m]
+        vec![0.0; m]
     };
-    let allow: Vec<f64> = match known {
-        Some(k) => allow
-            .iter()
-            .zip(k)
-            .map(|(a, k)| if k.is_finite() { a.max(*k) } else { *a })
-            .collect(),
-        None => allow,
-    };
+    if let Some(k) = known {
+        for (p, k) in precision.iter_mut().zip(k) {
+            if k.is_finite() {
+                *p = p.max(*k);
+            }
+        }
+    }
+    let allow: Vec<f64> = precision.iter().map(|p| p.max(opts.tolerance)).collect();
 
     // Scale λ so that it is dimensionless: data term ~ m, penalty term ~ n.
     let unit = m as f64 / n as f64;
@@ -364,6 +424,7 @@ fn fit_smoothing_at_origin<const D: usize>(
             rms: lo_rms,
             max_error: lo_max,
             lambda: unit * 1e-8,
+            precision: precision.clone(),
         });
     }
     let hi = 8.0;
@@ -374,6 +435,7 @@ fn fit_smoothing_at_origin<const D: usize>(
                 rms,
                 max_error: max,
                 lambda: unit * 10f64.powf(hi),
+                precision: precision.clone(),
             });
         }
     }
@@ -397,6 +459,7 @@ fn fit_smoothing_at_origin<const D: usize>(
         rms: best.1,
         max_error: best.2,
         lambda: unit * 10f64.powf(best.3),
+        precision: precision.clone(),
     })
 }
 

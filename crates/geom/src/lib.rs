@@ -45,6 +45,8 @@ pub mod mesh;
 pub mod normals;
 /// Planar curves: the `PlanarCurve` trait, curvature, arc length.
 pub mod planar;
+/// When a curvature sign change is an inflection: lobes against the noise floor.
+pub mod significance;
 /// Plane frames, slab offsets and mesh slicing.
 pub mod slice;
 /// The `Surface` interface and sectioning by plane families.

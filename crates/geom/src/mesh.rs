@@ -197,6 +197,29 @@ impl TriMesh {
         ]
     }
 
+    /// The step the vertex coordinates were written with: `10⁻ᵏ` for the least `k ≤ 12`
+    /// such that every coordinate is a whole multiple of it (an OBJ file written with `k`
+    /// decimals), or 0 when there is none (coordinates computed in binary floating point,
+    /// precise to f64 rounding). Half of it is how far any vertex may lie from where its
+    /// model put it: the file's precision.
+    pub fn quantum(&self) -> f64 {
+        'k: for k in 0..=12 {
+            let scale = 10f64.powi(k);
+            for p in &self.vertices {
+                for &c in p.iter() {
+                    let x = c * scale;
+                    // x carries f64 rounding of |x|·2⁻⁵² from the decimal reading and the
+                    // product; a whole multiple is within 10⁻³ of an integer
+                    if (x - x.round()).abs() > 1e-3 + 4.0 * f64::EPSILON * x.abs() {
+                        continue 'k;
+                    }
+                }
+            }
+            return 1.0 / scale;
+        }
+        0.0
+    }
+
     /// Unit normal at every vertex: the area-weighted mean of its faces' normals (zero for
     /// a vertex of no face or of degenerate faces only).
     pub fn vertex_normals(&self) -> Vec<Vector3<f64>> {

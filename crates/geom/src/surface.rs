@@ -103,15 +103,25 @@ pub struct Section {
     /// Parameter length of the first and last polyline segment, where the fitted curve's
     /// curvature is not determined by data (0 for exact sections).
     pub end_margins: (f64, f64),
+    /// How far each point is known to lie from the true section (one per point; empty
+    /// for exact sections): a mesh facet's distance from the surface, the polyline's
+    /// sagitta ([`crate::fit::SplineFit::precision`]).
+    pub precision: Vec<f64>,
+    /// How far any point may lie from where the input put it, however exact the rest:
+    /// half the step the mesh file's coordinates were written with
+    /// ([`TriMesh::quantum`]); 0 for exact sections.
+    pub quantization: f64,
 }
 
 impl Section {
     /// `base` with what this section's data say: its end margins, the parameters of its
-    /// points (so lobes the points resolve are kept) and the curvature at its ends from
-    /// local fits to them (for an open piece). An exact section adds nothing.
+    /// points (so lobes the points resolve are kept), their precision and the file's
+    /// quantization (the noise floor around them) and the curvature at its ends from local fits to them (for an open
+    /// piece). An exact section counts every sign change above f64 rounding
+    /// ([`CurveAnalysisParams::for_exact`]).
     pub fn analysis_params(&self, base: &CurveAnalysisParams) -> CurveAnalysisParams {
         if self.points.is_empty() {
-            return base.clone();
+            return base.for_exact();
         }
         let data_params = chord_length_params(&self.points);
         let end_trends = if self.closed {
@@ -123,6 +133,8 @@ impl Section {
             end_margins: self.end_margins,
             data_params,
             end_trends,
+            data_precision: self.precision.clone(),
+            noise: base.noise.max(self.quantization),
             ..base.clone()
         }
     }
@@ -206,6 +218,10 @@ impl Surface {
             Self::Mesh(m) => m.vertex_normals(),
             _ => Vec::new(),
         };
+        let quantization = match self {
+            Self::Mesh(m) => 0.5 * m.quantum(),
+            _ => 0.0,
+        };
         let per_plane: Vec<Result<Vec<Section>>> = planes
             .par_iter()
             .enumerate()
@@ -222,6 +238,8 @@ impl Surface {
                             points: Vec::new(),
                             fit_rms: 0.0,
                             end_margins: (0.0, 0.0),
+                            precision: Vec::new(),
+                            quantization: 0.0,
                         })
                         .into_iter()
                         .collect()),
@@ -239,7 +257,7 @@ impl Surface {
                             chordal: true,
                             ..params.smoothing.clone()
                         };
-                        fit_pieces(&frame, index, offset, polys, &chordal)
+                        fit_pieces(&frame, index, offset, polys, &chordal, quantization)
                     }
                     Self::Spline(s) => {
                         let (mesh, uv) = spline_mesh
@@ -254,7 +272,7 @@ impl Surface {
                                 closed: c.closed,
                             })
                             .collect();
-                        fit_pieces(&frame, index, offset, polys, &params.smoothing)
+                        fit_pieces(&frame, index, offset, polys, &params.smoothing, 0.0)
                     }
                 };
                 progress();
@@ -291,6 +309,7 @@ fn fit_pieces(
     offset: f64,
     polys: Vec<Polyline>,
     smoothing: &SmoothingParams,
+    quantization: f64,
 ) -> Result<Vec<Section>> {
     let mut pieces: Vec<Piece> = Vec::new();
     for poly in polys {
@@ -367,6 +386,8 @@ fn fit_pieces(
                     curve: SectionCurve::Spline(SplineCurve2::new(fit.curve)),
                     points,
                     fit_rms: fit.rms,
+                    precision: fit.precision,
+                    quantization,
                 })
             },
         )

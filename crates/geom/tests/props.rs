@@ -112,6 +112,9 @@ proptest! {
             .map(|k| k as f64 * PI)
             .filter(|&y| y > y0 && y < y0 + len)
             .collect();
+        // an inflection 0.01 from an end bounds a lobe departing from its chord by ~2e-7:
+        // above the noise floor (f64 rounding, ~1e-9 here); one closer may be below it
+        prop_assume!(expect.iter().all(|&y| y > y0 + 0.01 && y < y0 + len - 0.01));
         prop_assert_eq!(an.inflections.len(), expect.len());
         for (p, y) in an.inflections.iter().zip(&expect) {
             prop_assert!((p.t - y).abs() <= tol, "{} vs {y}", p.t);

@@ -103,6 +103,48 @@ impl CutFrame {
         self.along * u + self.across * w
     }
 
+    /// The point `(x, y)` of frame coordinates `(u, w)` when it lies on the block's
+    /// footprint, moved onto it when rounding put it outside by at most 10⁻⁹ of the block
+    /// (a chord's end, an end face: on the block's edge, where the constraint must hold
+    /// too); `None` farther out.
+    pub fn xy_on_block(&self, u: f64, w: f64) -> Option<Vector2<f64>> {
+        let p = self.xy(u, w);
+        let slack = 1e-9 * self.block.scale();
+        let q = Vector2::new(
+            p.x.clamp(self.block.min[0], self.block.max[0]),
+            p.y.clamp(self.block.min[1], self.block.max[1]),
+        );
+        ((q - p).amax() <= slack).then_some(q)
+    }
+
+    /// Points along the edges of the block's footprint, at most `step` apart (corners
+    /// included), in frame coordinates `(u, w)` with their `(x, y)`.
+    pub fn perimeter(&self, step: f64) -> Vec<(f64, f64, Vector2<f64>)> {
+        let b = &self.block;
+        let corners = [
+            Vector2::new(b.min[0], b.min[1]),
+            Vector2::new(b.max[0], b.min[1]),
+            Vector2::new(b.max[0], b.max[1]),
+            Vector2::new(b.min[0], b.max[1]),
+        ];
+        let mut out = Vec::new();
+        for e in 0..4 {
+            let (a, c) = (corners[e], corners[(e + 1) % 4]);
+            let len = (c - a).norm();
+            // bounded: the block's edge over the check grid's step (validated counts)
+            let n = if step > 0.0 {
+                ((len / step).ceil() as usize).clamp(1, 1 << 16)
+            } else {
+                1
+            };
+            for i in 0..n {
+                let q = a + (c - a) * (i as f64 / n as f64);
+                out.push((self.along.dot(&q), self.across.dot(&q), q));
+            }
+        }
+        out
+    }
+
     /// The `w` interval of the block's footprint on the line `u` (its chord), if any.
     pub fn chord(&self, u: f64) -> Option<(f64, f64)> {
         // The line {along·u + across·t}; clip t against the rectangle's slabs.

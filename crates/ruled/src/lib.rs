@@ -321,10 +321,7 @@ fn cut_direction(
         frame.w,
     );
     let design = |u: f64, w: f64| -> Option<f64> {
-        let p = frame.xy(u, w);
-        if !block.covers(p.x, p.y) {
-            return None;
-        }
+        let p = frame.xy_on_block(u, w)?;
         height.at(p.x, p.y).map(norm)
     };
     let chord = |u: f64| frame.chord(u);
@@ -336,6 +333,7 @@ fn cut_direction(
             (frame.u.1 - frame.u.0) / (n * dense) as f64,
             (frame.w.1 - frame.w.0) / (m * dense) as f64,
         ),
+        bulge: solve::bulge(&check),
     };
     let solved = solve::solve(
         &legs,
@@ -455,7 +453,8 @@ fn polygons(
 
 /// Design points on an `n × m` grid of the frame: slab centres (or, with `ends`, evenly
 /// from end to end) along the cut and across each chord, where the surface is over the
-/// block. Checks the surface stays inside the block.
+/// block; with `ends`, then points along the block's faces. Checks the surface stays
+/// inside the block.
 fn grid_points(
     unit: &unit::UnitFrame,
     frame: &CutFrame,
@@ -474,7 +473,7 @@ fn grid_points(
     };
     let count = |c: usize| if ends { c + 1 } else { c };
     let tol = 1e-9 * block.scale();
-    let mut out = Vec::new();
+    let mut grid = Vec::new();
     for i in 0..count(n) {
         let u = at(i, count(n), frame.u.0, frame.u.1);
         let Some((w0, w1)) = frame.chord(u) else {
@@ -482,20 +481,34 @@ fn grid_points(
         };
         for k in 0..count(m) {
             let w = at(k, count(m), w0, w1);
-            let p = frame.xy(u, w);
-            let Some(f) = height.at(p.x, p.y) else {
-                continue;
-            };
-            if !f.is_finite() || f > block.max[2] + tol || f < block.min[2] - tol {
-                let at = unit.to_model(nalgebra::Vector3::new(p.x, p.y, f));
-                let (lo, hi) = (unit.origin.z, unit.to_model(block.max.into()).z);
-                return Err(PreCutError::Placement(format!(
-                    "the surface is at z = {} over ({:.6}, {:.6}), outside the block's z range [{lo}, {hi}]",
-                    at.z, at.x, at.y
-                )));
+            // a chord's ends lie on the block's edge: moved onto it, not lost to rounding
+            if let Some(p) = frame.xy_on_block(u, w) {
+                grid.push((u, w, p));
             }
-            out.push(Point { u, w, f });
         }
+    }
+    if ends {
+        // the check covers the block's faces too, end faces and sides, at the grid's
+        // finer spacing: between the grid's lines a rotated frame's chord ends sweep the
+        // faces, where the design must stay below every leg as well
+        let step = ((frame.u.1 - frame.u.0) / n.max(1) as f64)
+            .min((frame.w.1 - frame.w.0) / m.max(1) as f64);
+        grid.extend(frame.perimeter(step));
+    }
+    let mut out = Vec::new();
+    for (u, w, p) in grid {
+        let Some(f) = height.at(p.x, p.y) else {
+            continue;
+        };
+        if !f.is_finite() || f > block.max[2] + tol || f < block.min[2] - tol {
+            let at = unit.to_model(nalgebra::Vector3::new(p.x, p.y, f));
+            let (lo, hi) = (unit.origin.z, unit.to_model(block.max.into()).z);
+            return Err(PreCutError::Placement(format!(
+                "the surface is at z = {} over ({:.6}, {:.6}), outside the block's z range [{lo}, {hi}]",
+                at.z, at.x, at.y
+            )));
+        }
+        out.push(Point { u, w, f });
     }
     Ok(out)
 }

@@ -193,10 +193,50 @@ pub struct Domain<'a> {
     pub u: (f64, f64),
     /// Spacing of the check grid along `u` and `w` (the search's first step).
     pub step: (f64, f64),
+    /// How far the design may rise between neighbouring check points above the higher
+    /// of them, at most ([`bulge`]): the local searches start from every check point
+    /// within that (and a few margins) of a leg.
+    pub bulge: f64,
 }
 
-/// Candidates (check points closest to a leg) searched per exchange round.
+/// The largest rise of the design between check points above their chord, estimated from
+/// second differences along each row of equal `u` and across rows at the same index:
+/// `|f₀ − 2f₁ + f₂| / 8` per triple, the sagitta of a parabola through them.
+pub fn bulge(check: &[Point]) -> f64 {
+    let mut rows: Vec<&[Point]> = Vec::new();
+    let mut start = 0;
+    for i in 1..=check.len() {
+        if i == check.len() || check[i].u != check[start].u {
+            rows.push(&check[start..i]);
+            start = i;
+        }
+    }
+    let second = |a: f64, b: f64, c: f64| (a - 2.0 * b + c).abs() / 8.0;
+    let mut most: f64 = 0.0;
+    for r in &rows {
+        for t in r.windows(3) {
+            most = most.max(second(t[0].f, t[1].f, t[2].f));
+        }
+    }
+    for t in rows.windows(3) {
+        if t[0].len() == t[1].len() && t[1].len() == t[2].len() {
+            for ((a, b), c) in t[0].iter().zip(t[1]).zip(t[2]) {
+                most = most.max(second(a.f, b.f, c.f));
+            }
+        }
+    }
+    most
+}
+
+/// Candidates (check points closest to a leg) searched per exchange round, besides the
+/// closest of each region (see [`REGIONS`]).
 const SEARCH_STARTS: usize = 256;
+
+/// The block's frame is split into `REGIONS × REGIONS` cells; in each, every leg's closest
+/// approach to the design gets a search of its own, so a cluster of near points in one
+/// place (a long trough, the faces) cannot take every start while a bulge elsewhere goes
+/// unsearched.
+const REGIONS: usize = 16;
 
 /// Most compass moves at one step size before it is halved anyway.
 const MOVES_PER_STEP: usize = 8;
@@ -216,11 +256,14 @@ fn exchange_points(
 ) -> (f64, Vec<Point>) {
     let mut worst = f64::INFINITY;
     let mut near: Vec<(f64, usize, usize)> = Vec::new();
+    // between check points the design may rise above them by up to the bulge: a point
+    // that close is near too
+    let reach = 4.0 * margin + 2.0 * domain.bulge;
     for (i, (p, b)) in check.iter().zip(basis).enumerate() {
         for j in 0..legs.legs {
             let gap = legs.height(x, b, p.w, j) - p.f;
             worst = worst.min(gap);
-            if gap < 4.0 * margin {
+            if gap < reach {
                 near.push((gap, i, j));
             }
         }
@@ -243,7 +286,41 @@ fn exchange_points(
         Some((legs.height(x, &legs.basis(u), w, j) - f, f))
     };
     let mut out: Vec<Point> = Vec::new();
-    for &(gap, i, j) in near.iter().take(SEARCH_STARTS) {
+    // every (region, leg)'s closest point, then the closest others, in `near`'s order
+    let (w_lo, w_hi) = check
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
+            (a.0.min(p.w), a.1.max(p.w))
+        });
+    let cell = |lo: f64, hi: f64, v: f64| {
+        let r = if hi > lo { (v - lo) / (hi - lo) } else { 0.0 };
+        ((r * REGIONS as f64) as usize).min(REGIONS - 1)
+    };
+    let mut first = std::collections::BTreeSet::new();
+    let mut chosen = vec![false; near.len()];
+    for (k, &(_, i, j)) in near.iter().enumerate() {
+        let key = (
+            cell(domain.u.0, domain.u.1, check[i].u),
+            cell(w_lo, w_hi, check[i].w),
+            j,
+        );
+        if first.insert(key) {
+            chosen[k] = true;
+        }
+    }
+    let mut extra = 0;
+    for c in chosen.iter_mut() {
+        if !*c && extra < SEARCH_STARTS {
+            *c = true;
+            extra += 1;
+        }
+    }
+    let starts = near
+        .iter()
+        .zip(&chosen)
+        .filter(|(_, c)| **c)
+        .map(|(n, _)| n);
+    for &(gap, i, j) in starts {
         let (mut u, mut w, mut g) = (check[i].u, check[i].w, gap);
         let mut f = check[i].f;
         let (mut hu, mut hw) = domain.step;

@@ -308,3 +308,81 @@ fn results_come_back_in_model_units_wherever_the_block_is() {
     let (_, worst) = check_in(&far, &cut, &p, &design);
     assert!(worst <= 1e-6 * s, "over-cut by {worst}");
 }
+
+/// Issue 35 item 6: travelling waves in a 4 × 3 m block (millimetres), oblique and
+/// axis-aligned, under `Auto(6)`. Every leg's line, extended across the whole block, is
+/// checked against the exact surface on a grid that includes the block's end faces and
+/// the ends of every chord (where an over-cut once hid: the samples stopped short of the
+/// end sections), whatever direction the search keeps.
+#[test]
+fn auto_directions_never_overcut_anywhere_in_the_block_end_faces_included() {
+    let b = Block {
+        min: [0.0, 0.0, 0.0],
+        max: [4000.0, 3000.0, 1000.0],
+    };
+    let tol = 1e-6 * b.scale();
+    let waves = [
+        ("oblique", "500 + 150*sin(x/400 + y/250)"),
+        (
+            "oblique-steep",
+            "450 + 120*sin(0.8*x/300 - 0.6*y/300) + 60*cos(y/500)",
+        ),
+        ("along-x", "500 + 140*sin(x/350)"),
+        ("along-y", "500 + 140*sin(y/300)"),
+    ];
+    for (name, z) in waves {
+        let expr = Expr::parse(z).unwrap();
+        let h = HeightField::try_new(expr.clone(), (0.0, 4000.0), (0.0, 3000.0)).unwrap();
+        let p = Params {
+            sections: 12,
+            samples: 12,
+            controls: 6,
+            ..Params::default()
+        };
+        let (cut, search) =
+            search_directions(&Surface::HeightField(h), &b, &p, 6, &|_| {}).unwrap();
+        let kept = search.candidates[search.best].degrees;
+        let (count, worst) = check_everywhere(&b, &cut, &|x, y| expr.eval(x, y));
+        println!("{name}: Auto(6) kept {kept}°, {count} points, largest excess {worst:.3e} mm");
+        assert!(count > 0);
+        assert!(
+            worst <= tol,
+            "{name} (kept {kept}°): design {worst:.3e} mm above a leg"
+        );
+    }
+}
+
+/// The largest excess of the design over any leg's line on a grid of every direction's
+/// frame that includes both end faces (`u` at its ends) and both ends of every chord:
+/// `(points, excess)`. Points are clamped onto the block's footprint (a rotated frame's
+/// end face lies on the block's edge to rounding).
+fn check_everywhere(b: &Block, cut: &PreCut, design: &dyn Fn(f64, f64) -> f64) -> (usize, f64) {
+    let mut worst = f64::NEG_INFINITY;
+    let mut count = 0;
+    let n = 200;
+    for d in &cut.directions {
+        let curves = common::leg_curves(d);
+        let along = Vector2::new(d.direction[0], d.direction[1]);
+        let across = Vector2::new(d.across[0], d.across[1]);
+        for i in 0..=n {
+            let u = d.u.0 + (d.u.1 - d.u.0) * i as f64 / n as f64;
+            for k in 0..=n {
+                let w = d.w.0 + (d.w.1 - d.w.0) * k as f64 / n as f64;
+                let p = along * u + across * w;
+                let (x, y) = (p.x.clamp(b.min[0], b.max[0]), p.y.clamp(b.min[1], b.max[1]));
+                // outside the block (a rotated frame's corners): not part of the cut
+                if (x - p.x).abs() + (y - p.y).abs() > 1e-9 * b.scale() {
+                    continue;
+                }
+                let f = design(x, y);
+                count += 1;
+                for c in &curves {
+                    let am = c.eval(u);
+                    let z = am[0] + am[1] * (w - d.w_mid) / d.w_half;
+                    worst = worst.max(f - z);
+                }
+            }
+        }
+    }
+    (count, worst)
+}
