@@ -365,3 +365,141 @@ fn overlapping_curve_planes_are_detected() {
     assert!(flagged > 0, "no overlap found on the sharp curve");
     assert!(sharp.cut.summary.flagged.overlap > 0);
 }
+
+/// Issue 35 item 5: a blade with a kerf cuts the design, not half a kerf into it. The
+/// facade job with `kerf: 2.0` (and, the same at its speed, a `kerf_table`) runs end to end
+/// into files; from `targets.json` alone every pose rebuilds the blade (the discrete
+/// elastica between its two end poses, the blade's length), each rebuilt blade is moved
+/// back by half the kerf along its in-plane normal (towards `−v`, the side kept), and
+/// every point of it inside its block lies within the job's tolerance of the exact design
+/// surface (the height field's expression, evaluated here). Not moved back, the blades lie
+/// about half a kerf above the design: the check sees the offset.
+#[test]
+fn kerf_offset_blades_leave_the_design_within_tolerance() {
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs/hot-blade-facade.ron"),
+    )
+    .unwrap();
+    let z = "60*sin(x/400)*cos(y/450) + 0.00004*y*y";
+    assert!(text.contains(z));
+    for (tag, kerf_fields, kerf) in [
+        ("width", "kerf: 2.0", 2.0),
+        // 7 mm/s is the task's default speed: halfway between 6 and 8 mm/s
+        ("table", "kerf_table: [(6, 2.4), (8, 1.6)]", 2.0),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let job = text
+            .replace(
+                "Blade(length: 800, max_curvature: 0.011, max_inflections: 2)",
+                &format!(
+                    "Blade(length: 800, max_curvature: 0.011, max_inflections: 2, {kerf_fields})"
+                ),
+            )
+            .replace(
+                "outputs: [Report, RobotTargets(per_block: 51), Rapid, Gltf, Obj, Svg, Csv, Html]",
+                "outputs: [Report, RobotTargets(per_block: 51)]",
+            );
+        let path = dir.path().join("kerf.ron");
+        std::fs::write(&path, job).unwrap();
+        let job = load_job(&path).unwrap_or_else(|e| panic!("{e:?}"));
+        let run = hotcut::run::run_job(&job, &dir.path().join("out"), &hotcut::NoProgress).unwrap();
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(run.dir.join("report.json")).unwrap())
+                .unwrap();
+        let k = &report["settings"]["kerf"];
+        assert!(
+            (k["kerf"].as_f64().unwrap() - kerf).abs() < 1e-12,
+            "{tag}: {k}"
+        );
+        assert!(
+            (k["offset"].as_f64().unwrap() - kerf / 2.0).abs() < 1e-12,
+            "{tag}: {k}"
+        );
+        let tolerance = report["settings"]["tolerance_max"].as_f64().unwrap();
+        let targets: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(run.dir.join("targets.json")).unwrap())
+                .unwrap();
+        let (back, raw) = kerf_distances(&targets, z, kerf / 2.0);
+        println!(
+            "kerf {tag}: moved back, the blades lie within {back:.3} mm of the design (tolerance {tolerance}); as written, {raw:.3} mm"
+        );
+        assert!(back <= tolerance, "{tag}: {back} > {tolerance}");
+        assert!(
+            raw > 0.8 * kerf / 2.0,
+            "{tag}: the blades are not off the design: {raw}"
+        );
+    }
+}
+
+/// The largest distance from the exact surface `z` of the blades rebuilt from `targets`,
+/// moved back by `offset` along their in-plane normal, over the points inside their
+/// blocks; and the same without moving them back.
+fn kerf_distances(targets: &serde_json::Value, z: &str, offset: f64) -> (f64, f64) {
+    let expr = geom::expr::Expr::parse(z).unwrap();
+    let length = targets["blade_length"].as_f64().unwrap();
+    let v3 = |v: &serde_json::Value| {
+        Vector3::new(
+            v[0].as_f64().unwrap(),
+            v[1].as_f64().unwrap(),
+            v[2].as_f64().unwrap(),
+        )
+    };
+    // distance of a point from the surface z = f(x, y): the vertical gap over the slope
+    let gap = |p: &Vector3<f64>| {
+        let h = 1e-3;
+        let (fx, fy) = (
+            (expr.eval(p.x + h, p.y) - expr.eval(p.x - h, p.y)) / (2.0 * h),
+            (expr.eval(p.x, p.y + h) - expr.eval(p.x, p.y - h)) / (2.0 * h),
+        );
+        (p.z - expr.eval(p.x, p.y)).abs() / (1.0 + fx * fx + fy * fy).sqrt()
+    };
+    let (mut back, mut raw) = (0.0f64, 0.0f64);
+    for b in targets["blocks"].as_array().unwrap() {
+        let origin = v3(&b["origin"]);
+        let r = &b["rotation"];
+        let q = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+            r[0].as_f64().unwrap(),
+            r[1].as_f64().unwrap(),
+            r[2].as_f64().unwrap(),
+            r[3].as_f64().unwrap(),
+        ));
+        // poses are in job coordinates; the block's frame says which points are inside it
+        for pose in b["poses"].as_array().unwrap() {
+            let n = v3(&pose["plane_normal"]);
+            let ends = pose["ends"].as_array().unwrap();
+            let p0 = v3(&ends[0]["position"]);
+            let p1 = v3(&ends[1]["position"]);
+            let (t0, t1) = (v3(&ends[0]["tangent"]), v3(&ends[1]["tangent"]));
+            let y = n.cross(&t0);
+            let to2 = |p: &Vector3<f64>| [(p - p0).dot(&t0), (p - p0).dot(&y)];
+            let blade = discrete_elastica(&DiscreteParams {
+                segments: 400,
+                start: [0.0, 0.0],
+                start_angle: 0.0,
+                end: to2(&p1),
+                end_angle: t1.dot(&y).atan2(t1.dot(&t0)),
+                length,
+                max_iterations: 1000,
+            })
+            .unwrap();
+            let pts: Vec<Vector3<f64>> = blade
+                .points
+                .iter()
+                .map(|c| p0 + t0 * c[0] + y * c[1])
+                .collect();
+            for i in 1..pts.len() - 1 {
+                let t = (pts[i + 1] - pts[i - 1]).normalize();
+                let left = n.cross(&t);
+                let moved = pts[i] - left * offset;
+                // inside the block: its local coordinates within the block's extent
+                let local = q.inverse() * (moved - origin);
+                if !(local.y >= 0.0 && local.y <= 600.0 && local.x >= 0.0 && local.x <= 600.0) {
+                    continue;
+                }
+                back = back.max(gap(&moved));
+                raw = raw.max(gap(&pts[i]));
+            }
+        }
+    }
+    (back, raw)
+}

@@ -138,6 +138,8 @@ fn with_defaults(job: &Job) -> Job {
         length: d::BLADE_LENGTH_MM * u,
         max_curvature: d::BLADE_MAX_CURVATURE_PER_MM / u,
         max_inflections: 2,
+        kerf: None,
+        kerf_table: None,
     });
     if let Some(w) = j.wire.as_mut() {
         w.speed.get_or_insert(d::WIRE_SPEED_MM_PER_MIN * u);
@@ -200,6 +202,11 @@ fn convert(job: &Job, base: &Path, units: Units, f: f64, dir: &Path) -> Job {
     if let Some(b) = j.blade.as_mut() {
         b.length *= f;
         b.max_curvature /= f;
+        b.kerf = b.kerf.map(|k| sc(k, f));
+        b.kerf_table = b
+            .kerf_table
+            .as_ref()
+            .map(|t| t.iter().map(|&(v, k)| (sc(v, f), sc(k, f))).collect());
     }
     if let Some(w) = j.wire.as_mut() {
         w.tower_distance *= f;

@@ -20,7 +20,7 @@ use crate::bezier::{wrap, Bezier};
 use crate::chain::g1_breaks;
 use crate::error::{DesignError, Result};
 use crate::loft::Loft;
-use crate::proxy::{proxy, Proxy};
+use crate::proxy::{proxy_offset, Proxy};
 use crate::spline::BSpline;
 
 /// Relative tolerance (to the cut's width) of a piece's end or a knot image on its face.
@@ -206,6 +206,9 @@ pub struct CutParams {
     pub blade: BladeParams,
     /// Cutting planes from the entry face to the exit face (≥ 2), equally spaced.
     pub planes: usize,
+    /// How far the blade's path lies off the design, along each curve's left normal
+    /// (`+v`, up: the side the blade removes): half its kerf. 0: on the design.
+    pub offset: f64,
 }
 
 /// One piece of a curve and its elastica.
@@ -213,6 +216,8 @@ pub struct CutParams {
 pub struct PieceResult {
     /// The design piece.
     pub design: Bezier,
+    /// How far the blade's path lies off it ([`CutParams::offset`]).
+    pub offset: f64,
     /// Its elastica and how close they are.
     pub proxy: Proxy,
     /// The elastica extended to the blade's length, with its checks.
@@ -261,13 +266,8 @@ impl CurveResult {
                     .collect()
             })
             .unwrap_or_default();
-        let length = p.design.length();
-        let design = (0..n)
-            .map(|i| {
-                p.design
-                    .point(p.design.at_length(length * i as f64 / (n - 1) as f64))
-            })
-            .collect();
+        // the design as the blade follows it (moved by the kerf's offset)
+        let design = crate::proxy::moved_samples(&p.design, p.offset, n).unwrap_or_default();
         (design, elastica)
     }
 }
@@ -305,13 +305,14 @@ fn solve_curve(curve: &DesignCurve, offset: f64, p: &CutParams) -> Result<CurveR
         .into_iter()
         .enumerate()
         .map(|(i, design)| {
-            let proxy = proxy(&design)
+            let proxy = proxy_offset(&design, p.offset)
                 .map_err(|e| DesignError::Invalid(format!("block {i} of the cut: {e}")))?;
             let blade = extend_to_blade(&proxy.elastica, &p.blade)
                 .map_err(|e| DesignError::Invalid(format!("block {i} of the cut: {e}")))?;
             let pose = blade_pose(&p.frame, offset, &blade);
             Ok(PieceResult {
                 design,
+                offset: p.offset,
                 proxy,
                 blade,
                 pose,

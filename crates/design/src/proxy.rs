@@ -107,7 +107,22 @@ pub fn affine_curvature_residual(rows: &[([f64; 2], f64)], length: f64) -> f64 {
 /// [`DesignError::Invalid`] for a degenerate Bézier (collapsed, straight); the errors of
 /// [`solve`].
 pub fn proxy(b: &Bezier) -> Result<Proxy> {
-    let d = end_data(b)?;
+    proxy_offset(b, 0.0)
+}
+
+/// The Bézier `b` moved `offset` along its left normal (towards `+v` for a curve running
+/// across the cut: the blade's path half a kerf off the design), against the elastica with
+/// that curve's end points, end tangents (the design's) and length (`L − offset·Δθ`, `Δθ`
+/// the design's turning). Deviations are measured between the moved design and the
+/// elastica at equal arc length of the moved design. `offset = 0` is [`proxy`].
+///
+/// # Errors
+/// As [`proxy`]; [`DesignError::Invalid`] where the design bends tighter than the offset
+/// allows (`offset · κ ≥ 1/2`).
+pub fn proxy_offset(b: &Bezier, offset: f64) -> Result<Proxy> {
+    let design = end_data(b)?;
+    let moved = Moved::new(b, offset)?;
+    let d = moved.end_data(&design);
     let sol = solve(&d)?;
     let e = sol
         .segment
@@ -116,7 +131,7 @@ pub fn proxy(b: &Bezier) -> Result<Proxy> {
     let (mut max, mut ss) = (0.0f64, 0.0);
     for i in 0..=SAMPLES {
         let w = i as f64 / SAMPLES as f64;
-        let p = b.point(b.at_length(d.length * w));
+        let p = moved.point_at_length(b, d.length * w);
         let q = e.eval(w).p;
         let dist = (p[0] - q[0]).hypot(p[1] - q[1]);
         max = max.max(dist);
@@ -151,4 +166,116 @@ pub fn proxy(b: &Bezier) -> Result<Proxy> {
         polygon_angles_deg: b.polygon_angles().map(f64::to_degrees),
         discrete_distance: sol.discrete_distance,
     })
+}
+
+/// `n ≥ 2` points of `b` moved `offset` along its left normal, at equal fractions of the
+/// moved curve's arc length (the design as the blade must follow it).
+///
+/// # Errors
+/// As [`proxy_offset`].
+pub fn moved_samples(b: &Bezier, offset: f64, n: usize) -> Result<Vec<[f64; 2]>> {
+    let moved = Moved::new(b, offset)?;
+    let design = end_data(b)?;
+    let length = moved.end_data(&design).length;
+    let n = n.max(2);
+    Ok((0..n)
+        .map(|i| moved.point_at_length(b, length * i as f64 / (n - 1) as f64))
+        .collect())
+}
+
+/// A Bézier moved along its left normal: its points, and the map from the moved curve's
+/// arc length back to the Bézier's parameter (a table of Gauss–Legendre integrals of
+/// `|b'|·(1 − offset·κ)`).
+struct Moved {
+    offset: f64,
+    /// `(t, arc length of the moved curve to t)` at `MOVED_STEPS + 1` even `t`.
+    table: Vec<(f64, f64)>,
+}
+
+/// Steps of the moved curve's arc-length table.
+const MOVED_STEPS: usize = 4 * SAMPLES;
+
+impl Moved {
+    fn new(b: &Bezier, offset: f64) -> Result<Self> {
+        if offset == 0.0 {
+            return Ok(Self {
+                offset,
+                table: Vec::new(),
+            });
+        }
+        let speed = |t: f64| {
+            let v = b.d1(t);
+            v[0].hypot(v[1]) * (1.0 - offset * b.curvature(t))
+        };
+        let mut table = Vec::with_capacity(MOVED_STEPS + 1);
+        let mut s = 0.0;
+        table.push((0.0, 0.0));
+        let h = 1.0 / MOVED_STEPS as f64;
+        for i in 0..MOVED_STEPS {
+            let t0 = i as f64 * h;
+            let mid = t0 + 0.5 * h;
+            s += 0.5
+                * h
+                * crate::bezier::GAUSS
+                    .iter()
+                    .map(|(x, w)| w * speed(mid + 0.5 * h * x))
+                    .sum::<f64>();
+            table.push((t0 + h, s));
+        }
+        for i in 0..=MOVED_STEPS {
+            let t = i as f64 * h;
+            if !(offset * b.curvature(t) < 0.5) {
+                return Err(DesignError::Invalid(format!(
+                    "a blade path {offset} off the design is too far where it bends with radius {:.6} (at {:?}): the kerf must be less than the radius",
+                    1.0 / b.curvature(t).abs(),
+                    b.point(t)
+                )));
+            }
+        }
+        Ok(Self { offset, table })
+    }
+
+    /// The moved curve's end data: the design's ends moved, its tangents, its length.
+    fn end_data(&self, design: &EndData) -> EndData {
+        if self.offset == 0.0 {
+            return *design;
+        }
+        let normal = |a: f64| [-a.sin(), a.cos()];
+        let (n0, n1) = (normal(design.start_angle), normal(design.end_angle));
+        EndData {
+            start: [
+                design.start[0] + self.offset * n0[0],
+                design.start[1] + self.offset * n0[1],
+            ],
+            end: [
+                design.end[0] + self.offset * n1[0],
+                design.end[1] + self.offset * n1[1],
+            ],
+            length: self.table.last().map_or(design.length, |l| l.1),
+            ..*design
+        }
+    }
+
+    /// The moved curve's point at its arc length `s`.
+    fn point_at_length(&self, b: &Bezier, s: f64) -> [f64; 2] {
+        if self.offset == 0.0 {
+            return b.point(b.at_length(s));
+        }
+        let i = self
+            .table
+            .partition_point(|&(_, l)| l < s)
+            .clamp(1, self.table.len() - 1);
+        let ((t0, s0), (t1, s1)) = (self.table[i - 1], self.table[i]);
+        let t = if s1 > s0 {
+            t0 + (t1 - t0) * ((s - s0) / (s1 - s0)).clamp(0.0, 1.0)
+        } else {
+            t0
+        };
+        let (p, v) = (b.point(t), b.d1(t));
+        let speed = v[0].hypot(v[1]);
+        [
+            p[0] - self.offset * v[1] / speed,
+            p[1] + self.offset * v[0] / speed,
+        ]
+    }
 }

@@ -47,6 +47,7 @@ fn params(stations: Vec<Station>, planes: usize) -> CutParams {
         stations,
         blade: BladeParams::new(1500.0),
         planes,
+        offset: 0.0,
     }
 }
 

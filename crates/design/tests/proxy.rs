@@ -105,3 +105,51 @@ proptest! {
         prop_assert_eq!(q.inflections, p.inflections);
     }
 }
+
+/// Issue 35 item 5 (the `Design` task's kerf): the elastica of a Bézier moved half a kerf
+/// along its left normal starts and ends half a kerf off the Bézier's ends along their
+/// normals, with the Bézier's tangents and the moved length `L − d·Δθ`; moved back by the
+/// same distance (along the elastica's own normal), it lies within the proxy's deviation
+/// of the Bézier, measured here by nearest points. Offsets both ways, 1 % of the chord.
+#[test]
+fn a_moved_bezier_has_the_moved_elastica() {
+    use design::proxy::proxy_offset;
+    for b in family().into_iter().step_by(3) {
+        let plain = proxy(&b).unwrap();
+        for d in [0.01, -0.01] {
+            let p = proxy_offset(&b, d).unwrap();
+            check(&p);
+            let e = p.elastica.evaluator().unwrap();
+            let (a0, a1) = (b.start_angle().unwrap(), b.end_angle_unwrapped().unwrap());
+            let (s, z) = (e.eval(0.0), e.eval(1.0));
+            let want0 = [b.p[0][0] - d * a0.sin(), b.p[0][1] + d * a0.cos()];
+            let want1 = [b.p[3][0] - d * a1.sin(), b.p[3][1] + d * a1.cos()];
+            assert!(
+                (s.p[0] - want0[0]).hypot(s.p[1] - want0[1]) <= 1e-9,
+                "{b:?} {d}"
+            );
+            assert!(
+                (z.p[0] - want1[0]).hypot(z.p[1] - want1[1]) <= 1e-9,
+                "{b:?} {d}"
+            );
+            assert!((p.length - (plain.length - d * (a1 - a0))).abs() <= 1e-6 * plain.length);
+            // back onto the design: within the proxy's own deviation (+ sampling)
+            let design: Vec<[f64; 2]> = (0..=2000).map(|i| b.point(i as f64 / 2000.0)).collect();
+            let mut worst = 0.0f64;
+            for i in 0..=400 {
+                let q = e.eval(i as f64 / 400.0);
+                let back = [q.p[0] + d * q.tangent[1], q.p[1] - d * q.tangent[0]];
+                let near = design
+                    .iter()
+                    .map(|c| (c[0] - back[0]).hypot(c[1] - back[1]))
+                    .fold(f64::INFINITY, f64::min);
+                worst = worst.max(near);
+            }
+            assert!(
+                worst <= p.max_deviation + 2e-3 * plain.length,
+                "{b:?} {d}: {worst} vs {}",
+                p.max_deviation
+            );
+        }
+    }
+}

@@ -180,12 +180,11 @@ impl PreparedSection {
         params: &CurveAnalysisParams,
     ) -> Result<Self, SegError> {
         let exact;
-        let params = match curve {
-            SectionCurve::Graph(_) => {
-                exact = params.for_exact();
-                &exact
-            }
-            SectionCurve::Spline(_) => params,
+        let params = if curve.is_exact() {
+            exact = params.for_exact();
+            &exact
+        } else {
+            params
         };
         let analysis = analyze_curve(&curve, params).map_err(|e| SegError::Section {
             index,

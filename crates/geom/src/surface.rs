@@ -46,6 +46,10 @@ pub struct SectionParams {
     pub smoothing: SmoothingParams,
     /// Parameter samples per side when slicing a B-spline surface.
     pub spline_grid: usize,
+    /// Every section curve moved this far along its left normal, towards `+v` (up, for a
+    /// horizontal cutting direction): a hot blade's path half its kerf off the design, on
+    /// the side it removes. 0 leaves the sections as they are.
+    pub offset: f64,
 }
 
 impl Default for SectionParams {
@@ -55,6 +59,7 @@ impl Default for SectionParams {
             count: 26,
             smoothing: SmoothingParams::default(),
             spline_grid: 200,
+            offset: 0.0,
         }
     }
 }
@@ -66,6 +71,20 @@ pub enum SectionCurve {
     Graph(GraphCurve),
     /// Smoothing spline through a polyline section.
     Spline(SplineCurve2),
+    /// Another section curve moved along its left normal ([`SectionParams::offset`]).
+    Offset(Box<OffsetCurve<SectionCurve>>),
+}
+
+impl SectionCurve {
+    /// Whether the curve is exact (a height field's section, or its offset) rather than
+    /// fitted to points.
+    pub fn is_exact(&self) -> bool {
+        match self {
+            Self::Graph(_) => true,
+            Self::Spline(_) => false,
+            Self::Offset(o) => o.base.is_exact(),
+        }
+    }
 }
 
 impl PlanarCurve for SectionCurve {
@@ -73,14 +92,94 @@ impl PlanarCurve for SectionCurve {
         match self {
             Self::Graph(g) => g.domain(),
             Self::Spline(s) => s.domain(),
+            Self::Offset(o) => o.domain(),
         }
     }
     fn jet(&self, t: f64) -> Jet2 {
         match self {
             Self::Graph(g) => g.jet(t),
             Self::Spline(s) => s.jet(t),
+            Self::Offset(o) => o.jet(t),
         }
     }
+}
+
+/// A planar curve moved by `distance` along its left unit normal `n` (`+90°` from the
+/// tangent): `q = p + d·n`, so `q' = (1 − dκ)·p'` and its curvature is `κ / (1 − dκ)`, of
+/// the same sign while `dκ < 1` (the offset has no cusp). `q''` is exact across the
+/// tangent (what curvature needs); along it, the derivative of `κ` is a central
+/// difference (it only sets how the speed changes).
+#[derive(Debug, Clone)]
+pub struct OffsetCurve<C> {
+    /// The curve moved.
+    pub base: C,
+    /// How far, along the left normal (negative: to the right).
+    pub distance: f64,
+}
+
+impl<C: PlanarCurve> PlanarCurve for OffsetCurve<C> {
+    fn domain(&self) -> (f64, f64) {
+        self.base.domain()
+    }
+    fn jet(&self, t: f64) -> Jet2 {
+        let j = self.base.jet(t);
+        let speed = j.d1.norm();
+        if !(speed > 0.0) {
+            return j;
+        }
+        let d = self.distance;
+        let n = Vector2::new(-j.d1.y, j.d1.x) / speed;
+        let k = crate::planar::signed_curvature(&j);
+        let (a, b) = self.base.domain();
+        let h = 1e-6 * (b - a);
+        let (t0, t1) = ((t - h).max(a), (t + h).min(b));
+        let kt = if t1 > t0 {
+            (crate::planar::signed_curvature(&self.base.jet(t1))
+                - crate::planar::signed_curvature(&self.base.jet(t0)))
+                / (t1 - t0)
+        } else {
+            0.0
+        };
+        let f = 1.0 - d * k;
+        Jet2 {
+            p: j.p + n * d,
+            d1: j.d1 * f,
+            d2: j.d2 * f - j.d1 * (d * kt),
+        }
+    }
+}
+
+/// Samples per section at which an offset is checked against the curvature.
+const OFFSET_CHECK_SAMPLES: usize = 2048;
+
+/// `section` with its curve moved by `offset` along the left normal, or an error where the
+/// design bends tighter than the offset allows (`offset · κ ≥ 1/2`: the offset curve would
+/// come within a factor of two of a cusp).
+fn offset_section(mut section: Section, offset: f64, frame: &PlaneFrame) -> Result<Section> {
+    if offset == 0.0 {
+        return Ok(section);
+    }
+    let (a, b) = section.curve.domain();
+    for i in 0..=OFFSET_CHECK_SAMPLES {
+        let t = a + (b - a) * i as f64 / OFFSET_CHECK_SAMPLES as f64;
+        let j = section.curve.jet(t);
+        let k = crate::planar::signed_curvature(&j);
+        if !(offset * k < 0.5) {
+            let p = frame.to_world(section.offset, &j.p);
+            return Err(GeomError::InvalidDomain(format!(
+                "an offset of {offset} is too wide where the section bends with radius {:.6} (at ({:.6}, {:.6}, {:.6})): at most half the radius",
+                1.0 / k.abs(),
+                p.x,
+                p.y,
+                p.z
+            )));
+        }
+    }
+    section.curve = SectionCurve::Offset(Box::new(OffsetCurve {
+        base: section.curve,
+        distance: offset,
+    }));
+    Ok(section)
 }
 
 /// One connected piece of the surface's section by one plane.
@@ -276,7 +375,12 @@ impl Surface {
                     }
                 };
                 progress();
-                r
+                r.and_then(|pieces: Vec<Section>| {
+                    pieces
+                        .into_iter()
+                        .map(|s| offset_section(s, params.offset, &frame))
+                        .collect()
+                })
             })
             .collect();
         let mut out = Vec::new();

@@ -36,6 +36,48 @@ pub fn blade_of(spec: Option<&BladeSpec>, units: Units) -> BladeLimits {
     }
 }
 
+/// The hot blade's kerf as the job gives it: a width, a table by speed, or none.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Kerf {
+    /// The width, when given as one.
+    pub width: Option<f64>,
+    /// `(speed, kerf)` rows, when given as a table.
+    pub table: Vec<(f64, f64)>,
+}
+
+impl Kerf {
+    /// The blade's kerf of `spec`.
+    pub fn of(spec: Option<&BladeSpec>) -> Self {
+        Self {
+            width: spec.and_then(|b| b.kerf),
+            table: spec.and_then(|b| b.kerf_table.clone()).unwrap_or_default(),
+        }
+    }
+
+    /// Whether the job gives a kerf.
+    pub fn given(&self) -> bool {
+        self.width.is_some() || !self.table.is_empty()
+    }
+
+    /// The kerf at blade speed `speed` (0 without one).
+    pub fn at(&self, speed: f64) -> f64 {
+        ruled::wire::kerf_from_table(&self.table, speed).unwrap_or(self.width.unwrap_or(0.0))
+    }
+
+    /// What a report says of the kerf at `speed`, `None` without one.
+    pub fn report(&self, speed: f64) -> Option<crate::report::KerfReport> {
+        self.given().then(|| {
+            let kerf = self.at(speed);
+            crate::report::KerfReport {
+                kerf,
+                offset: 0.5 * kerf,
+                speed,
+                from_table: !self.table.is_empty(),
+            }
+        })
+    }
+}
+
 /// A job's common fields, resolved: what every task's run gets.
 #[derive(Debug, Clone)]
 pub struct Context {
@@ -53,6 +95,8 @@ pub struct Context {
     pub block: Option<BlockSpec>,
     /// Blade constraints (defaults applied, in job units).
     pub blade: BladeLimits,
+    /// The blade's kerf, as written.
+    pub kerf: Kerf,
     /// The hot-wire machine, as written.
     pub wire: Option<WireSpec>,
     /// The robot cell, as written.
@@ -94,6 +138,7 @@ impl Context {
                 chordal: false,
             },
             spline_grid: 200,
+            offset: 0.0,
         }
     }
 
@@ -213,6 +258,72 @@ impl JobFields<'_> {
                 None => (format!("{ptr}/{field}"), format!("{field} {message}")),
             };
             errors.push(self.error(&at, message));
+        }
+    }
+
+    /// Checks the blade's `kerf` and `kerf_table` (a task that cuts with the blade calls
+    /// it): a width ≥ 0, or a table of 1–64 rows with speeds > 0 strictly increasing and
+    /// kerfs ≥ 0, not both; and half of every kerf at most half the radius of the blade's
+    /// tightest bend (`kerf · max_curvature < 1`: the moved design has no cusp where the
+    /// blade can bend at all).
+    pub fn check_kerf(&self, errors: &mut Vec<JobError>) {
+        let Some(b) = self.blade else {
+            return;
+        };
+        let kerfs: Vec<f64> = match (b.kerf, &b.kerf_table) {
+            (Some(_), Some(_)) => {
+                errors.push(self.error(
+                    "/blade/kerf",
+                    "give kerf or kerf_table, not both (the table sets the kerf at every speed)",
+                ));
+                return;
+            }
+            (Some(k), None) => vec![k],
+            (None, Some(t)) => {
+                if t.is_empty() || t.len() > 64 {
+                    errors.push(self.error(
+                        "/blade/kerf_table",
+                        format!("kerf_table needs 1–64 rows, got {}", t.len()),
+                    ));
+                    return;
+                }
+                for (i, w) in t.windows(2).enumerate() {
+                    if !(w[1].0 > w[0].0) {
+                        errors.push(self.error(
+                            &format!("/blade/kerf_table/{}/0", i + 1),
+                            "speeds must increase strictly",
+                        ));
+                    }
+                }
+                for (i, &(v, _)) in t.iter().enumerate() {
+                    if !(v > 0.0 && v.is_finite()) {
+                        errors.push(self.error(
+                            &format!("/blade/kerf_table/{i}/0"),
+                            format!("a speed must be a positive number, got {v:?}"),
+                        ));
+                    }
+                }
+                t.iter().map(|r| r.1).collect()
+            }
+            (None, None) => return,
+        };
+        for k in kerfs {
+            let ptr = if b.kerf.is_some() {
+                "/blade/kerf"
+            } else {
+                "/blade/kerf_table"
+            };
+            if !(k >= 0.0 && k.is_finite()) {
+                errors.push(self.error(ptr, format!("a kerf must be a number ≥ 0, got {k:?}")));
+            } else if !(k * b.max_curvature < 1.0) {
+                errors.push(self.error(
+                    ptr,
+                    format!(
+                        "a kerf of {k} is wider than the blade's tightest bend allows (radius {}): moving the design half of it would fold it; check the kerf's unit",
+                        1.0 / b.max_curvature
+                    ),
+                ));
+            }
         }
     }
 

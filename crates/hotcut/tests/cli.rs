@@ -777,3 +777,29 @@ fn bad_numerical_spline_settings_are_rejected_naming_the_field() {
         common::expect_invalid_with(&job(method), &[("c.json", curves)], needles);
     }
 }
+
+/// Issue 35 item 5: a bad blade kerf is refused before anything runs, naming the field.
+#[test]
+fn bad_blade_kerfs_are_rejected_naming_the_field() {
+    let job = |blade: &str| {
+        format!(
+            "Job(name: \"t\", surface: HeightField(z: \"20*sin(y/300)\", x: (0, 600), y: (0, 1200)), block: Block(size: (600, 600, 400)), blade: Blade(length: 1000, max_curvature: 0.011, {blade}), task: HotBlade(targets_per_block: 5), outputs: [Report])"
+        )
+    };
+    for (blade, needles) in [
+        ("kerf: -1", &["/blade/kerf", "≥ 0"][..]),
+        ("kerf: 200", &["/blade/kerf", "wider than the blade's tightest bend"][..]),
+        (
+            "kerf: 2, kerf_table: [(5, 2)]",
+            &["/blade/kerf", "not both"][..],
+        ),
+        ("kerf_table: []", &["/blade/kerf_table", "1–64 rows"][..]),
+        (
+            "kerf_table: [(8, 2), (6, 1)]",
+            &["/blade/kerf_table/1/0", "increase strictly"][..],
+        ),
+        ("kerf_table: [(0, 2)]", &["/blade/kerf_table/0/0", "positive"][..]),
+    ] {
+        common::expect_invalid(&job(blade), needles);
+    }
+}

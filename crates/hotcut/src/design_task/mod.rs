@@ -100,6 +100,8 @@ pub struct DesignParams {
     pub blade: BladeParams,
     /// Cutting speed and approach distance of the robot programs.
     pub motion: Motion,
+    /// How far the blade's path lies off the design (half the kerf), towards `+v`.
+    pub offset: f64,
 }
 
 /// What a `Design` run produced.
@@ -211,6 +213,7 @@ impl Task for Design {
             ));
         }
         job.check_motion(PTR, self.speed, self.approach, errors);
+        job.check_kerf(errors);
         robot_cell::check(job, (PTR, self.speed, self.approach), errors);
         if self.resolution == Resolution::Design {
             for (i, o) in job.outputs.iter().enumerate() {
@@ -237,7 +240,9 @@ impl Task for Design {
         let base = job.path.parent().unwrap_or(std::path::Path::new("."));
         let (planes, points) = self.resolution.density();
         let per_mm = job.per_mm();
+        let speed = self.speed.unwrap_or(BLADE_SPEED_MM_PER_S * per_mm);
         Ok(DesignParams {
+            offset: 0.5 * job.kerf.at(speed),
             file: (base.join(&self.design), self.design.clone()),
             resolution: self.resolution,
             planes,
@@ -249,7 +254,7 @@ impl Task for Design {
                 max_inflections: Some(job.blade.max_inflections as usize),
             },
             motion: Motion {
-                speed: self.speed.unwrap_or(BLADE_SPEED_MM_PER_S * per_mm),
+                speed,
                 approach: self.approach.unwrap_or(APPROACH_MM * per_mm),
             },
         })
@@ -297,6 +302,7 @@ impl Task for Design {
                     stations: r.stations.clone(),
                     blade: params.blade.clone(),
                     planes: params.planes,
+                    offset: params.offset,
                 };
                 design::cut::solve(&cp, &tick)
                     .map(|res| (r, res))
@@ -364,6 +370,7 @@ impl Task for Design {
                 max_inflections: job.blade.max_inflections,
                 speed: params.motion.speed,
                 approach: params.motion.approach,
+                kerf: job.kerf.report(params.motion.speed),
             },
             blocks: run
                 .blocks

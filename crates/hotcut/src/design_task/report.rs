@@ -60,6 +60,9 @@ pub struct DesignSettings {
     pub speed: f64,
     /// Approach and retreat distance along the cut.
     pub approach: f64,
+    /// The blade's kerf the run compensated for (absent without `kerf`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kerf: Option<crate::report::KerfReport>,
 }
 
 /// A block.

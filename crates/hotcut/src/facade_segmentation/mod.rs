@@ -216,6 +216,7 @@ impl Task for FacadeSegmentation {
             errors.push(job.error(&format!("{PTR}/constraint"), "a piece's fits keep its parts' end points so that neighbouring pieces meet: use EndPoints or EndPointsAndLength"));
         }
         job.check_motion(PTR, self.speed, self.approach, errors);
+        job.check_kerf(errors);
         robot_cell::check(job, (PTR, self.speed, self.approach), errors);
         if job.blade.is_some_and(|b| b.max_inflections == 0) {
             errors.push(job.error("/blade/max_inflections", "FacadeSegmentation needs max_inflections ≥ 1: parts meet between inflections, never exactly on one, so a section with an inflection cannot be split into parts without any"));
@@ -241,13 +242,14 @@ impl Task for FacadeSegmentation {
     fn params(&self, job: &Context) -> Result<SegmentationParams> {
         let block = job.block(Self::NAME)?;
         let per_mm = job.per_mm();
+        let speed = self.speed.unwrap_or(BLADE_SPEED_MM_PER_S * per_mm);
         Ok(SegmentationParams {
             algorithm: self.algorithm.clone(),
             samples: self.samples as usize,
             rationalize: self.rationalize,
             constraint: self.constraint,
             motion: Motion {
-                speed: self.speed.unwrap_or(BLADE_SPEED_MM_PER_S * per_mm),
+                speed,
                 approach: self.approach.unwrap_or(APPROACH_MM * per_mm),
             },
             constraints: Constraints {
@@ -259,7 +261,11 @@ impl Task for FacadeSegmentation {
                 tolerance_max: job.tolerance.max,
             },
             blade: job.blade,
-            sectioning: job.sectioning(),
+            // the blade's path: the design moved half the kerf towards the removed side
+            sectioning: SectionParams {
+                offset: 0.5 * job.kerf.at(speed),
+                ..job.sectioning()
+            },
             analysis: geom::analysis::CurveAnalysisParams {
                 bisection_tolerance: job.tolerance.bisection,
                 min_lobe_turning: job.tolerance.min_turning,
@@ -375,6 +381,7 @@ impl Task for FacadeSegmentation {
                 constraint: params.constraint,
                 speed: params.motion.speed,
                 approach: params.motion.approach,
+                kerf: job.kerf.report(params.motion.speed),
             },
             counts: pieces.counts,
             pieces: pieces.pieces,

@@ -68,4 +68,7 @@ pub struct SegmentationSettings {
     pub speed: f64,
     /// Approach and retreat distance.
     pub approach: f64,
+    /// The blade's kerf the run compensated for (absent without `kerf`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kerf: Option<crate::report::KerfReport>,
 }

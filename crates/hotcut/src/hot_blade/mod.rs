@@ -159,6 +159,7 @@ impl Task for HotBlade {
             errors.push(job.error(&format!("{PTR}/constraint"), "HotBlade fits keep the sections' end points so that neighbouring blocks meet: use EndPoints or EndPointsAndLength"));
         }
         job.check_motion(PTR, self.speed, self.approach, errors);
+        job.check_kerf(errors);
         robot_cell::check(job, (PTR, self.speed, self.approach), errors);
         // the pipeline's own checks of these fields and of the cutting curve
         let pipeline = hotblade::Params {
@@ -208,6 +209,7 @@ impl Task for HotBlade {
     fn params(&self, job: &Context) -> Result<HotBladeParams> {
         let block = job.block(Self::NAME)?;
         let per_mm = job.per_mm();
+        let speed = self.speed.unwrap_or(BLADE_SPEED_MM_PER_S * per_mm);
         Ok(HotBladeParams {
             pipeline: hotblade::Params {
                 block: [block.size.0, block.size.1, block.size.2],
@@ -217,13 +219,17 @@ impl Task for HotBlade {
                 blade: job.blade,
                 tolerance_rms: job.tolerance.rms,
                 tolerance_max: job.tolerance.max,
-                sectioning: job.sectioning(),
+                // the blade's path: the design moved half the kerf towards the removed side
+                sectioning: geom::surface::SectionParams {
+                    offset: 0.5 * job.kerf.at(speed),
+                    ..job.sectioning()
+                },
                 ..self.pipeline_fields()
             },
             constraint: self.constraint,
             continuity: self.continuity,
             motion: Motion {
-                speed: self.speed.unwrap_or(BLADE_SPEED_MM_PER_S * per_mm),
+                speed,
                 approach: self.approach.unwrap_or(APPROACH_MM * per_mm),
             },
         })
@@ -338,6 +344,7 @@ impl Task for HotBlade {
                 max_plane_angle: p.max_plane_angle,
                 speed: params.motion.speed,
                 approach: params.motion.approach,
+                kerf: job.kerf.report(params.motion.speed),
             },
             grid: cut.grid.info(),
             summary: cut.summary.clone(),

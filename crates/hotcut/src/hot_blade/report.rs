@@ -74,4 +74,7 @@ pub struct HotBladeSettings {
     pub speed: f64,
     /// Approach and retreat distance along the cut.
     pub approach: f64,
+    /// The blade's kerf the run compensated for (absent without `kerf`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kerf: Option<crate::report::KerfReport>,
 }

@@ -137,6 +137,7 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
         job_file: None,
         path: path.to_path_buf(),
         blade: blade_of(job.blade.as_ref(), job.units),
+        kerf: crate::context::Kerf::of(job.blade.as_ref()),
         name: job.name,
         units: job.units,
         surface,

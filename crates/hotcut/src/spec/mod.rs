@@ -116,6 +116,19 @@ pub struct BladeSpec {
     /// Most inflection points a blade shape may have. Default: 2 (thesis §5.1.3).
     #[serde(default = "default_max_inflections")]
     pub max_inflections: u32,
+    /// The width the heated blade melts (≥ 0, job units; thesis §5.1.5: "compensate for
+    /// the width of the blade"). `HotBlade`, `FacadeSegmentation` and `Design` then fit
+    /// the blade to the design moved half of it towards the material they remove (up,
+    /// the side the design's normal points to), so the surface left is the design. Default:
+    /// none (the blade's centre line on the design).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kerf: Option<f64>,
+    /// Kerf by blade speed, `[(speed, kerf), ..]`: speeds (job units per second) strictly
+    /// increasing, at most 64 rows; the task's cutting speed picks the kerf, interpolated
+    /// linearly and held beyond the table's ends (a slower blade melts wider). Default:
+    /// none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kerf_table: Option<Vec<(f64, f64)>>,
 }
 
 fn default_max_inflections() -> u32 {

@@ -56,22 +56,24 @@ pub struct WireParams {
 impl WireParams {
     /// The kerf at wire speed `v` (job units per minute).
     pub fn kerf_at(&self, v: f64) -> f64 {
-        let t = &self.kerf_table;
-        match (t.first(), t.last()) {
-            (Some(&(v0, k0)), Some(&(v1, k1))) => {
-                if v <= v0 {
-                    k0
-                } else if v >= v1 {
-                    k1
-                } else {
-                    let i = t.partition_point(|&(s, _)| s <= v).clamp(1, t.len() - 1);
-                    let ((s0, c0), (s1, c1)) = (t[i - 1], t[i]);
-                    c0 + (c1 - c0) * (v - s0) / (s1 - s0)
-                }
-            }
-            _ => self.kerf,
-        }
+        kerf_from_table(&self.kerf_table, v).unwrap_or(self.kerf)
     }
+}
+
+/// The kerf at speed `v` from `(speed, kerf)` rows with speeds increasing: interpolated
+/// linearly, held beyond the table's ends; `None` for an empty table. (A hot wire's and a
+/// hot blade's kerf alike: a slower tool melts wider.)
+pub fn kerf_from_table(t: &[(f64, f64)], v: f64) -> Option<f64> {
+    let (&(v0, k0), &(v1, k1)) = (t.first()?, t.last()?);
+    Some(if v <= v0 {
+        k0
+    } else if v >= v1 {
+        k1
+    } else {
+        let i = t.partition_point(|&(s, _)| s <= v).clamp(1, t.len() - 1);
+        let ((s0, c0), (s1, c1)) = (t[i - 1], t[i]);
+        c0 + (c1 - c0) * (v - s0) / (s1 - s0)
+    })
 }
 
 /// One wire position: the two tower points (machine coordinates, mm) and the 3D points
