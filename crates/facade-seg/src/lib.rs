@@ -56,6 +56,8 @@ pub mod longest;
 pub mod piece;
 /// Rationalizing a piece: its parts fitted by elastica, extended to the blade, posed.
 pub mod rationalize;
+/// Refinement after any algorithm: failing pieces split until they hold or cannot shrink.
+pub mod refine;
 /// What a run reports per piece (blade fits folded into the verdicts), and the counts.
 pub mod report;
 /// Sections prepared for segmentation: arc length, inflections, sampling.

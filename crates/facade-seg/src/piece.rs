@@ -115,6 +115,40 @@ pub fn pieces_from_bands(
 ) -> Vec<Piece> {
     let rows = rows_of(facade, c);
     let n_rows = rows.iter().copied().max().map_or(0, |r| r + 1);
+    let mut pieces = Vec::new();
+    for (b, band) in bands.iter().enumerate() {
+        for row in 0..n_rows {
+            let ranges: Vec<(usize, f64, f64)> = band
+                .iter()
+                .enumerate()
+                .filter(|(j, r)| rows[*j] == row && r.is_some_and(|(s0, s1)| s1 > s0))
+                .map(|(j, r)| {
+                    let (s0, s1) = r.unwrap_or_default();
+                    (j, s0, s1)
+                })
+                .collect();
+            if let Some(piece) =
+                piece_of(facade, c, (pieces.len() + 1, row, b), &ranges, fit, samples)
+            {
+                pieces.push(piece);
+            }
+        }
+    }
+    pieces
+}
+
+/// The piece `(id, row, band)` holding the part `[s0, s1]` of every facade section `j` in
+/// `ranges` (all of one row): its parts measured on `samples` points (fitted with `fit`),
+/// its block, its verdicts. `None` for no part.
+pub fn piece_of(
+    facade: &Facade,
+    c: &Constraints,
+    (id, row, band): (usize, usize, usize),
+    ranges: &[(usize, f64, f64)],
+    fit: bool,
+    samples: usize,
+) -> Option<Piece> {
+    let rows = rows_of(facade, c);
     let first = facade.sections[0].offset - 0.5 * facade.spacing();
     // each row's slab along the cut (rows are numbered densely, slabs may skip)
     let slab = slabs(facade, c);
@@ -123,83 +157,69 @@ pub fn pieces_from_bands(
             .position(|&r| r == row)
             .map_or(row as f64, |j| slab[j])
     };
-    let mut pieces = Vec::new();
-    for (b, band) in bands.iter().enumerate() {
-        for row in 0..n_rows {
-            let parts: Vec<PiecePart> = band
-                .iter()
-                .enumerate()
-                .filter(|(j, r)| rows[*j] == row && r.is_some_and(|(s0, s1)| s1 > s0))
-                .map(|(j, r)| {
-                    let (s0, s1) = r.unwrap_or_default();
-                    let sec = &facade.sections[j];
-                    PiecePart {
-                        plane: sec.index,
-                        offset: sec.offset,
-                        s: [s0, s1],
-                        start: arr(&facade.world(j, s0)),
-                        end: arr(&facade.world(j, s1)),
-                        check: PartCheck::of(sec, s0, s1, samples, fit),
-                    }
-                })
-                .collect();
-            if parts.is_empty() {
-                continue;
+    let parts: Vec<PiecePart> = ranges
+        .iter()
+        .map(|&(j, s0, s1)| {
+            let sec = &facade.sections[j];
+            PiecePart {
+                plane: sec.index,
+                offset: sec.offset,
+                s: [s0, s1],
+                start: arr(&facade.world(j, s0)),
+                end: arr(&facade.world(j, s1)),
+                check: PartCheck::of(sec, s0, s1, samples, fit),
             }
-            // extents in plane coordinates (u, v) over all parts
-            let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-            for p in &parts {
-                let j = facade
-                    .sections
-                    .iter()
-                    .position(|s| s.index == p.plane)
-                    .unwrap_or(0);
-                let (pts, _) = facade.sections[j].samples(p.s[0], p.s[1], samples);
-                for q in pts {
-                    for k in 0..2 {
-                        lo[k] = lo[k].min(q[k]);
-                        hi[k] = hi[k].max(q[k]);
-                    }
-                }
+        })
+        .collect();
+    if parts.is_empty() {
+        return None;
+    }
+    // extents in plane coordinates (u, v) over all parts
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for &(j, s0, s1) in ranges {
+        let (pts, _) = facade.sections[j].samples(s0, s1, samples);
+        for q in pts {
+            for k in 0..2 {
+                lo[k] = lo[k].min(q[k]);
+                hi[k] = hi[k].max(q[k]);
             }
-            let d0 = first + slab_of_row(row) * c.block[0];
-            let (d_lo, d_hi) = parts
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
-                    (a.0.min(p.offset), a.1.max(p.offset))
-                });
-            let used = [d_hi - d_lo, hi[0] - lo[0], hi[1] - lo[1]];
-            let f = &facade.frame;
-            let origin = f.normal * d0 + f.u * lo[0] + f.v * lo[1];
-            let fits = (0..3).all(|k| used[k] <= c.block[k] * (1.0 + 1e-12));
-            let mut verdicts = Verdicts {
-                dimension: fits,
-                approximation: fit.then_some(true),
-                shape: true,
-                blade_strain: true,
-            };
-            for p in &parts {
-                let v = p.check.verdicts(c, fit);
-                verdicts.dimension &= v.dimension;
-                verdicts.shape &= v.shape;
-                verdicts.blade_strain &= v.blade_strain;
-                if let (Some(a), Some(b)) = (verdicts.approximation, v.approximation) {
-                    verdicts.approximation = Some(a && b);
-                }
-            }
-            pieces.push(Piece {
-                id: pieces.len() + 1,
-                row,
-                band: b,
-                block: Block {
-                    origin: arr(&origin),
-                    size: c.block,
-                    used,
-                },
-                parts,
-                verdicts,
-            });
         }
     }
-    pieces
+    let d0 = first + slab_of_row(row) * c.block[0];
+    let (d_lo, d_hi) = parts
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
+            (a.0.min(p.offset), a.1.max(p.offset))
+        });
+    let used = [d_hi - d_lo, hi[0] - lo[0], hi[1] - lo[1]];
+    let f = &facade.frame;
+    let origin = f.normal * d0 + f.u * lo[0] + f.v * lo[1];
+    let fits = (0..3).all(|k| used[k] <= c.block[k] * (1.0 + 1e-12));
+    let mut verdicts = Verdicts {
+        dimension: fits,
+        approximation: fit.then_some(true),
+        shape: true,
+        blade_strain: true,
+    };
+    for p in &parts {
+        let v = p.check.verdicts(c, fit);
+        verdicts.dimension &= v.dimension;
+        verdicts.shape &= v.shape;
+        verdicts.blade_strain &= v.blade_strain;
+        if let (Some(a), Some(b)) = (verdicts.approximation, v.approximation) {
+            verdicts.approximation = Some(a && b);
+        }
+    }
+    Some(Piece {
+        id,
+        row,
+        band,
+        block: Block {
+            origin: arr(&origin),
+            size: c.block,
+            used,
+        },
+        parts,
+        verdicts,
+    })
 }

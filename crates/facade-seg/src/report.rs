@@ -177,6 +177,29 @@ pub fn summarize(
     Pieces { counts, pieces }
 }
 
+/// A piece's verdicts with its rationalization, if the run made one: the blades are what is
+/// cut, so their fits, their bending over the whole blade and the inflections of the cut
+/// count against the piece's verdicts too.
+pub fn judged(p: &crate::Piece, posed: Option<&PosedPiece>, c: &Constraints) -> Verdicts {
+    let mut verdicts = p.verdicts;
+    let Some(q) = posed else {
+        return verdicts;
+    };
+    let within = q
+        .parts
+        .iter()
+        .all(|x| x.fit.rms <= c.tolerance_rms && x.fit.max <= c.tolerance_max);
+    verdicts.approximation = Some(verdicts.approximation != Some(false) && within);
+    verdicts.shape &= q.parts.iter().all(|x| {
+        x.fit.segment.inflections().map_or(usize::MAX, |v| v.len()) <= c.max_inflections as usize
+    });
+    verdicts.blade_strain &= q
+        .parts
+        .iter()
+        .all(|x| x.blade.max_abs_curvature <= c.max_curvature);
+    verdicts
+}
+
 /// One piece as reported; `posed` is its rationalization, if the run made one.
 fn piece_report(
     p: &crate::Piece,
@@ -213,23 +236,7 @@ fn piece_report(
             }
         })
         .collect();
-    // the blades are what is cut: in a rationalized run their fits, their bending and the
-    // inflections of the cut count against the piece's verdicts too
-    let mut verdicts = p.verdicts;
-    if posed.is_some() {
-        let fits: Vec<&BladeFit> = sections
-            .iter()
-            .filter_map(|s| s.blade_fit.as_ref())
-            .collect();
-        let within = fits
-            .iter()
-            .all(|f| f.rms <= c.tolerance_rms && f.max <= c.tolerance_max);
-        verdicts.approximation = Some(verdicts.approximation != Some(false) && within);
-        verdicts.shape &= fits
-            .iter()
-            .all(|f| f.inflections <= c.max_inflections as usize);
-        verdicts.blade_strain &= fits.iter().all(|f| f.max_abs_curvature <= c.max_curvature);
-    }
+    let verdicts = judged(p, posed, c);
     let max_blade_fit = posed.map(|_| {
         sections
             .iter()

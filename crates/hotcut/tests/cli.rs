@@ -788,7 +788,10 @@ fn bad_blade_kerfs_are_rejected_naming_the_field() {
     };
     for (blade, needles) in [
         ("kerf: -1", &["/blade/kerf", "≥ 0"][..]),
-        ("kerf: 200", &["/blade/kerf", "wider than the blade's tightest bend"][..]),
+        (
+            "kerf: 200",
+            &["/blade/kerf", "wider than the blade's tightest bend"][..],
+        ),
         (
             "kerf: 2, kerf_table: [(5, 2)]",
             &["/blade/kerf", "not both"][..],
@@ -798,7 +801,10 @@ fn bad_blade_kerfs_are_rejected_naming_the_field() {
             "kerf_table: [(8, 2), (6, 1)]",
             &["/blade/kerf_table/1/0", "increase strictly"][..],
         ),
-        ("kerf_table: [(0, 2)]", &["/blade/kerf_table/0/0", "positive"][..]),
+        (
+            "kerf_table: [(0, 2)]",
+            &["/blade/kerf_table/0/0", "positive"][..],
+        ),
     ] {
         common::expect_invalid(&job(blade), needles);
     }

@@ -639,10 +639,38 @@ fn refine_solved(
         done.push((&c.shape, s));
         if let Some(f) = run(c, s.clone(), data, placement, params) {
             *iterations += f.iterations;
-            keep_better(&mut best, f, floor);
+            if !loops_between_points(&f.segment, data) {
+                keep_better(&mut best, f, floor);
+            }
         }
     }
     best
+}
+
+/// Whether `segment` bends far more than the points it was fitted to could show: its
+/// largest |κ| above a hundred times the data's own (the largest turning between
+/// consecutive segments of the polyline over their mean length) plus a hundred over its
+/// length. Near k = 1 an elastica can hide a small loop between two samples; its residuals
+/// at the points are then tiny while the blade it stands for would be torn. Such a
+/// candidate is not a fit of these points (a line or arc, or another elastica, is).
+fn loops_between_points(segment: &Segment, data: &Data) -> bool {
+    if !matches!(segment, Segment::Elastica(_)) {
+        return false;
+    }
+    let p = &data.p;
+    let mut kappa: f64 = 0.0;
+    for w in p.windows(3) {
+        let (a, b) = ((w[1] - w[0]), (w[2] - w[1]));
+        let (la, lb) = (a.norm(), b.norm());
+        if la > 0.0 && lb > 0.0 {
+            let turn = (a.re * b.im - a.im * b.re)
+                .atan2(a.re * b.re + a.im * b.im)
+                .abs();
+            kappa = kappa.max(turn / (0.5 * (la + lb)));
+        }
+    }
+    let limit = 100.0 * kappa + 100.0 / data.length;
+    segment.max_abs_curvature().is_ok_and(|k| k > limit)
 }
 
 fn fit_data(

@@ -83,6 +83,12 @@ pub struct FacadeSegmentation {
     /// Approach and retreat distance of the blade along the cut (≥ 0). Default: 50 mm.
     #[serde(default)]
     pub approach: Option<f64>,
+    /// After the algorithm, pieces breaking a constraint that smaller pieces could meet
+    /// are split (along their sections, at the worst place) until they meet it; no split
+    /// leaves a section part shorter than this (> 0, job units). Default: a tenth of the
+    /// smaller of the blade's length and the block's width across the cut.
+    #[serde(default)]
+    pub min_piece: Option<f64>,
 }
 
 /// How a facade is segmented (thesis ch. 5). With all fields at their defaults the
@@ -153,6 +159,15 @@ fn default_seg_samples() -> u32 {
     64
 }
 
+/// The default `min_piece`: a tenth of the smaller of the blade's length and the block's
+/// width across the cut (in the job's units, as both are).
+fn default_min_piece(blade_length: f64, block_across: f64) -> f64 {
+    0.1 * blade_length.min(block_across)
+}
+
+/// Most pieces refinement may leave (each is a block to cut).
+const MAX_PIECES: usize = 20_000;
+
 /// Parameters of a `FacadeSegmentation` run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SegmentationParams {
@@ -176,6 +191,8 @@ pub struct SegmentationParams {
     pub analysis: geom::analysis::CurveAnalysisParams,
     /// Precision of the longest-elastica search when the job leaves it out (1 mm).
     pub default_precision: f64,
+    /// The refinement after the algorithm.
+    pub refine: facade_seg::refine::RefineParams,
 }
 
 /// The result of a `FacadeSegmentation` run.
@@ -183,8 +200,10 @@ pub struct SegmentationParams {
 pub struct SegmentationRun {
     /// The prepared sections.
     pub facade: Facade,
-    /// What the algorithm returned.
+    /// What the algorithm returned, refined.
     pub segmentation: Segmentation,
+    /// What the refinement did.
+    pub refinement: facade_seg::refine::RefineReport,
     /// Rationalized pieces (empty when `rationalize` is off), in piece order.
     pub posed: Vec<PosedPiece>,
     /// The surface as loaded.
@@ -222,6 +241,14 @@ impl Task for FacadeSegmentation {
             errors.push(job.error("/blade/max_inflections", "FacadeSegmentation needs max_inflections ≥ 1: parts meet between inflections, never exactly on one, so a section with an inflection cannot be split into parts without any"));
         }
         self.algorithm.check(job, errors);
+        if let Some(m) = self.min_piece {
+            if !(m > 0.0 && m.is_finite()) {
+                errors.push(job.error(
+                    &format!("{PTR}/min_piece"),
+                    format!("min_piece must be a positive length, got {m:?}"),
+                ));
+            }
+        }
         for (i, o) in job.outputs.iter().enumerate() {
             let robot = matches!(o, OutputSpec::RobotTargets { .. } | OutputSpec::Rapid);
             if robot && !self.rationalize {
@@ -272,6 +299,13 @@ impl Task for FacadeSegmentation {
                 ..Default::default()
             },
             default_precision: crate::spec::defaults::PRECISION_MM * per_mm,
+            refine: facade_seg::refine::RefineParams {
+                min_length: self
+                    .min_piece
+                    .unwrap_or_else(|| default_min_piece(job.blade.length, block.size.1)),
+                samples: self.samples as usize,
+                max_pieces: MAX_PIECES,
+            },
         })
     }
 
@@ -310,8 +344,30 @@ impl Task for FacadeSegmentation {
         progress.finish();
         let facade = Facade::with_analysis(frame, &sections, &params.analysis)
             .map_err(|e| job.fail(e.to_string()))?;
-        let segmentation = segment(&facade, params, progress)
+        let first = segment(&facade, params, progress)
             .map_err(|e| job.fail(format!("segmentation failed: {e}")))?;
+        progress.start("refining the pieces that fail", 0);
+        // a rationalized run judges pieces by their blades, as its report does
+        let rp = rationalize_params(params);
+        let judge = |q: &facade_seg::Piece| {
+            if params.rationalize {
+                facade_seg::rationalize::pose_piece(&facade, q, &rp)
+                    .map(|posed| facade_seg::report::judged(q, Some(&posed), &params.constraints))
+                    .unwrap_or(q.verdicts)
+            } else {
+                q.verdicts
+            }
+        };
+        let (segmentation, refinement) = facade_seg::refine::refine_judged(
+            &facade,
+            &params.constraints,
+            &first,
+            &params.refine,
+            &judge,
+            &|| progress.tick(),
+        )
+        .map_err(|e| job.fail(format!("refinement failed: {e}")))?;
+        progress.finish();
         let posed = if params.rationalize {
             rationalize(&facade, &segmentation, params, progress)
                 .map_err(|e| job.fail(e.to_string()))?
@@ -321,6 +377,7 @@ impl Task for FacadeSegmentation {
         let mut run = SegmentationRun {
             facade,
             segmentation,
+            refinement,
             posed,
             surface: SurfaceInfo::of(job, surface),
             cell: None,
@@ -384,6 +441,7 @@ impl Task for FacadeSegmentation {
                 kerf: job.kerf.report(params.motion.speed),
             },
             counts: pieces.counts,
+            refinement: run.refinement.clone(),
             pieces: pieces.pieces,
             seams: run
                 .segmentation
@@ -425,6 +483,20 @@ impl Task for FacadeSegmentation {
                 "\n  warning: pieces breaking a constraint — dimension {}, approximation {}, shape {}, blade strain {}",
                 f.dimension, f.approximation, f.shape, f.blade_strain
             ));
+        }
+        let rf = &r.refinement;
+        if rf.splits > 0 || !rf.unresolved.is_empty() {
+            out.push_str(&format!(
+                "\n  refinement: {} split(s); {} of {} piece(s) failed before, {} of {} after",
+                rf.splits,
+                rf.before.failing_pieces,
+                rf.before.pieces,
+                rf.after.failing_pieces,
+                rf.after.pieces
+            ));
+        }
+        for line in report::unresolved_lines(r, units) {
+            out.push_str(&format!("\n  {line}"));
         }
         if let Some(cell) = &r.cell {
             out.push('\n');
@@ -522,18 +594,23 @@ fn segment(
 }
 
 /// Every piece rationalized, in piece order.
+/// How a run's pieces are rationalized.
+fn rationalize_params(params: &SegmentationParams) -> RationalizeParams {
+    RationalizeParams {
+        constraint: params.constraint.to_fit().with_end_points(),
+        samples: params.samples,
+        blade: params.blade,
+        tolerance_max: params.constraints.tolerance_max,
+    }
+}
+
 fn rationalize(
     facade: &Facade,
     seg: &Segmentation,
     params: &SegmentationParams,
     progress: &dyn Progress,
 ) -> std::result::Result<Vec<PosedPiece>, facade_seg::SegError> {
-    let rp = RationalizeParams {
-        constraint: params.constraint.to_fit().with_end_points(),
-        samples: params.samples,
-        blade: params.blade,
-        tolerance_max: params.constraints.tolerance_max,
-    };
+    let rp = rationalize_params(params);
     progress.start("rationalizing pieces", seg.pieces.len() as u64);
     let posed = pose_pieces(facade, seg, &rp, &|| progress.tick());
     progress.finish();

@@ -105,7 +105,13 @@ pub fn body(r: &SegmentationReport, job: &Context) -> Body {
         verdict,
         counts,
         constraints,
-        notes: r.surface.warnings.clone(),
+        notes: r
+            .surface
+            .warnings
+            .iter()
+            .cloned()
+            .chain(super::report::unresolved_lines(r, job.units.symbol()))
+            .collect(),
         tables,
     }
 }

@@ -30,6 +30,9 @@ pub struct SegmentationReport {
     pub settings: SegmentationSettings,
     /// How many pieces and blocks, and how many break each constraint.
     pub counts: SegmentationCounts,
+    /// The refinement after the algorithm: pieces and failing pieces before and after, the
+    /// splits, and why each piece still failing cannot be made to hold.
+    pub refinement: facade_seg::refine::RefineReport,
     /// The pieces, by band (from the facade's start edge across the cut) then by row.
     pub pieces: Vec<PieceReport>,
     /// Seams between bands, as 3D polylines (one point per section).
@@ -71,4 +74,44 @@ pub struct SegmentationSettings {
     /// The blade's kerf the run compensated for (absent without `kerf`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub kerf: Option<crate::report::KerfReport>,
+}
+
+/// One line per piece refinement could not make hold, in the job's units: "piece 7,
+/// section at 1.2 m along the cut (part 0.6 m): no elastica within 2 mm (its best: 3.1 mm);
+/// its part's ... min_piece 0.06 m".
+pub fn unresolved_lines(r: &SegmentationReport, units: &str) -> Vec<String> {
+    r.refinement
+        .unresolved
+        .iter()
+        .map(|u| {
+            let what = match u.constraint.as_str() {
+                "approximation" => format!(
+                    "no elastica within {} {units} (its best: {:.4} {units})",
+                    u.limit, u.measured
+                ),
+                "shape" => format!(
+                    "{} inflections where the blade makes {}",
+                    u.measured, u.limit
+                ),
+                "blade_strain" if u.reason.starts_with("the blade, extended") => format!(
+                    "its blade bends beyond {} /{units} (the part itself bends up to {:.6} /{units})",
+                    u.limit, u.measured
+                ),
+                "blade_strain" => format!(
+                    "curvature {:.6} /{units} where the blade takes {} /{units}",
+                    u.measured, u.limit
+                ),
+                _ => format!("{:.4} {units} where the blade is {} {units}", u.measured, u.limit),
+            };
+            let min = if u.reason.contains("min_piece") {
+                format!(" ({} {units})", r.refinement.min_length)
+            } else {
+                String::new()
+            };
+            format!(
+                "piece {}, section at {:.6} {units} along the cut (part {:.4} {units}): {what}; {}{min}",
+                u.piece, u.offset, u.length, u.reason
+            )
+        })
+        .collect()
 }
