@@ -65,6 +65,19 @@ fn facade_of(z: &str, count: usize, direction: Vector3<f64>) -> Facade {
     Facade::new(frame, &sections).unwrap()
 }
 
+/// A fresh end-point elastica fit of `pts` (arc lengths `ss`): the independent measure.
+fn end_point_fit(pts: &[[f64; 2]], ss: &[f64]) -> elastica::fit::FitResult {
+    fit_points_with_arclength(
+        pts,
+        ss,
+        &FitParams {
+            constraint: FitConstraint::EndPoints,
+            ..FitParams::default()
+        },
+    )
+    .unwrap()
+}
+
 fn constraints() -> Constraints {
     Constraints {
         block: [600.0, 600.0, 400.0],
@@ -154,15 +167,7 @@ fn check_with(facade: &Facade, c: &Constraints, seg: &Segmentation, fitted: bool
             if !fitted {
                 continue;
             }
-            let fit = fit_points_with_arclength(
-                &pts,
-                &ss,
-                &FitParams {
-                    constraint: FitConstraint::EndPoints,
-                    ..FitParams::default()
-                },
-            )
-            .unwrap();
+            let fit = end_point_fit(&pts, &ss);
             assert!(
                 fit.rms <= c.tolerance_rms && fit.max <= c.tolerance_max,
                 "piece {} plane {}: fit rms {} max {}",
@@ -678,15 +683,7 @@ fn refinement_makes_every_piece_meet_its_constraints_or_says_why() {
                         "approximation" => {
                             // an independent fit of the named part breaks the tolerance
                             let (pts, ss) = sec.samples(part.s[0], part.s[1], 200);
-                            let f = fit_points_with_arclength(
-                                &pts,
-                                &ss,
-                                &FitParams {
-                                    constraint: FitConstraint::EndPoints,
-                                    ..FitParams::default()
-                                },
-                            )
-                            .unwrap();
+                            let f = end_point_fit(&pts, &ss);
                             assert!(
                                 f.max > c.tolerance_max || f.rms > c.tolerance_rms,
                                 "{}: {f:?}",
@@ -704,15 +701,7 @@ fn refinement_makes_every_piece_meet_its_constraints_or_says_why() {
                             // the named part does
                             let k = sec.max_abs_curvature(part.s[0], part.s[1], 2000);
                             let (pts, ss) = sec.samples(part.s[0], part.s[1], 200);
-                            let f = fit_points_with_arclength(
-                                &pts,
-                                &ss,
-                                &FitParams {
-                                    constraint: FitConstraint::EndPoints,
-                                    ..FitParams::default()
-                                },
-                            )
-                            .unwrap();
+                            let f = end_point_fit(&pts, &ss);
                             let kf = f.segment.max_abs_curvature().unwrap();
                             assert!(
                                 k > c.max_curvature || kf > c.max_curvature,
@@ -737,15 +726,7 @@ fn refinement_makes_every_piece_meet_its_constraints_or_says_why() {
                         .find(|s| s.index == part.plane)
                         .unwrap();
                     let (pts, ss) = sec.samples(part.s[0], part.s[1], 200);
-                    let f = fit_points_with_arclength(
-                        &pts,
-                        &ss,
-                        &FitParams {
-                            constraint: FitConstraint::EndPoints,
-                            ..FitParams::default()
-                        },
-                    )
-                    .unwrap();
+                    let f = end_point_fit(&pts, &ss);
                     assert!(
                         f.rms <= c.tolerance_rms && f.max <= c.tolerance_max,
                         "{name} {} piece {} plane {}: fit rms {} max {}",

@@ -65,10 +65,10 @@ impl Kerf {
     }
 
     /// What a report says of the kerf at `speed`, `None` without one.
-    pub fn report(&self, speed: f64) -> Option<crate::report::KerfReport> {
+    pub fn report(&self, speed: f64) -> Option<KerfReport> {
         self.given().then(|| {
             let kerf = self.at(speed);
-            crate::report::KerfReport {
+            KerfReport {
                 kerf,
                 offset: 0.5 * kerf,
                 speed,
@@ -76,6 +76,22 @@ impl Kerf {
             }
         })
     }
+}
+
+/// The hot blade's kerf a run compensated for: every section the blade is fitted to was
+/// moved `offset` (half the kerf) along its normal towards the material removed (up, the
+/// side the design's normal points to), so the surface the kerf leaves is the design.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct KerfReport {
+    /// The width the blade melts, job units.
+    pub kerf: f64,
+    /// How far the blade's path lies off the design: half the kerf.
+    pub offset: f64,
+    /// The blade speed it was read at, job units per second.
+    pub speed: f64,
+    /// Whether it came from `kerf_table` (else `kerf`).
+    pub from_table: bool,
 }
 
 /// A job's common fields, resolved: what every task's run gets.

@@ -65,19 +65,3 @@ pub fn surface_kind(surface: &Surface) -> &'static str {
         Surface::Spline(_) => "Spline",
     }
 }
-
-/// The hot blade's kerf a run compensated for: every section the blade is fitted to was
-/// moved `offset` (half the kerf) along its normal towards the material removed (up, the
-/// side the design's normal points to), so the surface the kerf leaves is the design.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
-#[schemars(deny_unknown_fields)]
-pub struct KerfReport {
-    /// The width the blade melts, job units.
-    pub kerf: f64,
-    /// How far the blade's path lies off the design: half the kerf.
-    pub offset: f64,
-    /// The blade speed it was read at, job units per second.
-    pub speed: f64,
-    /// Whether it came from `kerf_table` (else `kerf`).
-    pub from_table: bool,
-}

@@ -377,9 +377,7 @@ fn check_everywhere(b: &Block, cut: &PreCut, design: &dyn Fn(f64, f64) -> f64) -
                 let f = design(x, y);
                 count += 1;
                 for c in &curves {
-                    let am = c.eval(u);
-                    let z = am[0] + am[1] * (w - d.w_mid) / d.w_half;
-                    worst = worst.max(f - z);
+                    worst = worst.max(f - common::leg_z(c, d, u, w));
                 }
             }
         }

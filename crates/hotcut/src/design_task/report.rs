@@ -62,7 +62,7 @@ pub struct DesignSettings {
     pub approach: f64,
     /// The blade's kerf the run compensated for (absent without `kerf`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub kerf: Option<crate::report::KerfReport>,
+    pub kerf: Option<crate::context::KerfReport>,
 }
 
 /// A block.

@@ -73,7 +73,7 @@ pub struct SegmentationSettings {
     pub approach: f64,
     /// The blade's kerf the run compensated for (absent without `kerf`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub kerf: Option<crate::report::KerfReport>,
+    pub kerf: Option<crate::context::KerfReport>,
 }
 
 /// One line per piece refinement could not make hold, in the job's units: "piece 7,

@@ -34,6 +34,13 @@ pub fn leg_curves(d: &DirectionCut) -> Vec<BSplineCurve<2>> {
         .collect()
 }
 
+/// The height of the leg `c` (one of [`leg_curves`] of `d`) at frame point `(u, w)`, its
+/// line extended across the whole block.
+pub fn leg_z(c: &BSplineCurve<2>, d: &DirectionCut, u: f64, w: f64) -> f64 {
+    let am = c.eval(u);
+    am[0] + am[1] * (w - d.w_mid) / d.w_half
+}
+
 /// Checks `cut` against `design` on a jittered grid 4N × 4M per direction over the whole
 /// block `b`; returns (points checked, largest excess of design over a leg).
 pub fn check_in(
@@ -61,9 +68,7 @@ pub fn check_in(
                 let Some(f) = design(p.x, p.y) else { continue };
                 count += 1;
                 for c in &curves {
-                    let am = c.eval(u);
-                    let z = am[0] + am[1] * (w - d.w_mid) / d.w_half;
-                    worst = worst.max(f - z);
+                    worst = worst.max(f - leg_z(c, d, u, w));
                 }
             }
         }
