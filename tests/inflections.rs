@@ -507,3 +507,59 @@ fn every_class_counts_its_inflections_exactly() {
     let (e, n) = rate(&|o| o.kind == Kind::Mesh(FINE));
     assert!(e * 100 >= n * 98, "fine meshes: {e}/{n} exact, want ≥ 98 %");
 }
+
+/// Issue 35, acceptance 1: the planar facade of the report — a 3 × 2 m plane of 200 × 150
+/// quads tilted 11° and 6°, an OBJ in metres with 6 decimals (the file precision a user's
+/// export has) — has no inflection on any section and is cuttable without segmentation
+/// (a blade long enough for its sections, a block big enough), cut along x, at 30° and
+/// tilted along (1, 1, 1) (planes as height fields: `every_class_counts_...`).
+#[test]
+fn a_planar_tilted_mesh_facade_has_no_inflections_and_is_cuttable() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (11f64.to_radians().tan(), 6f64.to_radians().tan());
+    let hf = geom::heightfield::HeightField::try_new(
+        geom::expr::Expr::parse(&format!("{a}*x + {b}*y + 0.4")).unwrap(),
+        (0.0, 3.0),
+        (0.0, 2.0),
+    )
+    .unwrap();
+    let mesh = hf.to_mesh(200, 150).unwrap();
+    let mut f =
+        std::io::BufWriter::new(std::fs::File::create(dir.path().join("plane.obj")).unwrap());
+    export::obj::write_mesh(&mut f, &mesh, 6, export::SourceUnits::METRE).unwrap();
+    drop(f);
+    for (cut, d) in [
+        ("x", "(1, 0, 0)"),
+        ("30°", "(0.8660254037844386, 0.5, 0)"),
+        ("tilted", "(1, 1, 1)"),
+    ] {
+        let path = dir.path().join("plane.ron");
+        std::fs::write(
+            &path,
+            format!(
+                "Job(name: \"plane\", units: Metre, surface: Mesh(path: \"plane.obj\"), block: Block(size: (4, 4, 4)), blade: Blade(length: 5, max_curvature: 11, max_inflections: 2), cutting: Cutting(direction: {d}, sections: 26), task: Analyze(samples: 6000), outputs: [Report])"
+            ),
+        )
+        .unwrap();
+        let job = load_job(&path).unwrap_or_else(|e| panic!("{e:?}"));
+        let TaskSpec::Analyze(task) = &job.task else {
+            panic!("not an Analyze job");
+        };
+        let params = task.params(&job.context).unwrap();
+        let run = hotcut::analyze::Analyze::run(&params, &job.context, &NoProgress).unwrap();
+        let s = &run.survey;
+        let most = s.reports.iter().map(|r| r.inflections.len()).max().unwrap();
+        println!(
+            "plane cut {cut}: {} sections, most inflections {most}, cuttable {}",
+            s.reports.len(),
+            s.summary.cuttable_without_segmentation
+        );
+        assert!(s.reports.len() >= 20, "{cut}");
+        assert_eq!(s.summary.total_inflections, 0, "{cut}");
+        assert!(
+            s.summary.cuttable_without_segmentation,
+            "{cut}: {:?}",
+            s.summary
+        );
+    }
+}

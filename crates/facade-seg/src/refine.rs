@@ -410,9 +410,18 @@ fn where_to_split(
     };
     // no closer to the part's ends than the minimum (when the part allows it)
     let s = if s1 - s0 >= 2.0 * p.min_length {
-        s.clamp(s0 + p.min_length, s1 - p.min_length)
+        // on the grid, and inside the bounds the grid step may have crossed
+        let step = (s1 - s0) / SNAP;
+        let s = snap(s.clamp(s0 + p.min_length, s1 - p.min_length), s0, s1);
+        if s1 - s < p.min_length {
+            s - step
+        } else if s - s0 < p.min_length {
+            s + step
+        } else {
+            s
+        }
     } else {
-        s
+        snap(s, s0, s1)
     };
     Split::At(sec.point(s).x, j)
 }
@@ -439,6 +448,21 @@ fn worst_point(sec: &PreparedSection, s0: f64, s1: f64, samples: usize) -> Optio
         }
     }
     at
+}
+
+/// Split positions are kept on a grid of [`SNAP`] steps per part: the same job in
+/// millimetres and in metres (its inputs a rounding apart) then cuts its pieces at the same
+/// relative places and judges them alike, where a position computed to the last bit could
+/// tip a fit across its tolerance one way in one unit and the other way in the other.
+const SNAP: f64 = 4096.0;
+
+/// `s` moved to the nearest of [`SNAP`] even steps of `[s0, s1]`.
+fn snap(s: f64, s0: f64, s1: f64) -> f64 {
+    let len = s1 - s0;
+    if !(len > 0.0) {
+        return s;
+    }
+    s0 + ((s - s0) / len * SNAP).round() / SNAP * len
 }
 
 /// The arc length on `[s0, s1]` of `sec` where `u` (across) is reached, by bisection; `None`
@@ -475,7 +499,7 @@ fn cut_cell(
     let (mut left, mut right, mut seam) = (Vec::new(), Vec::new(), Vec::new());
     for &(j, s0, s1) in &cell.parts {
         let sec = &facade.sections[j];
-        match s_at_u(sec, s0, s1, u) {
+        match s_at_u(sec, s0, s1, u).map(|s| snap(s, s0, s1)) {
             Some(s) if s - s0 >= min_length && s1 - s >= min_length => {
                 left.push((j, s0, s));
                 right.push((j, s, s1));
