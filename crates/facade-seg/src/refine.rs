@@ -1,7 +1,7 @@
 //! Refinement after any segmentation algorithm: pieces that break a constraint smaller
 //! pieces could meet are split until they meet it or cannot be split further.
 //!
-//! Entry point: [`refine`] with [`RefineParams`].
+//! Entry point: [`refine`](crate::refine::refine) with [`RefineParams`](crate::refine::RefineParams).
 //!
 //! Every piece is measured with an elastica fitted to each of its parts (§5.1.2, whatever
 //! the algorithm measured). While a piece fails its shape (too many inflections), its
@@ -14,7 +14,7 @@
 //!
 //! A split is refused when it would leave a part shorter than `min_length` (the job's
 //! `min_piece`), and a piece whose design breaks its blade's strain limit is never split (a
-//! smaller piece bends the same). What still fails gets an [`Unresolved`]: the section,
+//! smaller piece bends the same). What still fails gets an [`Unresolved`](crate::refine::Unresolved): the section,
 //! its part's length, what it measures and the limit, and why no smaller piece holds (a
 //! report composes "section at x = 1.2 m: no elastica within 2 mm over any part longer
 //! than 60 mm" from it in the job's units).

@@ -9,21 +9,21 @@
 //! their chords by nothing one could cut, measure or see.
 //!
 //! The floor of a lobe is the largest of
-//! - the rounding of f64 at the curve's scale, [`ROUNDING`] × (largest coordinate +
+//! - the rounding of f64 at the curve's scale, [`ROUNDING`](crate::significance::ROUNDING) × (largest coordinate +
 //!   length), for every curve;
 //! - a floor the caller states for the whole curve (`noise`: e.g. the precision an
 //!   elastica fit was asked for);
-//! - for a curve fitted to points, [`DATA_SHARE`] × the largest allowance of the points
+//! - for a curve fitted to points, [`DATA_SHARE`](crate::significance::DATA_SHARE) × the largest allowance of the points
 //!   in and around the lobe: how far each point was allowed to lie from the fitted curve
 //!   (the job's smoothing tolerance, a mesh facet's distance from the surface, a
-//!   polyline's chordal sagitta — [`crate::fit::SplineFit::allowance`]). A smoothing
+//!   polyline's chordal sagitta — [`SplineFit::precision`](crate::fit::SplineFit::precision)). A smoothing
 //!   spline is the smoothest curve within its allowances, so it only wiggles by less than
 //!   them where the data force nothing.
 //!
 //! The curvature floor of a lobe is `8 · floor / L²` (`L` the curve's length): the
 //! curvature of an arc as long as the whole curve whose bulge is the floor.
 //!
-//! The rule ([`drop_noise_lobes`]): while some lobe is below its floor, take the one
+//! The rule ([`drop_noise_lobes`](crate::significance::drop_noise_lobes)): while some lobe is below its floor, take the one
 //! furthest below (smallest departure over floor) and remove the inflections that bound
 //! it — both for an interior lobe, which merges it with its two neighbours (whose signs
 //! agree), the inner one for a lobe at an end of the curve. Each removal takes one or two
