@@ -147,7 +147,10 @@ fn missing(absent: &[PathBuf], test: &str) {
     if data_required() {
         panic!("{message} ({REQUIRE_VAR} is set, so this test may not skip)");
     }
-    eprintln!("\n*** SKIPPED *** {message}\n");
+    // straight to the process's stderr: the test harness captures `eprintln!` of a
+    // passing test, and a skip must be seen in a plain `cargo test`
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr().lock(), "\n*** SKIPPED *** {message}\n");
 }
 
 #[cfg(test)]
