@@ -200,15 +200,7 @@ pub const SURFACES: &[Analytic] = &[
             // 10 sin(φ), φ = 1.5 y²/90000 + x/700
             let phi = 1.5 * y * y / 90000.0 + x / 700.0;
             let (px, py, pyy) = (1.0 / 700.0, 3.0 * y / 90000.0, 3.0 / 90000.0);
-            let (s, c) = (phi.sin(), phi.cos());
-            (
-                10.0 * s,
-                10.0 * c * px,
-                10.0 * c * py,
-                -10.0 * s * px * px,
-                -10.0 * s * px * py,
-                -10.0 * s * py * py + 10.0 * c * pyy,
-            )
+            sine_of(10.0, phi, (px, py, pyy))
         },
         x: (0.0, 1000.0),
         y: (0.0, 1500.0),
@@ -302,15 +294,7 @@ pub const SURFACES: &[Analytic] = &[
                 1.0 / 30.0 + 0.3 / 200.0 * (y / 200.0).cos(),
                 -0.3 / 40000.0 * (y / 200.0).sin(),
             );
-            let (s, c) = (phi.sin(), phi.cos());
-            (
-                5.0 * s,
-                5.0 * c * px,
-                5.0 * c * py,
-                -5.0 * s * px * px,
-                -5.0 * s * px * py,
-                -5.0 * s * py * py + 5.0 * c * pyy,
-            )
+            sine_of(5.0, phi, (px, py, pyy))
         },
         x: (0.0, 1000.0),
         y: (0.0, 1600.0),
@@ -355,6 +339,20 @@ fn wave(amp: f64, kx: f64, ky: f64, phase: f64, x: f64, y: f64) -> Jet {
         -amp * s * kx * kx,
         -amp * s * kx * ky,
         -amp * s * ky * ky,
+    )
+}
+
+/// The jet of `amp · sin(φ)` for a phase `φ` linear in x: its value `phi` and its
+/// derivatives `(φx, φy, φyy)` (φxx = φxy = 0).
+fn sine_of(amp: f64, phi: f64, (px, py, pyy): (f64, f64, f64)) -> Jet {
+    let (s, c) = (phi.sin(), phi.cos());
+    (
+        amp * s,
+        amp * c * px,
+        amp * c * py,
+        -amp * s * px * px,
+        -amp * s * px * py,
+        -amp * s * py * py + amp * c * pyy,
     )
 }
 
