@@ -338,7 +338,9 @@ fn solve_curve(curve: &DesignCurve, offset: f64, p: &CutParams) -> Result<CurveR
     })
 }
 
-/// The problems of a cut's parameters, one message each (empty when it can be run).
+/// The problems of a cut's parameters, one message each: everything [`solve`] checks
+/// before it solves (faces, stations, one construction, each curve, straight pieces, the
+/// loft). Empty when it can be run.
 pub fn problems(p: &CutParams) -> Vec<String> {
     let mut out = Vec::new();
     if p.planes < 2 {
@@ -366,9 +368,44 @@ pub fn problems(p: &CutParams) -> Vec<String> {
                     .into_iter()
                     .map(|m| format!("station {i}: {m}")),
             );
+            for (k, piece) in s.curve.pieces().iter().enumerate() {
+                let [a, _, _, b] = piece.p;
+                let chord = (b[0] - a[0]).hypot(b[1] - a[1]);
+                if !(piece.length() > chord * (1.0 + STRAIGHT)) {
+                    out.push(format!(
+                        "station {i}: the piece in block {k} of the cut is straight (length {:.6}, its ends {chord:.6} apart): a blade bends, so a cut's pieces must too",
+                        piece.length()
+                    ));
+                }
+            }
+        }
+        if out.is_empty() {
+            if let Err(e) = loft(&p.stations) {
+                out.push(e.to_string());
+            }
         }
     }
     out
+}
+
+/// How much longer than its chord a piece must be, relatively: a little more than the
+/// boundary-value solve's own `1e-12`, so that every piece this accepts is solved.
+const STRAIGHT: f64 = 1e-9;
+
+/// The loft of the stations' curves along the cut.
+fn loft(stations: &[Station]) -> Result<Loft> {
+    let pieces: Vec<Vec<Bezier>> = stations.iter().map(|s| s.curve.pieces()).collect();
+    let lofted = stations
+        .iter()
+        .map(|s| Ok((s.offset, s.curve.loft_params()?)))
+        .collect::<Result<Vec<_>>>()?;
+    Loft::new(&lofted, |i| {
+        chord(
+            &pieces[i - 1],
+            &pieces[i],
+            stations[i].offset - stations[i - 1].offset,
+        )
+    })
 }
 
 /// The elastica of a designed cut on its stations and on every cutting plane, with the
@@ -382,19 +419,7 @@ pub fn solve(p: &CutParams, tick: &(dyn Fn() + Sync)) -> Result<CutResult> {
         return Err(DesignError::Invalid(m));
     }
     let form = p.stations[0].curve.form();
-    let pieces: Vec<Vec<Bezier>> = p.stations.iter().map(|s| s.curve.pieces()).collect();
-    let lofted = p
-        .stations
-        .iter()
-        .map(|s| Ok((s.offset, s.curve.loft_params()?)))
-        .collect::<Result<Vec<_>>>()?;
-    let loft = Loft::new(&lofted, |i| {
-        chord(
-            &pieces[i - 1],
-            &pieces[i],
-            p.stations[i].offset - p.stations[i - 1].offset,
-        )
-    })?;
+    let loft = loft(&p.stations)?;
     let stations = p
         .stations
         .iter()

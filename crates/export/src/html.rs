@@ -136,20 +136,10 @@ pub struct Drawing {
     pub svg: Vec<u8>,
 }
 
-/// Text with `&`, `<`, `>`, `"` and `'` escaped, for element content and attribute values.
+/// Text with `&`, `<`, `>`, `"` and `'` escaped, for element content and attribute values,
+/// and no character XML forbids ([`geom::text::xml`]).
 pub fn escape(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            c => out.push(c),
-        }
-    }
-    out
+    geom::text::xml(text)
 }
 
 /// A relative link target: characters outside the URL-safe set percent-encoded.

@@ -306,7 +306,7 @@ pub fn write_module(p: &RapidProgram<'_>, mut w: impl Write) -> Result<()> {
     };
     line(format!("MODULE {}", p.name));
     for c in p.comment {
-        line(format!("    ! {c}"));
+        line(format!("    ! {}", geom::text::rapid_comment(c)));
     }
     line(String::new());
     declarations(p, &mut line);

@@ -150,10 +150,7 @@ pub struct SvgDoc {
 }
 
 fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
+    geom::text::xml(s)
 }
 
 fn n(x: f64) -> String {

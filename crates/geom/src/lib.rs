@@ -53,5 +53,7 @@ pub mod slice;
 pub mod surface;
 /// Tensor-product B-spline, ruled and piecewise-ruled surfaces.
 pub mod surface_spline;
+/// User text made safe for each sink: XML, terminal, G-code and RAPID comments.
+pub mod text;
 
 pub use error::{GeomError, Result};

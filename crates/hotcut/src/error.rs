@@ -7,12 +7,12 @@ use std::path::PathBuf;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum JobError {
-    /// The file could not be read.
-    #[error("{path}: cannot read: {message}")]
+    /// The file could not be read (the message names it).
+    #[error("{message}")]
     Read {
         /// Job file.
         path: PathBuf,
-        /// Operating-system message.
+        /// What is wrong, naming the file.
         message: String,
     },
     /// RON syntax error.

@@ -92,19 +92,19 @@ fn positive(s: &str) -> Result<f64, String> {
     }
 }
 
-/// Prints a line to stdout; a closed or full stdout is not an error (the run goes on).
+/// Prints a line to stdout, control characters escaped ([`geom::text::terminal`]); a closed or full stdout is not an error (the run goes on).
 macro_rules! say {
     ($($t:tt)*) => {{
         use std::io::Write;
-        let _ = writeln!(std::io::stdout(), $($t)*);
+        let _ = writeln!(std::io::stdout(), "{}", geom::text::terminal(&format!($($t)*)));
     }};
 }
 
-/// Prints a line to stderr, ignoring a closed stderr.
+/// Prints a line to stderr, control characters escaped, ignoring a closed stderr.
 macro_rules! warn {
     ($($t:tt)*) => {{
         use std::io::Write;
-        let _ = writeln!(std::io::stderr(), $($t)*);
+        let _ = writeln!(std::io::stderr(), "{}", geom::text::terminal(&format!($($t)*)));
     }};
 }
 

@@ -9,7 +9,7 @@ use export::gltf::{f32s, write_gltf, Material, Mesh};
 use export::robot::{Targets, TargetsBlock};
 use nalgebra::{Vector2, Vector3};
 
-use super::file::{Block, ResolvedCut};
+use super::file::{Block, DesignFile, ResolvedCut};
 use super::Design;
 use crate::output::robot;
 use crate::output::{block_material, deviation_color, Files};
@@ -73,16 +73,39 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
         for (piece, &k) in r.blocks.iter().enumerate() {
             let b = &done.run.blocks[k];
             let doc = super::drawing::block_svg(b, r, res, piece, n, &done.job.name, units);
-            // a block cut several times gets one drawing per cut
-            let name = if done.run.multi[k].cuts.len() > 1 {
-                format!("block_{}_{}.svg", file_name(&b.id), file_name(&r.id))
-            } else {
-                format!("block_{}.svg", file_name(&b.id))
-            };
+            let name = drawing_name(&b.id, &r.id, done.run.multi[k].cuts.len());
             files.add(name, |buf| doc.write(buf))?;
         }
     }
     Ok(())
+}
+
+/// The drawing of block `block` in cut `cut`, the block lying in `cuts` cuts: a block cut
+/// several times gets one drawing per cut.
+fn drawing_name(block: &str, cut: &str, cuts: usize) -> String {
+    if cuts > 1 {
+        format!("block_{}_{}.svg", file_name(block), file_name(cut))
+    } else {
+        format!("block_{}.svg", file_name(block))
+    }
+}
+
+/// Every drawing [`svg`] writes for design `d` with blocks `blocks`, in cut order.
+pub(super) fn drawing_names(d: &DesignFile, blocks: &[Block]) -> Vec<String> {
+    let mut through: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    for c in &d.cuts {
+        for b in &c.blocks {
+            *through.entry(b.as_str()).or_default() += 1;
+        }
+    }
+    let known: std::collections::HashSet<&str> = blocks.iter().map(|b| b.id.as_str()).collect();
+    let mut out = Vec::new();
+    for c in &d.cuts {
+        for b in c.blocks.iter().filter(|b| known.contains(b.as_str())) {
+            out.push(drawing_name(b, &c.id, through[b.as_str()]));
+        }
+    }
+    out
 }
 
 /// A block id as a file name: letters, digits, `-` and `_` kept, anything else `_`.

@@ -38,18 +38,7 @@ struct JsonCurve {
 /// non-finite coordinate, or two equal consecutive points.
 pub fn read_curves(path: &Path) -> std::result::Result<Vec<InputCurve>, String> {
     // a regular file of at most 256 MiB (not a device, not a runaway export)
-    match std::fs::metadata(path) {
-        Ok(m) if m.is_file() && m.len() <= 256 << 20 => {}
-        Ok(m) if m.is_file() => {
-            return Err(format!(
-                "{}: {} bytes, more than 256 MiB",
-                path.display(),
-                m.len()
-            ))
-        }
-        _ => return Err(format!("{}: not a regular file", path.display())),
-    }
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = crate::load::input::read_text(path, 256 << 20, "curve file")?;
     let csv = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("csv"));

@@ -21,6 +21,8 @@ use crate::limits::Limits;
 use crate::spec::OutputSpec;
 use crate::task::{Check, Resolved};
 
+/// Input files: regular files of bounded size, checked before they are opened.
+pub mod input;
 /// Layer 1: RON syntax and structure.
 mod parse;
 /// Layer 2: the JSON Schema.
@@ -168,21 +170,9 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
 /// Most bytes a job file may have (a job is a page of text; this stops `/dev/zero`).
 pub const MAX_JOB_BYTES: u64 = 1 << 20;
 
-/// The text of a job file, at most [`MAX_JOB_BYTES`] long.
+/// The text of a job file, a regular file of at most [`MAX_JOB_BYTES`].
 fn read_job_text(path: &Path) -> std::result::Result<String, String> {
-    use std::io::Read;
-    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
-    let mut bytes = Vec::new();
-    file.take(MAX_JOB_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| e.to_string())?;
-    if bytes.len() as u64 > MAX_JOB_BYTES {
-        return Err(format!(
-            "longer than {} MiB: not a job file",
-            MAX_JOB_BYTES >> 20
-        ));
-    }
-    String::from_utf8(bytes).map_err(|e| format!("not UTF-8 text: {e}"))
+    input::read_text(path, MAX_JOB_BYTES, "job file")
 }
 
 /// Reads, validates (all three layers) and resolves one job file.

@@ -32,20 +32,7 @@ struct SplineFile {
 const MAX_SPLINE_BYTES: u64 = 64 << 20;
 
 fn load_spline(file: &Path) -> Result<BSplineSurface, String> {
-    match std::fs::metadata(file) {
-        Ok(m) if m.is_file() && m.len() <= MAX_SPLINE_BYTES => {}
-        Ok(m) if m.is_file() => {
-            return Err(format!(
-                "{}: {} bytes, more than a control grid has ({} MiB at most)",
-                file.display(),
-                m.len(),
-                MAX_SPLINE_BYTES >> 20
-            ))
-        }
-        _ => return Err(format!("spline file not found: {}", file.display())),
-    }
-    let text = std::fs::read_to_string(file)
-        .map_err(|e| format!("cannot read spline file {}: {e}", file.display()))?;
+    let text = super::input::read_text(file, MAX_SPLINE_BYTES, "spline file")?;
     let f: SplineFile =
         serde_json::from_str(&text).map_err(|e| format!("{}: {e}", file.display()))?;
     let nu = f.points.len();
@@ -112,12 +99,8 @@ pub(super) fn load(
         SurfaceSpec::Mesh { path: rel, closed } => {
             let ptr = "/surface/Mesh/path";
             let file = base.join(rel);
-            if !file.is_file() {
-                return fail(
-                    errors,
-                    ptr,
-                    format!("mesh file not found: {}", file.display()),
-                );
+            if let Err(m) = super::input::regular(&file, u64::MAX, "mesh file") {
+                return fail(errors, ptr, m);
             }
             match TriMesh::load_obj(&file).and_then(|m| m.validate(*closed).map(|w| (m, w))) {
                 Ok((m, w)) => {

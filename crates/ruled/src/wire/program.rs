@@ -88,20 +88,9 @@ pub fn min_move_mm(decimals: usize) -> f64 {
     (50.0 * 10f64.powi(-(decimals as i32))).max(0.05)
 }
 
-/// A comment in parentheses: printable ASCII, parentheses replaced, at most 70 characters
-/// inside (GRBL's line buffer holds 80).
+/// A comment in parentheses ([`geom::text::gcode_comment`]).
 fn comment(text: &str) -> String {
-    let t: String = text
-        .chars()
-        .map(|c| match c {
-            '(' => '[',
-            ')' => ']',
-            c if (' '..='~').contains(&c) => c,
-            _ => '_',
-        })
-        .take(70)
-        .collect();
-    format!("({})", t.trim_end())
+    geom::text::gcode_comment(text)
 }
 
 /// The program of one cut. `top` and `floor` are the block's top and floor (job units),
