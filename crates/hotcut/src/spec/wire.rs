@@ -91,19 +91,24 @@ pub enum MachineSpec {
         /// along, tower B up.
         #[schemars(length(min = 4, max = 4))]
         axes: String,
-        /// Setup lines after the header comments: plain words (no parameters or
-        /// expressions), at most 70 characters each; they must set `G21` and `G90` (the
-        /// program is in absolute millimetres) and may not set `G20`, `G91` or stop the
-        /// program. Default: `["G17 G21 G90 G94 G61"]`.
+        /// Setup lines after the header comments, at most 70 characters each: modal
+        /// words that cannot move the machine or change its offsets or feed mode (`G17
+        /// G21 G40 G49 G54`–`G59.3 G61 G61.1 G64 G90 G94`, `P`/`Q` with `G64`), comments
+        /// and the heat-off words; they must set `G21` and `G90` (the program is in
+        /// absolute millimetres). Default: `["G17 G21 G90 G94 G61"]`.
         #[serde(default = "default_header")]
         header: Vec<String>,
-        /// Lines after the last move, before `end`. Default: none.
+        /// Lines after the last move, before `end`: the same words as `header` (no
+        /// moves: every program already ends with the towers raised). Default: none.
         #[serde(default)]
         footer: Vec<String>,
-        /// Heat on, `{power}` replaced by `wire.power`. Default: `M3 S{power}`.
+        /// Heat on, `{power}` replaced by `wire.power`: one switch-on of one output and
+        /// nothing else — `M3`/`M4` with an optional `S`, `M7`/`M8`, `M62`/`M64 P<n>` or
+        /// `M67`/`M68 E<n> Q<v>`. Default: `M3 S{power}`.
         #[serde(default = "default_heat_on")]
         heat_on: String,
-        /// Heat off. Default: `M5`.
+        /// Heat off: the switch-off of what `heat_on` switches on — `M5`, `M9`,
+        /// `M63`/`M65 P<n>` (the same `n`) or `M67`/`M68 E<n> Q0`. Default: `M5`.
         #[serde(default = "default_heat_off")]
         heat_off: String,
         /// Preheat dwell, seconds (0–600). Default: `wire.preheat_s`, else 2 s.
@@ -122,7 +127,8 @@ pub enum MachineSpec {
         /// Wrap the program in `%` lines. Default: `false`.
         #[serde(default)]
         percent: bool,
-        /// The program end. Default: `M2`.
+        /// The program end: `M2` or `M30`, with modal words as `header` at most.
+        /// Default: `M2`.
         #[serde(default = "default_end")]
         end: String,
         /// The unit of `G4 P`: `Seconds` or `Milliseconds`. Default: `Seconds`.

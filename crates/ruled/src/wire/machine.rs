@@ -6,6 +6,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::dialect;
 use crate::error::{PreCutError, Result};
 
 /// How a cutting move's `F` is read.
@@ -253,6 +254,19 @@ impl Machine {
                 format!("{count} header and footer lines, at most {MAX_LINES}"),
             );
         }
+        // `{power}` is written to 3 decimals: S0 would leave the wire cold
+        if self.heat_on.contains("{power}")
+            && !(self.power.is_finite() && (0.001..=1e6).contains(&self.power))
+        {
+            return bad(
+                "power",
+                format!(
+                    "{} must be within 0.001–1e6: heat on would write S{}, a cold wire",
+                    self.power,
+                    trim_number(self.power)
+                ),
+            );
+        }
         self.check_lines()?;
         if !(DECIMALS.0..=DECIMALS.1).contains(&self.decimals) {
             return bad(
@@ -269,19 +283,6 @@ impl Machine {
             return bad(
                 "preheat_s",
                 format!("{p} must be 0 (no dwell) or within 0.01–600 s"),
-            );
-        }
-        // `{power}` is written to 3 decimals: S0 would leave the wire cold
-        if self.heat_on.contains("{power}")
-            && !(self.power.is_finite() && (0.001..=1e6).contains(&self.power))
-        {
-            return bad(
-                "power",
-                format!(
-                    "{} must be within 0.001–1e6: heat on would write S{}, a cold wire",
-                    self.power,
-                    trim_number(self.power)
-                ),
             );
         }
         if !(self.max_speed.is_finite() && self.max_speed > 0.0) {
@@ -309,73 +310,81 @@ impl Machine {
 }
 
 impl Machine {
-    /// Checks the dialect's own lines: every line plain words a controller reads (no
-    /// parameters or expressions), `{power}` only in `heat_on`; heat on and off given and
-    /// different; the header setting `G21` and `G90`; no line switching to inches or
-    /// relative moves or stopping the program, but `end`, which must stop it.
+    /// Checks the dialect's own lines ([`super::dialect`]): every line plain words a
+    /// controller reads (no parameters or expressions), `{power}` only in `heat_on`;
+    /// header, footer and end modal words that cannot move the machine, change its offsets
+    /// or feed mode, `end` stopping the program and no other line; heat on one switch-on
+    /// of one output and heat off the switch-off of the same; the header setting `G21` and
+    /// `G90`; every number, `{power}` filled in, within the read-back's bounds.
     fn check_lines(&self) -> Result<()> {
         let bad = |name, reason: String| Err(PreCutError::InvalidParameter { name, reason });
+        let heat_on = self.heat_on_line();
         let lines = self
             .header
             .iter()
-            .map(|l| ("header", l))
-            .chain(self.footer.iter().map(|l| ("footer", l)))
+            .map(|l| ("header", l.as_str(), l.clone()))
+            .chain(
+                self.footer
+                    .iter()
+                    .map(|l| ("footer", l.as_str(), l.clone())),
+            )
             .chain([
-                ("heat_on", &self.heat_on),
-                ("heat_off", &self.heat_off),
-                ("end", &self.end),
+                ("heat_on", self.heat_on.as_str(), heat_on.clone()),
+                ("heat_off", self.heat_off.as_str(), self.heat_off.clone()),
+                ("end", self.end.as_str(), self.end.clone()),
             ]);
-        let mut header = Vec::new();
-        for (name, line) in lines {
+        let mut parsed = Vec::new();
+        for (name, line, filled) in lines {
             if let Some(reason) = line_problem(line, name == "heat_on") {
                 return bad(name, format!("{line:?}: {reason}"));
             }
-            let ws = match super::program::words(&line.replace("{power}", "1")) {
+            let ws = match super::program::words(&filled) {
                 Ok(ws) => ws,
                 Err(e) => return bad(name, format!("{line:?}: {e}")),
             };
-            let has = |l: char, v: f64| ws.contains(&(l, v));
-            let stops = [0.0, 1.0, 2.0, 30.0, 60.0].iter().any(|&v| has('M', v));
-            if has('G', 20.0) || has('G', 91.0) {
-                return bad(
-                    name,
-                    format!("{line:?}: programs are absolute millimetres: no G20 or G91"),
-                );
+            if let Some(p) = ws.iter().find_map(|&(l, v)| dialect::number_problem(l, v)) {
+                return bad(name, format!("{filled:?}: {p}"));
             }
-            if stops != (name == "end") {
-                let why = if stops {
-                    "stops the program before it ends"
-                } else {
-                    "must stop the program: M2 or M30"
-                };
-                return bad(name, format!("{line:?} {why}"));
-            }
-            if matches!(name, "heat_on" | "heat_off") && ws.is_empty() {
-                return bad(name, format!("{line:?}: the heat needs a command"));
-            }
-            if name == "header" {
-                header.extend(ws);
-            }
+            parsed.push((name, line, ws));
         }
-        // the usual outputs' on and off codes the wrong way round: spindle M3/M4 and M5,
-        // coolant M7/M8 and M9, digital output M62/M64 and M63/M65
-        let (on, off) = (words_of(&self.heat_on), words_of(&self.heat_off));
-        let has = |ws: &[(char, f64)], codes: &[f64]| codes.iter().any(|&c| ws.contains(&('M', c)));
-        let (on_codes, off_codes) = (&[3.0, 4.0, 7.0, 8.0, 62.0, 64.0], &[5.0, 9.0, 63.0, 65.0]);
-        if has(&on, off_codes) || has(&off, on_codes) {
+        let words = |n: &str| {
+            parsed
+                .iter()
+                .find(|p| p.0 == n)
+                .map(|p| p.2.clone())
+                .unwrap_or_default()
+        };
+        let (on, off) = (words("heat_on"), words("heat_off"));
+        let on_output =
+            dialect::heat_on_output(&on).map_err(|e| PreCutError::InvalidParameter {
+                name: "heat_on",
+                reason: format!("{:?}: {e}", self.heat_on),
+            })?;
+        let off_output =
+            dialect::heat_off_output(&off).map_err(|e| PreCutError::InvalidParameter {
+                name: "heat_off",
+                reason: format!("{:?}: {e}", self.heat_off),
+            })?;
+        if on_output != off_output {
             return bad(
-                "heat_on",
+                "heat_off",
                 format!(
-                    "heat_on {:?} and heat_off {:?} look swapped: M3/M4/M7/M8/M62/M64 switch on, M5/M9/M63/M65 off",
-                    self.heat_on, self.heat_off
+                    "{:?} switches off {off_output:?}, but heat_on {:?} switches on {on_output:?}: heat off must switch off what heat on switches on",
+                    self.heat_off, self.heat_on
                 ),
             );
         }
-        if on == off {
-            return bad(
-                "heat_off",
-                format!("{:?} must differ from heat_on", self.heat_off),
-            );
+        let mut header = Vec::new();
+        for (name, line, ws) in &parsed {
+            if matches!(*name, "heat_on" | "heat_off") {
+                continue;
+            }
+            if let Some(p) = dialect::fixed_line_problem(ws, &off, *name == "end") {
+                return bad(name, format!("{line:?}: {p}"));
+            }
+            if *name == "header" {
+                header.extend(ws.iter().copied());
+            }
         }
         for needed in [21.0, 90.0] {
             if !header.contains(&('G', needed)) {
@@ -387,11 +396,6 @@ impl Machine {
         }
         Ok(())
     }
-}
-
-/// The words of a dialect's line (none when unreadable).
-fn words_of(line: &str) -> Vec<(char, f64)> {
-    super::program::words(&line.replace("{power}", "1")).unwrap_or_default()
 }
 
 /// Why a setup line cannot go into a program (`None`: it can); `{power}` is allowed where
@@ -537,9 +541,54 @@ mod tests {
         let more = [
             ("heat_on", lines(&g, &[], "", "M5", "M2")),
             ("heat_on", lines(&g, &[], "(on)", "M5", "M2")),
-            ("heat_off", lines(&g, &[], "M100 P1", "M100 P1", "M2")),
+            ("heat_on", lines(&g, &[], "M100 P1", "M100 P1", "M2")),
+            ("heat_off", lines(&g, &[], "M64 P0", "M9", "M2")),
+            ("heat_off", lines(&g, &[], "M3", "M3", "M2")),
+            (
+                "heat_on",
+                lines(&g, &[], "M64 P0 G1 X700 Y0 U700 V0 F100", "M65 P0", "M2"),
+            ),
+            ("heat_on", lines(&g, &[], "M3 S99999999", "M5", "M2")),
+            ("heat_on", lines(&g, &[], "M3 S{power}{power}", "M5", "M2")),
+            ("footer", lines(&g, &["G0 X5000 U5000"], "M3", "M5", "M2")),
+            (
+                "header",
+                lines(&["G17 G21 G90", "G92 X-3000 U-3000"], &[], "M3", "M5", "M2"),
+            ),
+            (
+                "header",
+                lines(
+                    &["G17 G21 G90", "G10 L2 P1 X500 U500"],
+                    &[],
+                    "M3",
+                    "M5",
+                    "M2",
+                ),
+            ),
+            ("footer", lines(&g, &["G53 G0 X0"], "M3", "M5", "M2")),
+            ("footer", lines(&g, &["G28 X0"], "M3", "M5", "M2")),
+            (
+                "header",
+                lines(&["G17 G21 G90", "M64 P0"], &[], "M64 P0", "M65 P0", "M2"),
+            ),
+            (
+                "footer",
+                lines(
+                    &g,
+                    &["M64 P0", "G1 X0 Y0 U0 V0 F100"],
+                    "M64 P0",
+                    "M65 P0",
+                    "M2",
+                ),
+            ),
+            ("end", lines(&g, &[], "M3", "M5", "M30 G0 X9000")),
+            ("footer", lines(&g, &["M47"], "M3", "M5", "M2")),
+            ("footer", lines(&g, &["M99"], "M3", "M5", "M2")),
+            ("header", lines(&["G17 G21 G90 G93"], &[], "M3", "M5", "M2")),
+            ("footer", lines(&g, &["G1 X0 F0.000001"], "M3", "M5", "M2")),
             ("heat_on", lines(&g, &[], "M5", "M3 S1000", "M2")),
-            ("heat_on", lines(&g, &[], "M64 P0", "M64 P1", "M2")),
+            ("heat_off", lines(&g, &[], "M64 P0", "M64 P1", "M2")),
+            ("heat_off", lines(&g, &[], "M64 P0", "M65 P1", "M2")),
             ("header", lines(&["G17"], &[], "M3", "M5", "M2")),
             ("header", lines(&["( G21 G90 )"], &[], "M3", "M5", "M2")),
             // after `;` is a comment: the header passes, the footer does not

@@ -14,6 +14,8 @@
 //!
 //! [`program()`] writes a cut's G-code in a controller's dialect ([`Machine`]).
 
+/// What a dialect's fixed lines (header, footer, heat, end) may say.
+pub mod dialect;
 /// Controller dialects and the built-in profiles.
 pub mod machine;
 /// One cut's G-code, checked against the machine's travel and feed.

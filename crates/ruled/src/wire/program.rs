@@ -358,13 +358,19 @@ fn header_comments(path: &WirePath, p: &WireParams, m: &Machine, name: &str) -> 
     c
 }
 
-/// Largest coordinate a program may hold, mm.
-const MAX_COORDINATE_MM: f64 = 1e6;
-
-/// Reads back a program [`program`] wrote for `m` and checks what it would make the
-/// machine do: every number finite, every coordinate within ±10⁶ mm, every cutting move
-/// with a feed, and its faster tower's speed within
-/// [`MIN_SPEED_MM_PER_MIN`]–[`MAX_SPEED_MM_PER_MIN`] (within 1 %: the program's rounding).
+/// Reads back a program [`program`] wrote for `m` and replays what it would make the
+/// machine do, line by line, the dialect's fixed lines included:
+/// - every number finite and within ±10⁶ ([`super::dialect::number_problem`]);
+/// - only the codes a program holds: motion `G0`/`G1`, dwell `G4`, feed modes `G93`/`G94`,
+///   the modal settings of [`super::dialect::SAFE_G`], the dialect's heat lines and one
+///   program end, after which nothing follows;
+/// - every move from a known position, and every position within the machine's travel
+///   (per axis, to half the last digit) when it has one;
+/// - the heat: no rapid (`G0`) while hot, no cutting move (`G1`) while cold, and off at
+///   the end;
+/// - every cutting move with a feed, its faster tower's speed within
+///   [`MIN_SPEED_MM_PER_MIN`]–[`MAX_SPEED_MM_PER_MIN`] (within 1 %: the program's
+///   rounding).
 ///
 /// # Errors
 /// [`PreCutError::InvalidParameter`] naming the first offending line.
@@ -375,8 +381,25 @@ pub fn check_program(text: &str, m: &Machine) -> Result<()> {
             reason: format!("line {}: {reason}", line + 1),
         })
     };
+    let (on, off) = (words(&m.heat_on_line()), words(&m.heat_off));
+    let (Ok(on), Ok(off)) = (on, off) else {
+        return bad(0, "the dialect's heat lines cannot be read".into());
+    };
+    let same = |ws: &[(char, f64)], line: &[(char, f64)]| {
+        let mut a = ws.to_vec();
+        let mut b = line.to_vec();
+        let key = |w: &(char, f64)| (w.0, w.1.to_bits());
+        a.sort_by_key(key);
+        b.sort_by_key(key);
+        !a.is_empty() && a == b
+    };
+    let half = 0.5 * 10f64.powi(-(m.decimals as i32));
     let mut pos = [0.0f64; 4];
+    let mut known = [false; 4];
     let mut inverse_time = false;
+    let mut motion: Option<bool> = None; // Some(true): G1
+    let mut hot = false;
+    let mut ended = false;
     for (i, line) in text.lines().enumerate() {
         if line.trim() == "%" {
             continue;
@@ -385,26 +408,87 @@ pub fn check_program(text: &str, m: &Machine) -> Result<()> {
             Ok(ws) => ws,
             Err(e) => return bad(i, e),
         };
+        if ws.is_empty() {
+            continue;
+        }
+        if ended {
+            return bad(i, "a line after the program's end".into());
+        }
+        if let Some(p) = ws
+            .iter()
+            .filter(|w| w.0 != 'F')
+            .find_map(|&(l, v)| super::dialect::number_problem(l, v))
+        {
+            return bad(i, p);
+        }
+        if same(&on, &ws) {
+            hot = true;
+            continue;
+        }
+        if same(&off, &ws) {
+            hot = false;
+            continue;
+        }
         let mut next = pos;
+        let mut moved = [false; 4];
         let mut f = None;
-        let mut cut = false;
-        for (letter, v) in ws {
-            // a feed is not a coordinate: only finite
-            let bounded = letter == 'F' || v.abs() <= MAX_COORDINATE_MM;
-            if !(v.is_finite() && bounded) {
-                return bad(
-                    i,
-                    format!("{letter}{v} is not a finite number within ±{MAX_COORDINATE_MM} mm"),
-                );
+        for &(letter, v) in &ws {
+            if !v.is_finite() {
+                return bad(i, format!("{letter}{v} is not a finite number"));
             }
             let axis = m.axes.iter().position(|&a| a == letter);
             match (letter, axis) {
-                (_, Some(k)) => next[k] = v,
+                (_, Some(k)) => {
+                    next[k] = v;
+                    moved[k] = true;
+                }
+                ('G', _) if v == 0.0 => motion = Some(false),
+                ('G', _) if v == 1.0 => motion = Some(true),
                 ('G', _) if v == 93.0 => inverse_time = true,
                 ('G', _) if v == 94.0 => inverse_time = false,
-                ('G', _) if v == 1.0 => cut = true,
+                ('G', _) if v == 4.0 || super::dialect::SAFE_G.contains(&v) => {}
+                ('P' | 'Q', _) => {}
                 ('F', _) => f = Some(v),
-                _ => {}
+                ('M', _) if v == 2.0 || v == 30.0 => ended = true,
+                _ => {
+                    return bad(
+                        i,
+                        format!("{letter}{v} is not a word of this program's dialect"),
+                    )
+                }
+            }
+        }
+        if ended && hot {
+            return bad(i, "the program ends with the wire hot".into());
+        }
+        if !moved.iter().any(|&k| k) {
+            continue;
+        }
+        let Some(cut) = motion else {
+            return bad(i, "axis words before any G0 or G1".into());
+        };
+        if (0..4).any(|k| !known[k] && !moved[k]) {
+            return bad(i, "a move from a position the program has not set".into());
+        }
+        if cut != hot {
+            return bad(
+                i,
+                if hot {
+                    "a rapid move with the wire hot".into()
+                } else {
+                    "a cutting move with the wire cold".into()
+                },
+            );
+        }
+        if let Some(t) = &m.travel {
+            for k in 0..4 {
+                let (lo, hi) = t[k];
+                if next[k] < lo - half || next[k] > hi + half {
+                    return bad(
+                        i,
+                        format!("{}{} is outside the travel {lo}…{hi}", m.axes[k], next[k]),
+                    );
+                }
             }
         }
         if cut {
@@ -434,7 +518,15 @@ pub fn check_program(text: &str, m: &Machine) -> Result<()> {
                 );
             }
         }
+        // every axis was known or set: all are known now
+        known = [true; 4];
         pos = next;
+    }
+    if hot {
+        return bad(
+            text.lines().count().saturating_sub(1),
+            "the wire is left hot".into(),
+        );
     }
     Ok(())
 }
@@ -494,8 +586,27 @@ mod tests {
     #[test]
     fn programs_are_read_back() {
         let m = linuxcnc();
-        let ok = "%\n(c)\nG17 G21 G90 G94 G61\nG0 X0 Y50 U0 V50\nG0 X0 Y10 U0 V10\nG93\nG1 X100 Y10 U100 V10 F3\nG94\nM2\n%\n";
-        assert!(check_program(ok, &m).is_ok());
+        let ok = "%\n(c)\nG17 G21 G90 G94 G61\nG0 X0 Y50 U0 V50\nG0 X0 Y10 U0 V10\nM3 S1000\nG4 P2\nG93\nG1 X100 Y10 U100 V10 F3\nM5\nG94\nG0 X100 Y50 U100 V50\nM2\n%\n";
+        check_program(ok, &m).unwrap();
+        // what the machine would do: heat per move, codes, positions, the end
+        for (from, to) in [
+            ("M5\n", ""),                          // left hot, and a hot rapid
+            ("M3 S1000\n", ""),                    // a cold cut
+            ("M5\nG94\n", "G94\n"),                // a rapid while hot
+            ("G93\n", "G93\nG92 X-3000 U-3000\n"), // offsets shifted
+            ("G93\n", "G93\nG10 L2 P1 X500\n"),    // offsets rewritten
+            ("G0 X0 Y50 U0 V50\n", "G0 X0 Y50\n"), // U and V never set
+            ("M2\n", "M2\nG0 X0 Y0 U0 V0\n"),      // a move after the end
+            ("M2\n", "M99\nM2\n"),                 // a code of no program
+            ("G0 X100 Y50", "G53 G0 X100 Y50"),    // machine coordinates
+        ] {
+            let text = ok.replace(from, to);
+            assert!(check_program(&text, &m).is_err(), "{from:?} → {to:?}");
+        }
+        let mut travel = m.clone();
+        travel.travel = Some([(0.0, 100.0), (0.0, 50.0), (0.0, 100.0), (0.0, 50.0)]);
+        check_program(ok, &travel).unwrap();
+        assert!(check_program(&ok.replace("Y50 U0", "Y50.01 U0"), &travel).is_err());
         // 100 mm at F3 (1/3 min) is 300 mm/min; at F1000, 100 m/min
         assert!(check_program(&ok.replace("F3", "F1000"), &m).is_err());
         assert!(check_program(&ok.replace("F3", "F0.0000"), &m).is_err());
