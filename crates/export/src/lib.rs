@@ -21,6 +21,8 @@ pub mod json;
 pub mod obj;
 /// ABB RAPID modules and program files for a two-robot MultiMove hot-blade cell.
 pub mod rapid;
+/// The identifiers a user may give a RAPID program: not reserved, predefined or ours.
+pub mod rapid_names;
 /// Robot files of a two-robot hot-blade cell: targets (JSON, CSV) and RAPID modules.
 pub mod robot;
 /// A small SVG builder with a world-to-page viewport.

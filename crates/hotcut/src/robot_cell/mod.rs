@@ -73,12 +73,6 @@ pub struct CellPlan {
     pub report: CellReport,
 }
 
-fn is_identifier(s: &str) -> bool {
-    s.len() <= 32
-        && s.starts_with(|c: char| c.is_ascii_alphabetic())
-        && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
-}
-
 /// Largest distance of a frame's origin, a clearance or a centre of gravity from zero, mm
 /// (a cell is a room, not a city).
 const MAX_MM: f64 = 100_000.0;
@@ -106,54 +100,6 @@ fn frame_ok(f: &crate::spec::FrameSpec, mm: f64) -> bool {
 fn frame_message() -> String {
     format!("a frame's origin must lie within {MAX_MM} mm, its angles within ±720°")
 }
-
-/// Names the programs declare, and RAPID words a signal must not take (compared without
-/// case, as RAPID does).
-const TAKEN: &[&str] = &[
-    "main",
-    "change_block",
-    "tlBlade",
-    "idStart",
-    "idSyncOn",
-    "idSyncOff",
-    "idEnd",
-    "nAnswer",
-    "vCut",
-    "vAir",
-    "wFixture",
-    "tBlade1",
-    "tBlade2",
-    "tGrip",
-    "wCarried",
-    "wobj0",
-    "stEmpty",
-    "remove",
-    "place",
-    "IF",
-    "THEN",
-    "ELSE",
-    "ENDIF",
-    "FOR",
-    "WHILE",
-    "PROC",
-    "ENDPROC",
-    "MODULE",
-    "ENDMODULE",
-    "CONST",
-    "PERS",
-    "VAR",
-    "TRUE",
-    "FALSE",
-    "AND",
-    "OR",
-    "NOT",
-    "XOR",
-    "DIV",
-    "MOD",
-    "RETURN",
-    "TO",
-    "DO",
-];
 
 /// Checks the job's `cell:` and what a robot program needs of the task's motion: a
 /// positive approach (the blade must start and end outside the block) and a cutting
@@ -257,19 +203,11 @@ fn check_settings(c: &CellSpec, mm: f64, err: Report<'_>) {
             format!("the clearance must be positive, at most {MAX_MM} mm"),
         );
     }
-    if !is_identifier(&c.heat.signal) {
+    if let Some(why) = export::rapid_names::name_problem(&c.heat.signal) {
         err(
             "/heat/signal",
             format!(
-                "{:?} is not a RAPID identifier (a letter, then letters, digits or _, at most 32)",
-                c.heat.signal
-            ),
-        );
-    } else if TAKEN.iter().any(|t| t.eq_ignore_ascii_case(&c.heat.signal)) {
-        err(
-            "/heat/signal",
-            format!(
-                "{:?} is a RAPID word or a name the programs use",
+                "{:?} {why}: name the heat's digital output otherwise",
                 c.heat.signal
             ),
         );

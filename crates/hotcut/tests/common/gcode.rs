@@ -179,7 +179,9 @@ pub fn replay(text: &str, rules: &Rules) -> Result<Replay, String> {
                         91 => absolute = false,
                         93 => inverse = true,
                         94 => inverse = false,
-                        17 | 54 | 61 => {}
+                        // modal settings that neither move nor offset: plane, no cutter
+                        // compensation, no tool length offset, a work offset, path mode
+                        17 | 40 | 49 | 54..=59 | 61 | 64 => {}
                         other => return Err(at(format!("G{other}: unexpected in a wire program"))),
                     }
                 }
@@ -187,6 +189,16 @@ pub fn replay(text: &str, rules: &Rules) -> Result<Replay, String> {
                     return Err(at(format!("M{v}: not a GRBL 1.1 code (error:20)")));
                 }
                 'M' if v == 2.0 || v == 30.0 => r.ended = true,
+                // an M code is the heat's, or the program's end: anything else (M47, M99,
+                // a user macro) could do what no replay sees
+                'M' if !rules
+                    .heat_on
+                    .iter()
+                    .chain(&rules.heat_off)
+                    .any(|c| c == &format!("M{v}")) =>
+                {
+                    return Err(at(format!("M{v}: neither the heat's code nor the end")));
+                }
                 'F' => feed = Some(v),
                 'X' | 'Y' | 'Z' | 'A' | 'B' | 'C' | 'U' | 'V' | 'W' => {
                     return Err(at(format!("axis {letter} is not one of the machine's")));
