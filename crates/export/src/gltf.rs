@@ -94,19 +94,26 @@ impl Mesh {
 }
 
 /// The bounding box `(min, max)` of every position of `meshes`, in their own units
-/// (`None` without any position).
+/// (`None` without any position, or with one that is not finite).
 pub fn bounds(meshes: &[Mesh]) -> Option<([f64; 3], [f64; 3])> {
     let mut it = meshes
         .iter()
         .flat_map(|m| &m.positions)
         .map(|p| p.map(f64::from));
+    if it.clone().flatten().any(|v| !v.is_finite()) {
+        return None;
+    }
     let first = it.next()?;
-    Some(it.fold((first, first), |(lo, hi), p| {
+    let (lo, hi) = it.fold((first, first), |(lo, hi), p| {
         (
             std::array::from_fn(|k| lo[k].min(p[k])),
             std::array::from_fn(|k| hi[k].max(p[k])),
         )
-    }))
+    });
+    lo.iter()
+        .chain(&hi)
+        .all(|v| v.is_finite())
+        .then_some((lo, hi))
 }
 
 /// Writes the scene.
@@ -127,7 +134,8 @@ pub fn bounds(meshes: &[Mesh]) -> Option<([f64; 3], [f64; 3])> {
 /// ```
 ///
 /// # Errors
-/// I/O errors of `w`.
+/// I/O errors of `w`; [`crate::ExportError::Data`] for a position that is not a finite
+/// single-precision number in metres (glTF's accessors are `f32`).
 pub fn write_gltf(
     generator: &str,
     meshes: &[Mesh],
@@ -161,6 +169,13 @@ pub fn write_gltf(
         for p in &m.positions {
             for k in 0..3 {
                 let v = (f64::from(p[k]) * units.metres) as f32;
+                if !v.is_finite() {
+                    return Err(crate::ExportError::Data(format!(
+                        "glTF: mesh {:?} has a position beyond single precision ({} m): the model is too large to draw",
+                        m.name,
+                        f64::from(p[k]) * units.metres
+                    )));
+                }
                 bytes.extend_from_slice(&v.to_le_bytes());
                 lo[k] = lo[k].min(v);
                 hi[k] = hi[k].max(v);

@@ -150,7 +150,7 @@ pub fn run_task<T: Task>(
         // whatever is left at the temporary path (a failed run's files, or the earlier
         // output swapped out) goes
         let mut list = in_progress();
-        let _ = std::fs::remove_dir_all(&kept);
+        remove_entry(&kept);
         list.retain(|p| p != &kept);
     }
     let files = placed?;
@@ -331,8 +331,23 @@ fn remove_stale(out: &Path, name: &str, dir: &Path) {
         if file.ends_with(".old") && !dir.exists() {
             let _ = std::fs::rename(e.path(), dir);
         } else {
-            let _ = std::fs::remove_dir_all(e.path());
+            remove_entry(&e.path());
         }
+    }
+}
+
+/// Deletes whatever is at `path`: a folder with its contents, or a file, symbolic link or
+/// other entry (what `<out>/<name>` was before a run swapped it out may be any of them). A
+/// symbolic link is removed, never followed.
+fn remove_entry(path: &Path) {
+    match std::fs::symlink_metadata(path) {
+        Ok(m) if m.is_dir() => {
+            let _ = std::fs::remove_dir_all(path);
+        }
+        Ok(_) => {
+            let _ = std::fs::remove_file(path);
+        }
+        Err(_) => {}
     }
 }
 
