@@ -61,7 +61,10 @@ pub fn pose_distance(a: &Isometry3<f64>, b: &Isometry3<f64>) -> (f64, f64) {
 }
 
 /// Every joint solution of the flange pose `pose` (base frame, mm) within the model's
-/// limits: each closed-form solution, with the other turns of axes whose range spans them,
+/// limits: each closed-form solution, with the whole turns of axes whose range spans them
+/// — nearest `previous` and nearest the middle of the range, or the three nearest the
+/// middle without `previous`: the enumeration is bounded however wide the limits —
+/// sorted and deduplicated,
 /// kept only when its forward kinematics lands on the pose (within
 /// [`POSITION_TOLERANCE_MM`] and [`ANGLE_TOLERANCE_RAD`]). With
 /// `previous`, a singularity (axis 5 at 0, the wrist centre on axis 1) is resolved at its
@@ -93,36 +96,54 @@ pub fn inverse(
     .filter(|q| q.iter().all(|v| v.is_finite()))
     .map(|q| maker(model, q))
     .collect();
+    let near = previous.copied();
     let mut out: Vec<Joints> = Vec::new();
     for s in raw {
-        for q in turns(model, &s) {
+        for q in turns(model, &s, near.as_ref()) {
             let Ok(p) = forward(model, &q) else { continue };
             let (dp, da) = pose_distance(&p, pose);
-            let exact = dp <= POSITION_TOLERANCE_MM && da <= ANGLE_TOLERANCE_RAD;
-            if exact && !out.iter().any(|o| same(o, &q)) {
+            if dp <= POSITION_TOLERANCE_MM && da <= ANGLE_TOLERANCE_RAD {
                 out.push(q);
             }
         }
     }
+    // equal solutions (to 1e-9 rad) once, in O(n log n): sorted on their rounded joints
+    let key = |q: &Joints| q.map(|v| (v * 1e9).round() as i64);
+    out.sort_by_key(key);
+    out.dedup_by(|a, b| key(a) == key(b));
     Ok(out)
 }
 
-/// Two joint vectors equal to 1e-9 rad.
-fn same(a: &Joints, b: &Joints) -> bool {
-    a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-9)
-}
-
-/// `q` with every joint moved by whole turns in every way that stays within the limits.
-fn turns(model: &RobotModel, q: &Joints) -> Vec<Joints> {
+/// Whole-turn variants of `q` within the limits, a few per joint however wide the limits
+/// (an arm allowed ±720° on every joint would otherwise give thousands per solution):
+/// with `previous`, the one nearest it and the one nearest the range's middle (at most 64
+/// in all); without, the three nearest the middle (at most 729).
+fn turns(model: &RobotModel, q: &Joints, previous: Option<&Joints>) -> Vec<Joints> {
     let tau = std::f64::consts::TAU;
     let options: Vec<Vec<f64>> = q
         .iter()
         .zip(&model.limits)
-        .map(|(&v, &(lo, hi))| {
-            (-2..=2)
-                .map(|k| v + tau * k as f64)
-                .filter(|w| (lo..=hi).contains(w))
-                .collect()
+        .enumerate()
+        .map(|(i, (&v, &(lo, hi)))| {
+            // the in-range turns nearest `target`, nearest first
+            let near = |target: f64, n: usize| {
+                let k = ((target - v) / tau).round();
+                let mut w: Vec<f64> = (-2..=2)
+                    .map(|d| v + tau * (k + f64::from(d)))
+                    .filter(|w| (lo..=hi).contains(w))
+                    .collect();
+                w.sort_by(|a, b| (a - target).abs().total_cmp(&(b - target).abs()));
+                w.truncate(n);
+                w
+            };
+            let mid = 0.5 * (lo + hi);
+            let mut o = match previous {
+                Some(p) => [near(p[i], 1), near(mid, 1)].concat(),
+                None => near(mid, 3),
+            };
+            o.sort_by(f64::total_cmp);
+            o.dedup();
+            o
         })
         .collect();
     let mut out = vec![[0.0; 6]];

@@ -142,3 +142,27 @@ fn turns_of_axes_four_and_six_are_solutions_too() {
         );
     }
 }
+
+#[test]
+fn wide_limits_keep_the_enumeration_bounded() {
+    // every joint allowed ±720°: four turns each, 4⁶ variants per closed-form solution if
+    // all were kept; the previous joints pick one turn (and the middle's) per joint
+    let mut m = RobotModel::irb2600_12_165();
+    let wide = 4.0 * std::f64::consts::PI;
+    m.limits = [(-wide, wide); 6];
+    let q = [0.2, 0.3, -0.2, 0.4, 0.7, 0.1];
+    let pose = forward(&m, &q).unwrap();
+    let all = inverse(&m, &pose, None).unwrap();
+    assert!(!all.is_empty() && all.len() <= 8 * 729, "{}", all.len());
+    let hinted = inverse(&m, &pose, Some(&q)).unwrap();
+    assert!(hinted.len() <= 8 * 64, "{}", hinted.len());
+    let back = nearest(&hinted, &q).unwrap();
+    assert!(back.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9));
+    // a turn away from the middle, found near the previous joints
+    let far = [q[0] + wide / 2.0, q[1], q[2], q[3], q[4], q[5] - wide / 2.0];
+    let back = nearest(&inverse(&m, &pose, Some(&far)).unwrap(), &far).unwrap();
+    assert!(
+        back.iter().zip(&far).all(|(a, b)| (a - b).abs() < 1e-9),
+        "{back:?}"
+    );
+}
