@@ -18,6 +18,8 @@ use crate::error::JobError;
 
 /// Default memory limit, GB (10⁹ bytes).
 pub const DEFAULT_MEMORY_GB: f64 = 4.0;
+/// Default limit on the files a run writes, MB (10⁶ bytes): a report a person can open.
+pub const DEFAULT_OUTPUT_MB: f64 = 256.0;
 /// Default work limit, in steps (a step is about one curve or surface evaluation, some
 /// tens of nanoseconds: 5·10¹⁰ steps are some tens of minutes).
 pub const DEFAULT_WORK: f64 = 5e10;
@@ -29,6 +31,8 @@ pub struct Limits {
     pub memory_gb: f64,
     /// Work, steps.
     pub work: f64,
+    /// The files written, MB.
+    pub output_mb: f64,
 }
 
 impl Default for Limits {
@@ -36,6 +40,7 @@ impl Default for Limits {
         Self {
             memory_gb: DEFAULT_MEMORY_GB,
             work: DEFAULT_WORK,
+            output_mb: DEFAULT_OUTPUT_MB,
         }
     }
 }
@@ -47,6 +52,8 @@ pub struct Estimate {
     pub memory: f64,
     /// Work, steps (roughly).
     pub work: f64,
+    /// Bytes of the files written, all outputs asked for (roughly; 0: not estimated).
+    pub output: f64,
     /// JSON pointer of the field that drives the estimate most.
     pub pointer: &'static str,
     /// What to change to make the run smaller.
@@ -63,12 +70,40 @@ impl Estimate {
         Self {
             memory,
             work,
+            output: 0.0,
             pointer,
             change,
             checks: Vec::new(),
         }
     }
+
+    /// This estimate, writing about `bytes` of files.
+    pub fn with_output(self, bytes: f64) -> Self {
+        Self {
+            output: bytes,
+            ..self
+        }
+    }
+
+    /// One line for people: work (and the time it implies at ~10⁸ steps per second),
+    /// memory, files.
+    pub fn summary(&self) -> String {
+        let mut s = format!(
+            "about {} steps of work (~{} s at 10⁸ per second), {} GB of memory",
+            round3(self.work),
+            round3(self.work / STEPS_PER_SECOND),
+            round3(self.memory / 1e9)
+        );
+        if self.output > 0.0 {
+            s += &format!(", {} MB of files", round3(self.output / 1e6));
+        }
+        s
+    }
 }
+
+/// Steps a run makes per second, roughly (one core of a current workstation): the rate
+/// that turns an estimate's work into time.
+pub const STEPS_PER_SECOND: f64 = 1e8;
 
 impl Estimate {
     /// The problems of this estimate against `limits`, one per resource over its limit
@@ -96,6 +131,19 @@ impl Estimate {
                     "{task} would take about {} steps of work (at ~10⁸ steps per second), more than the limit of {:e}: {}, or raise the limit with --max-work",
                     round3(self.work),
                     limits.work,
+                    self.change
+                ),
+            ));
+        }
+        let mb = self.output / 1e6;
+        if !(mb <= limits.output_mb) {
+            out.push(JobError::semantic(
+                path,
+                self.pointer,
+                format!(
+                    "{task} would write about {} MB of files, more than the limit of {} MB: {}, or raise the limit with --max-output",
+                    round3(mb),
+                    limits.output_mb,
                     self.change
                 ),
             ));
@@ -183,12 +231,24 @@ mod tests {
         let big = Limits {
             memory_gb: 8.0,
             work: 1e12,
+            output_mb: 1.0,
         };
         assert!(e.problems(Path::new("a.ron"), "HotBlade", &big).is_empty());
         let nan = Estimate {
             work: f64::NAN,
-            ..e
+            ..e.clone()
         };
         assert_eq!(nan.problems(Path::new("a.ron"), "T", &big).len(), 1);
+        let files = e.clone().with_output(2e6);
+        let p = files.problems(Path::new("a.ron"), "T", &big);
+        assert!(
+            p.len() == 1 && p[0].to_string().contains("--max-output"),
+            "{p:?}"
+        );
+        assert!(
+            files.summary().contains("2 MB of files"),
+            "{}",
+            files.summary()
+        );
     }
 }

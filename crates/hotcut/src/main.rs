@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
-use hotcut::limits::{Limits, DEFAULT_MEMORY_GB, DEFAULT_WORK};
+use hotcut::limits::{Limits, DEFAULT_MEMORY_GB, DEFAULT_OUTPUT_MB, DEFAULT_WORK};
 use hotcut::load::{load_job_with, ResolvedJob};
 use hotcut::Progress;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -73,6 +73,10 @@ struct LimitArgs {
     /// larger is refused at validation.
     #[arg(long, value_name = "STEPS", default_value_t = DEFAULT_WORK, value_parser = positive)]
     max_work: f64,
+    /// Most files a run may write, MB: a job whose estimate is larger is refused at
+    /// validation.
+    #[arg(long, value_name = "MB", default_value_t = DEFAULT_OUTPUT_MB, value_parser = positive)]
+    max_output: f64,
 }
 
 impl LimitArgs {
@@ -80,6 +84,7 @@ impl LimitArgs {
         Limits {
             memory_gb: self.max_memory,
             work: self.max_work,
+            output_mb: self.max_output,
         }
     }
 }
@@ -251,7 +256,7 @@ fn main() -> ExitCode {
         Command::Validate { jobs, limits } => match load_all(&jobs, &limits.limits()) {
             Ok(list) => {
                 for j in list {
-                    say!("{}: ok", j.path().display());
+                    say!("{}: ok ({})", j.path().display(), j.estimate.summary());
                     for w in &j.context.warnings {
                         say!("  warning: {w}");
                     }

@@ -200,13 +200,13 @@ pub struct Resolved<'a> {
 }
 
 impl Visit for Resolved<'_> {
-    type Output = Vec<JobError>;
+    type Output = std::result::Result<Estimate, Vec<JobError>>;
 
-    fn visit<T: Task>(self, task: &T) -> Vec<JobError> {
+    fn visit<T: Task>(self, task: &T) -> Self::Output {
         let job = self.job;
         let params = match task.params(job) {
             Ok(p) => p,
-            Err(e) => return vec![JobError::semantic(&job.path, "", e.to_string())],
+            Err(e) => return Err(vec![JobError::semantic(&job.path, "", e.to_string())]),
         };
         let e = T::estimate(&params, job);
         let mut out: Vec<JobError> = e
@@ -215,6 +215,10 @@ impl Visit for Resolved<'_> {
             .map(|(pointer, message)| JobError::semantic(&job.path, pointer, message.clone()))
             .collect();
         out.extend(e.problems(&job.path, T::NAME, self.limits));
-        out
+        if out.is_empty() {
+            Ok(e)
+        } else {
+            Err(out)
+        }
     }
 }

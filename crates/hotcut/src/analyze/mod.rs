@@ -129,6 +129,8 @@ impl Task for Analyze {
             "/task/Analyze/samples",
             "lower the task's samples or cutting.sections",
         )
+        // report, drawing and page: each section's samples, some tens of bytes each
+        .with_output(n * (s * 60.0 + points * 40.0) + 2e5)
     }
 
     fn run(params: &AnalyzeParams, job: &Context, progress: &dyn Progress) -> Result<Analysis> {

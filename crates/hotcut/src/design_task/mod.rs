@@ -349,21 +349,40 @@ impl Task for Design {
     }
 
     fn estimate(p: &DesignParams, _: &Context) -> Estimate {
-        let (cuts, pieces) = read(&p.file.0)
-            .map(|d| {
-                let pieces: usize = d.cuts.iter().map(|c| c.blocks.len()).sum();
-                (d.cuts.len(), pieces)
-            })
-            .unwrap_or((1, 1));
+        // per cut: its pieces solved on every station and every plane; per block cut
+        // several times: their envelope on a grid of (2·planes − 1)² nodes (at most 101²),
+        // each node against every cut's planes and points
+        let (cuts, solves, envelope) = read(&p.file.0).map_or((1.0, 1.0, 0.0), |d| {
+            let solves: f64 = d
+                .cuts
+                .iter()
+                .map(|c| (c.blocks.len() * (p.planes + c.stations.len())) as f64)
+                .sum();
+            let mut through: std::collections::HashMap<&str, f64> =
+                std::collections::HashMap::new();
+            for c in &d.cuts {
+                for b in &c.blocks {
+                    *through.entry(b.as_str()).or_default() += 1.0;
+                }
+            }
+            let grid = ((2 * p.planes).saturating_sub(1).min(101) as f64).powi(2);
+            let nodes: f64 = through
+                .values()
+                .filter(|&&k| k > 1.0)
+                .map(|k| k * grid * (p.planes + p.points) as f64)
+                .sum();
+            (d.cuts.len() as f64, solves, nodes)
+        });
         // a closed-form boundary-value solve with its discrete start: ~10⁶ steps (some
         // milliseconds; nearly taut pieces take up to a hundred times longer)
-        let solves = (pieces * (p.planes + 2)) as f64;
         Estimate::new(
-            solves * (4e4 + 64.0 * p.points as f64) + cuts as f64 * 1e4 + 1e7,
-            solves * 1e6,
+            solves * (4e4 + 64.0 * p.points as f64) + cuts * 1e4 + envelope * 16.0 + 1e7,
+            solves * 1e6 + envelope * 20.0,
             "/task/Design/resolution",
-            "use resolution Design, or split the design into fewer cuts and blocks",
+            "use resolution Design, or split the design into fewer cuts, stations and blocks",
         )
+        // drawings, glTF and report: every solved curve's points, some tens of bytes each
+        .with_output(solves * p.points as f64 * 120.0 + 1e5)
     }
 
     fn run(params: &DesignParams, job: &Context, progress: &dyn Progress) -> Result<DesignRun> {

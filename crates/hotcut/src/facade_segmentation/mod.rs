@@ -329,6 +329,8 @@ impl Task for FacadeSegmentation {
             },
             "enlarge block.size or blade.length, or lower cutting.sections or the task's samples",
         )
+        // drawings, glTF, report and robot files: every part's samples and every section
+        .with_output(parts * samples * 120.0 + n * points * 60.0 + pieces * 2e3 + 2e5)
     }
 
     fn run(

@@ -63,7 +63,8 @@ fn parse_json(text: &str) -> std::result::Result<Vec<InputCurve>, String> {
                 serde_json::Value::Number(n) => n.to_string(),
                 other => {
                     return Err(format!(
-                        "curve {i}: id must be a string or number, got {other}"
+                        "curve {i}: id must be a string or number, got {}",
+                        geom::text::clip(&other.to_string(), 200)
                     ))
                 }
             };

@@ -266,7 +266,10 @@ impl Task for HotBlade {
             planes * (cost + 1e3 * points) + fits * samples * 400.0 + blocks * grid * 100.0,
             "/block/size",
             "enlarge block.size, or lower the task's targets_per_block, samples, refine or split_depth",
-        );
+        )
+        // glTF and drawings of every block's grid, its targets in the robot files, and the
+        // fits in the report
+        .with_output(blocks * (grid * 150.0 + per_block * 600.0) + fits * samples * 40.0 + 2e5);
         Estimate { checks, ..e }
     }
 

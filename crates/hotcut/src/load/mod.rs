@@ -44,6 +44,8 @@ pub struct ResolvedJob {
     pub task: TaskSpec,
     /// Files to write.
     pub outputs: Vec<OutputSpec>,
+    /// What the run will take, as checked against the limits.
+    pub estimate: crate::limits::Estimate,
 }
 
 impl ResolvedJob {
@@ -153,17 +155,15 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
         tolerance: job.tolerance.resolve(job.units),
         seed: job.seed,
     };
-    let errors = job.task.visit(Resolved {
+    let estimate = job.task.visit(Resolved {
         job: &context,
         limits,
-    });
-    if !errors.is_empty() {
-        return Err(errors);
-    }
+    })?;
     Ok(ResolvedJob {
         context,
         task: job.task,
         outputs: job.outputs,
+        estimate,
     })
 }
 
