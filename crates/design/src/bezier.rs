@@ -16,6 +16,57 @@ pub struct Bezier {
 
 /// Pieces and nodes of the arc-length quadrature.
 const PIECES: usize = 64;
+/// A Bézier's arc length tabulated at its panel ends ([`Bezier::arc_table`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ArcTable {
+    bezier: Bezier,
+    /// Arc length at `k / PIECES`, `k = 0..=PIECES`.
+    cumulative: Vec<f64>,
+}
+
+impl ArcTable {
+    /// The whole length.
+    pub fn length(&self) -> f64 {
+        self.cumulative[PIECES]
+    }
+
+    /// The parameter at arc length `s` from the start (`s` clamped to the curve): its
+    /// panel from the table, then Newton on the panel's own Gauss rule, bisection
+    /// safeguarded, to `1e-14` of the length.
+    pub fn at_length(&self, s: f64) -> f64 {
+        let total = self.length();
+        let s = s.clamp(0.0, total);
+        let k = self.cumulative.partition_point(|&c| c < s).clamp(1, PIECES) - 1;
+        let (t0, base) = (k as f64 / PIECES as f64, self.cumulative[k]);
+        let (mut lo, mut hi) = (t0, (k + 1) as f64 / PIECES as f64);
+        let span = self.cumulative[k + 1] - base;
+        let mut t = if span > 0.0 {
+            t0 + (hi - t0) * (s - base) / span
+        } else {
+            t0
+        };
+        for _ in 0..60 {
+            let f = base + self.bezier.length_between(t0, t) - s;
+            if f.abs() <= 1e-14 * total {
+                break;
+            }
+            if f > 0.0 {
+                hi = t;
+            } else {
+                lo = t;
+            }
+            let d = self.bezier.d1(t);
+            let next = t - f / d[0].hypot(d[1]);
+            t = if next > lo && next < hi {
+                next
+            } else {
+                0.5 * (lo + hi)
+            };
+        }
+        t
+    }
+}
+
 /// Gauss–Legendre nodes and weights on [−1, 1], 5 points.
 pub(crate) const GAUSS: [(f64, f64); 5] = [
     (0.0, 0.568_888_888_888_888_9),
@@ -83,6 +134,34 @@ impl Bezier {
     /// The whole length.
     pub fn length(&self) -> f64 {
         self.length_to(1.0)
+    }
+
+    /// The arc length between parameters `a` and `b` by one 5-point Gauss–Legendre rule
+    /// (accurate on an interval no wider than one of the [`PIECES`] panels).
+    fn length_between(&self, a: f64, b: f64) -> f64 {
+        let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+        let mut s = 0.0;
+        for (x, w) in GAUSS {
+            let d = self.d1(mid + half * x);
+            s += w * d[0].hypot(d[1]);
+        }
+        half * s
+    }
+
+    /// The cumulative arc length at the panel ends `k / PIECES`, for sampling the curve at
+    /// many arc lengths ([`ArcTable::at_length`]): built once, each lookup then costs a
+    /// few Gauss rules on one panel instead of integrating from the start each time.
+    pub fn arc_table(&self) -> ArcTable {
+        let mut cumulative = Vec::with_capacity(PIECES + 1);
+        cumulative.push(0.0);
+        for k in 0..PIECES {
+            let (a, b) = (k as f64 / PIECES as f64, (k + 1) as f64 / PIECES as f64);
+            cumulative.push(cumulative[k] + self.length_between(a, b));
+        }
+        ArcTable {
+            bezier: *self,
+            cumulative,
+        }
     }
 
     /// The parameter at arc length `s` from the start (Newton on the length, bisection

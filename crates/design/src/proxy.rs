@@ -64,10 +64,11 @@ pub fn end_data(b: &Bezier) -> Result<EndData> {
 /// spaced in arc length (coordinates about their centroid), the RMS residual times the
 /// length.
 pub fn eq11_residual(b: &Bezier) -> f64 {
-    let length = b.length();
+    let table = b.arc_table();
+    let length = table.length();
     let rows: Vec<([f64; 2], f64)> = (0..=SAMPLES)
         .map(|i| {
-            let t = b.at_length(length * i as f64 / SAMPLES as f64);
+            let t = table.at_length(length * i as f64 / SAMPLES as f64);
             (b.point(t), b.curvature(t))
         })
         .collect();
@@ -190,6 +191,8 @@ struct Moved {
     offset: f64,
     /// `(t, arc length of the moved curve to t)` at `MOVED_STEPS + 1` even `t`.
     table: Vec<(f64, f64)>,
+    /// Without an offset: the Bézier's own arc-length table.
+    arc: Option<crate::bezier::ArcTable>,
 }
 
 /// Steps of the moved curve's arc-length table.
@@ -201,6 +204,7 @@ impl Moved {
             return Ok(Self {
                 offset,
                 table: Vec::new(),
+                arc: Some(b.arc_table()),
             });
         }
         let speed = |t: f64| {
@@ -232,7 +236,11 @@ impl Moved {
                 )));
             }
         }
-        Ok(Self { offset, table })
+        Ok(Self {
+            offset,
+            table,
+            arc: None,
+        })
     }
 
     /// The moved curve's end data: the design's ends moved, its tangents, its length.
@@ -258,8 +266,8 @@ impl Moved {
 
     /// The moved curve's point at its arc length `s`.
     fn point_at_length(&self, b: &Bezier, s: f64) -> [f64; 2] {
-        if self.offset == 0.0 {
-            return b.point(b.at_length(s));
+        if let Some(arc) = self.arc.as_ref().filter(|_| self.offset == 0.0) {
+            return b.point(arc.at_length(s));
         }
         let i = self
             .table

@@ -145,39 +145,97 @@ pub fn drop_noise_lobes(
     floor: &dyn Fn(f64, f64) -> Floor,
     samples: &[f64],
 ) -> usize {
+    use std::cmp::Reverse;
+    use std::collections::BinaryHeap;
+
+    /// A lobe's ratio in the queue: least ratio first, then the leftmost lobe.
+    #[derive(PartialEq)]
+    struct Key(f64, usize, u32);
+    impl Eq for Key {}
+    impl PartialOrd for Key {
+        fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
+            Some(self.cmp(o))
+        }
+    }
+    impl Ord for Key {
+        fn cmp(&self, o: &Self) -> std::cmp::Ordering {
+            self.0.total_cmp(&o.0).then(self.1.cmp(&o.1))
+        }
+    }
+
+    let n = bounds.len();
+    if n < 3 {
+        return 0;
+    }
+    let b = bounds.clone();
     let ratio = |t0: f64, t1: f64| floor(t0, t1).ratio(&lobe_shape(curve, t0, t1, samples));
-    let mut ratios: Vec<f64> = bounds.windows(2).map(|w| ratio(w[0], w[1])).collect();
+    // the bounds still there, linked both ways; a lobe is named by its left bound, and
+    // merging lobes changes the version of the lobe that takes their place (a queued
+    // entry of an older version is stale). Each merge removes a bound, so there are at
+    // most n − 2 of them, each O(log n): the whole is O(n log n) lobe measures.
+    let (mut next, mut prev): (Vec<usize>, Vec<usize>) = (
+        (1..=n).collect(),
+        (0..n).map(|k| k.wrapping_sub(1)).collect(),
+    );
+    let mut alive = vec![true; n];
+    let mut version = vec![0u32; n];
+    let mut heap = BinaryHeap::with_capacity(n);
+    for k in 0..n - 1 {
+        heap.push(Reverse(Key(ratio(b[k], b[k + 1]), k, 0)));
+    }
+    let (first, last) = (0, n - 1);
+    let mut lobes = n - 1;
     let mut dropped = 0;
-    // each pass removes at least one bound of at most bounds.len() − 2 inflections
-    while ratios.len() > 1 {
-        let Some((i, &r)) = ratios
-            .iter()
-            .enumerate()
-            .min_by(|a, b| a.1.total_cmp(b.1).then(a.0.cmp(&b.0)))
-        else {
+    while lobes > 1 {
+        let Some(Reverse(Key(r, left, v))) = heap.pop() else {
             break;
         };
+        if !alive[left] || v != version[left] || left == last {
+            continue;
+        }
         if r >= 1.0 {
             break;
         }
-        let last = ratios.len() - 1;
-        if i == 0 {
+        let (right, before) = (next[left], prev[left]);
+        let mut unlink = |k: usize, alive: &mut Vec<bool>| {
+            alive[k] = false;
+            let (p, q) = (prev[k], next[k]);
+            if p < n {
+                next[p] = q;
+            }
+            if q < n {
+                prev[q] = p;
+            }
+        };
+        let renewed = if left == first {
             // the first lobe joins the second: its inner inflection goes
-            bounds.remove(1);
-            ratios.splice(0..2, [ratio(bounds[0], bounds[1])]);
+            unlink(right, &mut alive);
             dropped += 1;
-        } else if i == last {
-            bounds.remove(last);
-            let n = bounds.len();
-            ratios.splice(last - 1..=last, [ratio(bounds[n - 2], bounds[n - 1])]);
+            lobes -= 1;
+            left
+        } else if right == last {
+            // the last lobe joins the one before: its inner inflection goes
+            unlink(left, &mut alive);
             dropped += 1;
+            lobes -= 1;
+            before
         } else {
             // an interior lobe joins both neighbours: both its inflections go
-            bounds.drain(i..=i + 1);
-            ratios.splice(i - 1..=i + 1, [ratio(bounds[i - 1], bounds[i])]);
+            unlink(left, &mut alive);
+            unlink(right, &mut alive);
             dropped += 2;
-        }
+            lobes -= 2;
+            before
+        };
+        version[renewed] += 1;
+        let q = next[renewed];
+        heap.push(Reverse(Key(
+            ratio(b[renewed], b[q]),
+            renewed,
+            version[renewed],
+        )));
     }
+    *bounds = (0..n).filter(|&k| alive[k]).map(|k| b[k]).collect();
     dropped
 }
 

@@ -371,7 +371,8 @@ fn place(tmp: &Path, dir: &Path) -> Result<()> {
     for _ in 0..4 {
         match std::fs::rename(tmp, dir) {
             Ok(()) => return Ok(()),
-            Err(e) if !dir.exists() => {
+            // nothing there, not even a dangling link: try again
+            Err(e) if std::fs::symlink_metadata(dir).is_err() => {
                 last = Some(e);
                 continue;
             }

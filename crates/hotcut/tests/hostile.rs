@@ -11,6 +11,11 @@
 //! oblique, tilted, vertical and overflowing cutting directions for every task; deep, long
 //! and ill-defined expressions; huge, degenerate, truncated and malformed meshes;
 //! truncated, empty, binary, oversized and deeply nested job files.
+//!
+//! Round two (`hostile/round_two.rs`) adds a generated family per class of issue 36, each
+//! with its own checks on top: device and FIFO inputs, large typed inputs, estimates,
+//! dialect lines, RAPID names, control characters, f32 bounds, validation parity and
+//! output-entry types.
 
 use std::path::Path;
 use std::process::{Command, Stdio};
@@ -23,10 +28,17 @@ const WALL: Duration = Duration::from_secs(120);
 /// Address-space limit per run, KiB (`ulimit -v`).
 const MEMORY_KIB: u64 = 6_000_000;
 
+#[path = "common/gcode.rs"]
+mod gcode;
+#[path = "hostile/round_two.rs"]
+mod round_two;
+
 /// One hostile case: the files of its folder, the job file to run.
 struct Case {
     label: String,
     files: Vec<(String, Vec<u8>)>,
+    /// Round two's set-up and checks.
+    extra: round_two::Extra,
 }
 
 impl Case {
@@ -34,6 +46,7 @@ impl Case {
         Self {
             label: label.into(),
             files: vec![("job.ron".into(), text.as_bytes().to_vec())],
+            extra: round_two::Extra::default(),
         }
     }
     fn with(mut self, name: &str, bytes: &[u8]) -> Self {
@@ -393,6 +406,7 @@ fn cases() -> Vec<Case> {
             "job.ron".into(),
             (0..2048u32).map(|i| (i * 37 % 251) as u8).collect(),
         )],
+        extra: round_two::Extra::default(),
     });
     out.push(Case::job(
         "oversized job file",
@@ -419,16 +433,19 @@ static MACHINE_FILES: AtomicUsize = AtomicUsize::new(0);
 struct Outcome {
     code: Option<i32>,
     took: Duration,
+    stdout: String,
     stderr: String,
 }
 
-/// Runs `hotcut run job.ron --out out` in `dir` under the limits.
-fn run(dir: &Path) -> Outcome {
+/// Runs `hotcut <args>` in `dir` under the limits.
+fn run_with(dir: &Path, args: &[&str]) -> Outcome {
     let start = Instant::now();
+    let quoted: Vec<String> = args.iter().map(|a| format!("'{a}'")).collect();
     let mut child = Command::new("sh")
         .arg("-c")
         .arg(format!(
-            "ulimit -v {MEMORY_KIB} && exec \"$0\" run job.ron --out out"
+            "ulimit -v {MEMORY_KIB} && exec \"$0\" {}",
+            quoted.join(" ")
         ))
         .arg(env!("CARGO_BIN_EXE_hotcut"))
         // the address-space limit must not depend on the machine's core count: a few
@@ -436,16 +453,19 @@ fn run(dir: &Path) -> Outcome {
         .env("RAYON_NUM_THREADS", "2")
         .env("MALLOC_ARENA_MAX", "2")
         .current_dir(dir)
-        .stdout(Stdio::null())
+        .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .expect("sh runs");
-    let mut err = child.stderr.take().expect("piped");
-    let reader = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = std::io::Read::read_to_string(&mut err, &mut s);
-        s
-    });
+    let drain = |mut r: Box<dyn std::io::Read + Send>| {
+        std::thread::spawn(move || {
+            let mut b = Vec::new();
+            let _ = r.read_to_end(&mut b);
+            String::from_utf8_lossy(&b).into_owned()
+        })
+    };
+    let err = drain(Box::new(child.stderr.take().expect("piped")));
+    let out = drain(Box::new(child.stdout.take().expect("piped")));
     let code = loop {
         if let Some(status) = child.try_wait().expect("waits") {
             break status.code();
@@ -460,7 +480,8 @@ fn run(dir: &Path) -> Outcome {
     Outcome {
         code,
         took: start.elapsed(),
-        stderr: reader.join().unwrap_or_default(),
+        stdout: out.join().unwrap_or_default(),
+        stderr: err.join().unwrap_or_default(),
     }
 }
 
@@ -525,14 +546,25 @@ fn judge(dir: &Path, o: &Outcome) -> Option<String> {
     }
 }
 
-#[test]
-fn hostile_jobs_keep_the_contract() {
-    let cases = cases();
-    assert!(cases.len() >= 300, "{} cases", cases.len());
+/// What a batch of cases did.
+struct Tally {
+    failures: Vec<String>,
+    ok: usize,
+    refused: usize,
+    slowest: (Duration, String),
+    /// The ten slowest cases.
+    top: Vec<(Duration, String)>,
+    /// Time by the label's first word (the base or family), most first.
+    by_prefix: Vec<(Duration, String)>,
+}
+
+/// Runs every case on two workers, each under the limits, and judges it.
+fn run_all(cases: &[Case]) -> Tally {
     let next = AtomicUsize::new(0);
     let failures: Mutex<Vec<String>> = Mutex::new(Vec::new());
     let counts: Mutex<[usize; 2]> = Mutex::new([0, 0]);
     let slowest: Mutex<(Duration, String)> = Mutex::new((Duration::ZERO, String::new()));
+    let all: Mutex<Vec<(Duration, String)>> = Mutex::new(Vec::new());
     std::thread::scope(|s| {
         for _ in 0..2 {
             s.spawn(|| loop {
@@ -542,8 +574,13 @@ fn hostile_jobs_keep_the_contract() {
                 for (name, bytes) in &case.files {
                     std::fs::write(dir.path().join(name), bytes).expect("writes");
                 }
-                let o = run(dir.path());
-                if let Some(why) = judge(dir.path(), &o) {
+                round_two::set_up(dir.path(), &case.extra);
+                let args = case.extra.args();
+                let args: Vec<&str> = args.iter().map(String::as_str).collect();
+                let o = run_with(dir.path(), &args);
+                let why =
+                    judge(dir.path(), &o).or_else(|| round_two::judge(dir.path(), &case.extra, &o));
+                if let Some(why) = why {
                     failures
                         .lock()
                         .unwrap()
@@ -558,6 +595,7 @@ fn hostile_jobs_keep_the_contract() {
                         .unwrap()
                         .push(format!("{}: a base job must run: {}", case.label, o.stderr));
                 }
+                all.lock().unwrap().push((o.took, case.label.clone()));
                 let mut slow = slowest.lock().unwrap();
                 if o.took > slow.0 {
                     *slow = (o.took, case.label.clone());
@@ -566,21 +604,80 @@ fn hostile_jobs_keep_the_contract() {
         }
     });
     let [ok, refused] = *counts.lock().unwrap();
-    let (t, label) = slowest.lock().unwrap().clone();
+    let mut top = all.into_inner().unwrap();
+    let mut by_prefix: Vec<(Duration, String)> = Vec::new();
+    for (d, label) in &top {
+        let p = label.split(':').next().unwrap_or_default().to_string();
+        match by_prefix.iter_mut().find(|e| e.1 == p) {
+            Some(e) => e.0 += *d,
+            None => by_prefix.push((*d, p)),
+        }
+    }
+    by_prefix.sort_by(|a, b| b.0.cmp(&a.0));
+    top.sort_by(|a, b| b.0.cmp(&a.0));
+    top.truncate(10);
+    Tally {
+        top,
+        by_prefix,
+        failures: failures.into_inner().unwrap(),
+        ok,
+        refused,
+        slowest: slowest.into_inner().unwrap(),
+    }
+}
+
+#[test]
+fn hostile_jobs_keep_the_contract() {
+    let cases = cases();
+    assert!(cases.len() >= 300, "{} cases", cases.len());
+    let t = run_all(&cases);
     println!(
-        "{} hostile cases: {ok} ran (exit 0), {refused} refused (exit 1); slowest {t:?} ({label})",
-        cases.len()
+        "{} hostile cases: {} ran (exit 0), {} refused (exit 1); slowest {:?} ({})",
+        cases.len(),
+        t.ok,
+        t.refused,
+        t.slowest.0,
+        t.slowest.1
     );
-    let failures = failures.into_inner().unwrap();
+    for (d, label) in &t.top {
+        println!("  {d:>10.2?}  {label}");
+    }
+    for (d, prefix) in &t.by_prefix {
+        println!("  {d:>10.2?}  in all for {prefix}");
+    }
     assert!(
-        failures.is_empty(),
+        t.failures.is_empty(),
         "{} broken:\n{}",
-        failures.len(),
-        failures.join("\n")
+        t.failures.len(),
+        t.failures.join("\n")
     );
     // every base job runs as written, and machine files were read
-    assert!(ok >= bases().len());
+    assert!(t.ok >= bases().len());
     let machine = MACHINE_FILES.load(Ordering::Relaxed);
     println!("{machine} machine files read back");
     assert!(machine > 100, "{machine} machine files");
+}
+
+#[test]
+fn round_two_families_keep_the_contract() {
+    let cases = round_two::cases();
+    let t = run_all(&cases);
+    println!(
+        "{} round-two cases: {} ran (exit 0), {} refused (exit 1); slowest {:?} ({})",
+        cases.len(),
+        t.ok,
+        t.refused,
+        t.slowest.0,
+        t.slowest.1
+    );
+    for (family, n) in round_two::family_counts(&cases) {
+        println!("  {family}: {n} cases");
+    }
+    assert!(
+        t.failures.is_empty(),
+        "{} broken:\n{}",
+        t.failures.len(),
+        t.failures.join("\n")
+    );
+    round_two::totals(&cases);
 }

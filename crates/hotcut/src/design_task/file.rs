@@ -171,7 +171,7 @@ pub fn read(path: &Path) -> Result<DesignFile, String> {
     let mut de = serde_json::Deserializer::from_str(&text);
     let parsed: Result<DesignFile, _> = serde_path_to_error::deserialize(&mut de);
     let file = parsed.map_err(|e| {
-        let at = e.path().to_string();
+        let at = geom::text::clip(&e.path().to_string(), 200);
         let inner = geom::text::clip(&e.into_inner().to_string(), 200);
         format!("design file {name} at {at}: {inner}")
     })?;

@@ -111,10 +111,39 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
             }
         }
     }
+    if let Some(b) = &job.blade {
+        let most = MAX_BLADE_MM * job.units.per_mm();
+        if !(b.length <= most) {
+            errors.push(JobError::semantic(
+                path,
+                "/blade/length",
+                format!(
+                    "a blade of {:e} is longer than any a robot cell holds: at most {most:e} ({} m)",
+                    b.length,
+                    MAX_BLADE_MM / 1e3
+                ),
+            ));
+        }
+    }
     let surface = job
         .surface
         .as_ref()
         .and_then(|spec| surface::load(path, base, spec, &direction, &mut errors, &mut warnings));
+    if let Some(s) = &surface {
+        // every output is drawn in single precision (glTF) and every program holds
+        // bounded numbers: a surface must lie within reach of the origin
+        let far = MAX_SURFACE_MM * job.units.per_mm();
+        let b = s.aabb();
+        if let Some(v) = b.min.iter().chain(b.max.iter()).find(|v| !(v.abs() <= far)) {
+            errors.push(JobError::semantic(
+                path,
+                "/surface",
+                format!(
+                    "the surface reaches {v:e}: it must lie within ±{far:e} (10 km) of the origin"
+                ),
+            ));
+        }
+    }
     let fields = JobFields {
         path,
         base,
@@ -166,6 +195,12 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
         estimate,
     })
 }
+
+/// Longest blade, mm: 100 m.
+pub const MAX_BLADE_MM: f64 = 1e5;
+
+/// Farthest a surface may reach from the origin, mm: 10 km.
+pub const MAX_SURFACE_MM: f64 = 1e7;
 
 /// Most bytes a job file may have (a job is a page of text; this stops `/dev/zero`).
 pub const MAX_JOB_BYTES: u64 = 1 << 20;
