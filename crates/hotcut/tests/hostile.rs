@@ -613,8 +613,8 @@ fn run_all(cases: &[Case]) -> Tally {
             None => by_prefix.push((*d, p)),
         }
     }
-    by_prefix.sort_by(|a, b| b.0.cmp(&a.0));
-    top.sort_by(|a, b| b.0.cmp(&a.0));
+    by_prefix.sort_by_key(|e| std::cmp::Reverse(e.0));
+    top.sort_by_key(|e| std::cmp::Reverse(e.0));
     top.truncate(10);
     Tally {
         top,

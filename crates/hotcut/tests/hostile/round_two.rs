@@ -223,7 +223,8 @@ pub fn judge(dir: &Path, e: &Extra, o: &Outcome) -> Option<String> {
                 b[k].as_array()
                     .is_some_and(|l| l.iter().all(|x| x.is_number()))
             };
-            if !b.is_null() && !(numbers("min") && numbers("max")) {
+            let fine = b.is_null() || (numbers("min") && numbers("max"));
+            if !fine {
                 return Some(format!("report.json: model_bounds {b}"));
             }
         }
@@ -731,7 +732,8 @@ fn dialects(out: &mut Vec<Case>) {
         vec![],
         checked("M64 P0", "M65 P0", Some(0)),
     ));
-    let good: [(&[&str], &[&str], &str, &str, &str); 7] = [
+    type Dialect<'a> = (&'a [&'a str], &'a [&'a str], &'a str, &'a str, &'a str);
+    let good: [Dialect; 7] = [
         (&g, &[], "M64 P0", "M65 P0", "M30"),
         (
             &["G17 G21 G90 G94 G61 G40 G49", "G64 P0.05", "G54"],
