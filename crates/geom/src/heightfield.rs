@@ -23,6 +23,9 @@ pub struct HeightField {
     expr: Arc<Expr>,
     x: (f64, f64),
     y: (f64, f64),
+    /// The bounding box, computed once ([`HeightField::aabb`]): a height field is
+    /// immutable, and its box is asked for by every task, often many times.
+    bounds: Aabb,
 }
 
 impl HeightField {
@@ -40,22 +43,16 @@ impl HeightField {
                 )));
             }
         }
-        let h = Self {
+        let mut h = Self {
             expr: Arc::new(expr),
             x,
             y,
+            bounds: Aabb {
+                min: Vector3::zeros(),
+                max: Vector3::zeros(),
+            },
         };
-        let n = Z_RANGE_SAMPLES - 1;
-        for i in 0..=n {
-            for j in 0..=n {
-                let (px, py) = h.grid_point(i, j, n);
-                if !h.expr.eval(px, py).is_finite() {
-                    return Err(GeomError::NonFinite {
-                        what: format!("z = {} at (x, y) = ({px}, {py})", h.expr.source()),
-                    });
-                }
-            }
-        }
+        h.bounds = h.sampled_aabb()?;
         Ok(h)
     }
 
@@ -84,12 +81,22 @@ impl HeightField {
     /// Bounding box; `z` from a [`Z_RANGE_SAMPLES`]² sample grid, its extremes polished
     /// by Newton steps in the cells around them (exact at smooth interior or edge extrema).
     pub fn aabb(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// [`Self::aabb`], computed: every grid sample checked finite.
+    fn sampled_aabb(&self) -> Result<Aabb> {
         let n = Z_RANGE_SAMPLES - 1;
         let (mut lo, mut hi) = ((f64::INFINITY, 0, 0), (f64::NEG_INFINITY, 0, 0));
         for i in 0..=n {
             for j in 0..=n {
                 let (px, py) = self.grid_point(i, j, n);
                 let z = self.expr.eval(px, py);
+                if !z.is_finite() {
+                    return Err(GeomError::NonFinite {
+                        what: format!("z = {} at (x, y) = ({px}, {py})", self.expr.source()),
+                    });
+                }
                 if z < lo.0 {
                     lo = (z, i, j);
                 }
@@ -102,10 +109,10 @@ impl HeightField {
         // cells around its sample
         let lo = self.polish_extreme(lo, n, 1.0);
         let hi = -self.polish_extreme((-hi.0, hi.1, hi.2), n, -1.0);
-        Aabb {
+        Ok(Aabb {
             min: Vector3::new(self.x.0, self.y.0, lo),
             max: Vector3::new(self.x.1, self.y.1, hi),
-        }
+        })
     }
 
     /// Lowers `sign · f` (given as `(value, i, j)` at grid sample `(i, j)` of an `n`-cell grid)
