@@ -715,6 +715,73 @@ fn rules(on: &str, off: &str) -> Rules {
     }
 }
 
+/// The quoted string after `key: ` in `text`.
+fn quoted(text: &str, key: &str) -> Option<String> {
+    let rest = text.split(&format!("{key}: \"")).nth(1)?;
+    Some(rest.split('"').next()?.to_string())
+}
+
+/// The numbers of the first `(a, b)` after `key: (` in `text`.
+fn pair(text: &str, key: &str) -> Option<(f64, f64)> {
+    let rest = text.split(&format!("{key}: (")).nth(1)?;
+    let (a, b) = rest.split(')').next()?.split_once(',')?;
+    Some((a.trim().parse().ok()?, b.trim().parse().ok()?))
+}
+
+/// Every job in `jobs/` on a `Custom` wire dialect, renamed `h`, with the rules its
+/// dialect states (axes, `%`, dwell unit, heat lines) and its travel, as the job file says
+/// them: `(file name, job, rules, travel)`.
+fn shipped_dialects() -> Vec<(String, String, Rules, [(f64, f64); 4])> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .expect("jobs/")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
+        .collect();
+    files.sort();
+    let mut out = Vec::new();
+    for path in files {
+        let text = std::fs::read_to_string(&path).expect("job");
+        if !text.contains("machine: Custom(") {
+            continue;
+        }
+        let name = path
+            .file_name()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .into_owned();
+        let job_name = quoted(&text, "name").expect("a name");
+        let job = text.replacen(&format!("name: \"{job_name}\""), "name: \"h\"", 1);
+        let axes: Vec<char> = quoted(&text, "axes").expect("axes").chars().collect();
+        let power = pair(&text, "power").map_or("1000".to_string(), |p| p.0.to_string());
+        let on = quoted(&text, "heat_on")
+            .unwrap_or("M3 S{power}".into())
+            .replace("{power}", &power);
+        let off = quoted(&text, "heat_off").unwrap_or("M5".into());
+        let words = |s: &str| s.split_whitespace().map(str::to_string).collect();
+        let rules = Rules {
+            axes: [axes[0], axes[1], axes[2], axes[3]],
+            grbl: false,
+            percent: text.contains("percent: true"),
+            dwell_ms: text.contains("dwell: Milliseconds"),
+            heat_on: words(&on),
+            heat_off: words(&off),
+        };
+        let along = pair(&text, "along").expect("a travel");
+        let up = pair(&text, "up").expect("a travel");
+        let travel = [
+            along,
+            up,
+            pair(&text, "b_along").unwrap_or(along),
+            pair(&text, "b_up").unwrap_or(up),
+        ];
+        out.push((name, job, rules, travel));
+    }
+    assert!(!out.is_empty(), "no Custom dialect in jobs/");
+    out
+}
+
 fn dialects(out: &mut Vec<Case>) {
     const TRAVEL: [(f64, f64); 4] = [(0.0, 800.0); 4];
     let g = ["G17 G21 G90 G94 G61"];
@@ -723,15 +790,19 @@ fn dialects(out: &mut Vec<Case>) {
         expect,
         ..Extra::of("dialect lines")
     };
-    // the dialect of jobs/precut-custom.ron, and good dialects that must run and replay
-    let shipped =
-        include_str!("../../../../jobs/precut-custom.ron").replace("\"precut-custom\"", "\"h\"");
-    out.push(case(
-        "dialect: jobs/precut-custom.ron".into(),
-        &shipped,
-        vec![],
-        checked("M64 P0", "M65 P0", Some(0)),
-    ));
+    // every Custom dialect in jobs/, and good dialects that must run and replay
+    for (name, job, rules, travel) in shipped_dialects() {
+        out.push(case(
+            format!("dialect: jobs/{name}"),
+            &job,
+            vec![],
+            Extra {
+                replay: Some((rules, travel)),
+                expect: Some(0),
+                ..Extra::of("dialect lines")
+            },
+        ));
+    }
     type Dialect<'a> = (&'a [&'a str], &'a [&'a str], &'a str, &'a str, &'a str);
     let good: [Dialect; 7] = [
         (&g, &[], "M64 P0", "M65 P0", "M30"),
@@ -1178,5 +1249,24 @@ fn entries(out: &mut Vec<Case>) {
                 ..Extra::of("output entries")
             },
         ));
+    }
+}
+
+#[test]
+fn the_replay_judge_catches_what_a_machine_must_not_do() {
+    let r = rules("M64 P0", "M65 P0");
+    let travel = [(0.0, 800.0); 4];
+    let ok = "%\nG17 G21 G90 G94 G61\nG0 X0 Y50 U0 V50\nM64 P0\nG93\nG1 X100 Y50 U100 V50 F3\nM65 P0\nG94\nG0 X100 Y90 U100 V90\nM30\n%\n";
+    assert_eq!(replayed(ok, &r, &travel), None);
+    for (from, to) in [
+        ("M65 P0\nG94\n", "G94\n"), // a hot rapid, and hot at the end
+        ("M64 P0\n", ""),           // a cold cut
+        ("X100 Y90", "X900 Y90"),   // past the travel
+        ("M30\n", ""),              // never ends
+        ("G0 X100 Y90 U100 V90", "G92 X0 Y0 U0 V0"), // offsets shifted
+        ("M30\n", "M47\nM30\n"),    // repeats
+    ] {
+        let bad = ok.replace(from, to);
+        assert!(replayed(&bad, &r, &travel).is_some(), "{from:?} → {to:?}");
     }
 }
