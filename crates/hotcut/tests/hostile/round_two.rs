@@ -728,10 +728,13 @@ fn pair(text: &str, key: &str) -> Option<(f64, f64)> {
     Some((a.trim().parse().ok()?, b.trim().parse().ok()?))
 }
 
+/// A shipped job on a Custom dialect: file name, job text, rules, travel.
+type Shipped = (String, String, Rules, [(f64, f64); 4]);
+
 /// Every job in `jobs/` on a `Custom` wire dialect, renamed `h`, with the rules its
 /// dialect states (axes, `%`, dwell unit, heat lines) and its travel, as the job file says
 /// them: `(file name, job, rules, travel)`.
-fn shipped_dialects() -> Vec<(String, String, Rules, [(f64, f64); 4])> {
+fn shipped_dialects() -> Vec<Shipped> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .expect("jobs/")
