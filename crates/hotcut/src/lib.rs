@@ -38,6 +38,8 @@ pub mod facade_segmentation;
 pub mod fit_curves;
 /// The `HotBlade` task: the hotblade pipeline, its report and robot files.
 pub mod hot_blade;
+/// Input files: regular files of bounded size, checked before they are opened.
+pub mod input;
 /// The job file: the [`job::Job`] struct and [`job::TaskSpec`], the list of every task.
 pub mod job;
 /// Work and memory estimates of a run, and the limits they are checked against.

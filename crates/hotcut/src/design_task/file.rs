@@ -166,7 +166,7 @@ pub fn design_schema() -> serde_json::Value {
 /// a value out of its bounds, with its path in the file and its line and column; quoted
 /// input clipped to 200 characters.
 pub fn read(path: &Path) -> Result<DesignFile, String> {
-    let text = crate::load::input::read_text(path, MAX_FILE_BYTES, "design file")?;
+    let text = crate::input::read_text(path, MAX_FILE_BYTES, "design file")?;
     let name = path.display();
     let mut de = serde_json::Deserializer::from_str(&text);
     let parsed: Result<DesignFile, _> = serde_path_to_error::deserialize(&mut de);

@@ -5,6 +5,8 @@
 //! station and cutting plane, extends it to the blade and poses it; this module reads the
 //! file, checks it, and reports and writes the result.
 
+/// The design's checks beyond its schema, shared by validation and run.
+mod check;
 /// Its drawings, `block_<id>.svg`.
 mod drawing;
 /// The design file.
@@ -33,8 +35,9 @@ use crate::robot_cell::{self, CellPlan};
 use crate::spec::defaults::{APPROACH_MM, BLADE_SPEED_MM_PER_S};
 use crate::spec::OutputKind;
 use crate::task::{Output, Task};
+use check::check_design;
 use export::robot::Motion;
-use file::{read, resolve_cut, Block, DesignFile, ResolvedCut};
+use file::{read, Block, DesignFile, ResolvedCut};
 use report::{
     cut_report, summary, BlockCut, BlockInfo, DesignReport, DesignSettings, EnvelopeReport,
 };
@@ -122,141 +125,6 @@ pub struct DesignRun {
 }
 
 const PTR: &str = "/task/Design";
-
-/// Largest design coordinate, mm (as the cell's frames): a kilometre.
-const MAX_COORDINATE_MM: f64 = 1e6;
-/// Smallest block edge, mm.
-const MIN_BLOCK_MM: f64 = 1.0;
-
-/// The design's problems beyond its schema: blocks (finite, bounded, at least
-/// [`MIN_BLOCK_MM`], named once, drawings' file names distinct), cuts, each construction
-/// and everything [`design::cut::solve`] checks before solving, the blade's length, as
-/// `(pointer, message)`; and the resolved cuts when there are none. Validation and run
-/// both call it, so they refuse alike. `mm` is millimetres per job unit.
-fn check_design(
-    d: &DesignFile,
-    blade: f64,
-    planes: usize,
-    mm: f64,
-) -> (Vec<(String, String)>, Vec<ResolvedCut>) {
-    let mut errors = Vec::new();
-    let blocks = d.blocks();
-    let far = MAX_COORDINATE_MM / mm;
-    let small = MIN_BLOCK_MM / mm;
-    let id = |s: &str| geom::text::terminal(&geom::text::clip(s, 40));
-    let mut seen = std::collections::HashSet::new();
-    for (i, b) in blocks.iter().enumerate() {
-        let at = match d.blocks {
-            file::BlocksSpec::List(_) => format!("/blocks/List/{i}"),
-            file::BlocksSpec::Grid(_) => "/blocks/Grid".to_string(),
-        };
-        if b.min.iter().chain(b.max.iter()).any(|v| !(v.abs() <= far)) {
-            errors.push((
-                at.clone(),
-                format!(
-                    "block `{}` must lie within ±{far} (a kilometre) of the origin",
-                    id(&b.id)
-                ),
-            ));
-        } else if (0..3).any(|k| !(b.max[k] - b.min[k] >= small)) {
-            errors.push((
-                at.clone(),
-                format!(
-                    "block `{}` must have max > min by at least {small} ({MIN_BLOCK_MM} mm) on every axis",
-                    id(&b.id)
-                ),
-            ));
-        }
-        if !seen.insert(b.id.as_str()) {
-            errors.push((at, format!("block `{}` is named twice", id(&b.id))));
-        }
-        if matches!(d.blocks, file::BlocksSpec::Grid(_)) && !errors.is_empty() {
-            break;
-        }
-    }
-    let mut cuts = Vec::new();
-    for (i, c) in d.cuts.iter().enumerate() {
-        if d.cuts[..i].iter().any(|o| o.id == c.id) {
-            errors.push((
-                format!("/cuts/{i}/id"),
-                format!("cut `{}` is named twice", id(&c.id)),
-            ));
-        }
-        for (s, st) in c.stations.iter().enumerate() {
-            let points: Vec<[f64; 2]> = match &st.curve {
-                file::CurveSpec::Bezier(p) => p.iter().flatten().copied().collect(),
-                file::CurveSpec::Spline(p) => p.clone(),
-            };
-            if points.iter().flatten().any(|v| !(v.abs() <= far)) {
-                errors.push((
-                    format!("/cuts/{i}/stations/{s}/curve"),
-                    format!(
-                        "cut `{}`: a control point lies beyond ±{far} (a kilometre)",
-                        id(&c.id)
-                    ),
-                ));
-            }
-        }
-        if !errors.is_empty() {
-            continue;
-        }
-        match resolve_cut(c, &blocks) {
-            Ok(r) => {
-                for (s, st) in r.stations.iter().enumerate() {
-                    for (k, piece) in st.curve.pieces().iter().enumerate() {
-                        let length = piece.length();
-                        if length > blade {
-                            errors.push((
-                                format!("/cuts/{i}/stations/{s}/curve"),
-                                format!("the piece in block `{}` is {length:.3} long, longer than the blade ({blade:.3}): shorten it or lengthen blade.length", id(&c.blocks[k])),
-                            ));
-                        }
-                    }
-                }
-                let cp = CutParams {
-                    frame: r.frame,
-                    faces: r.faces.clone(),
-                    stations: r.stations.clone(),
-                    blade: BladeParams {
-                        length: blade,
-                        lead_in_share: 0.5,
-                        max_curvature: None,
-                        max_inflections: None,
-                    },
-                    planes,
-                    offset: 0.0,
-                };
-                for m in design::cut::problems(&cp) {
-                    errors.push((format!("/cuts/{i}"), format!("cut `{}`: {m}", id(&c.id))));
-                }
-                cuts.push(r);
-            }
-            Err(list) => errors.extend(
-                list.into_iter()
-                    .map(|(p, m)| (format!("/cuts/{i}{p}"), format!("cut `{}`: {m}", id(&c.id)))),
-            ),
-        }
-    }
-    if errors.is_empty() {
-        let mut names: Vec<(String, String)> = outputs::drawing_names(d, &blocks)
-            .into_iter()
-            .map(|n| (n.to_lowercase(), n))
-            .collect();
-        names.sort();
-        for w in names.windows(2) {
-            if w[0].0 == w[1].0 {
-                errors.push((
-                    "/blocks".into(),
-                    format!(
-                        "two drawings would both be written as {} (block and cut ids become file names: letters, digits, - and _ kept, anything else _, case ignored): rename a block or a cut",
-                        w[1].1
-                    ),
-                ));
-            }
-        }
-    }
-    (errors, cuts)
-}
 
 impl Design {
     fn design_error(&self, job: &JobFields<'_>, pointer: &str, m: String) -> JobError {

@@ -38,7 +38,7 @@ struct JsonCurve {
 /// non-finite coordinate, or two equal consecutive points.
 pub fn read_curves(path: &Path) -> std::result::Result<Vec<InputCurve>, String> {
     // a regular file of at most 256 MiB (not a device, not a runaway export)
-    let text = crate::load::input::read_text(path, 256 << 20, "curve file")?;
+    let text = crate::input::read_text(path, 256 << 20, "curve file")?;
     let csv = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("csv"));

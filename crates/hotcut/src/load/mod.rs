@@ -21,8 +21,6 @@ use crate::limits::Limits;
 use crate::spec::OutputSpec;
 use crate::task::{Check, Resolved};
 
-/// Input files: regular files of bounded size, checked before they are opened.
-pub mod input;
 /// Layer 1: RON syntax and structure.
 mod parse;
 /// Layer 2: the JSON Schema.
@@ -207,7 +205,7 @@ pub const MAX_JOB_BYTES: u64 = 1 << 20;
 
 /// The text of a job file, a regular file of at most [`MAX_JOB_BYTES`].
 fn read_job_text(path: &Path) -> std::result::Result<String, String> {
-    input::read_text(path, MAX_JOB_BYTES, "job file")
+    crate::input::read_text(path, MAX_JOB_BYTES, "job file")
 }
 
 /// Reads, validates (all three layers) and resolves one job file.

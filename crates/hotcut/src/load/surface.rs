@@ -32,7 +32,7 @@ struct SplineFile {
 const MAX_SPLINE_BYTES: u64 = 64 << 20;
 
 fn load_spline(file: &Path) -> Result<BSplineSurface, String> {
-    let text = super::input::read_text(file, MAX_SPLINE_BYTES, "spline file")?;
+    let text = crate::input::read_text(file, MAX_SPLINE_BYTES, "spline file")?;
     let f: SplineFile =
         serde_json::from_str(&text).map_err(|e| format!("{}: {e}", file.display()))?;
     let nu = f.points.len();
@@ -99,7 +99,7 @@ pub(super) fn load(
         SurfaceSpec::Mesh { path: rel, closed } => {
             let ptr = "/surface/Mesh/path";
             let file = base.join(rel);
-            if let Err(m) = super::input::regular(&file, u64::MAX, "mesh file") {
+            if let Err(m) = crate::input::regular(&file, u64::MAX, "mesh file") {
                 return fail(errors, ptr, m);
             }
             match TriMesh::load_obj(&file).and_then(|m| m.validate(*closed).map(|w| (m, w))) {
