@@ -104,9 +104,8 @@ pub struct RobotCheck {
     pub configuration_changes: usize,
     /// Moves in which a joint turns by more than 30°.
     pub joint_jumps: usize,
-    /// Fewest joint solutions at a reached pose (per closed-form solution, the whole turns
-    /// nearest the previous joints and the middle of each joint's range:
-    /// [`crate::kinematics::inverse`]).
+    /// Fewest arm configurations that reach a reached pose within the limits (whole turns
+    /// of a joint not counted apart: [`crate::kinematics::configurations`]; at most 8).
     pub fewest_solutions: usize,
     /// Least margin of a joint to its limit, degrees.
     pub margin_deg: Option<f64>,

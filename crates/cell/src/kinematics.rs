@@ -161,6 +161,40 @@ fn turns(model: &RobotModel, q: &Joints, previous: Option<&Joints>) -> Vec<Joint
     out
 }
 
+/// How many distinct arm configurations `solutions` hold: solutions that differ only by
+/// whole turns of a joint count once. Unlike the number of solutions, which depends on
+/// the joints the robot comes from (the turns [`inverse`] enumerates are those nearest
+/// them), this depends on the pose alone: at most 8 for an OPW arm.
+///
+/// ```
+/// use cell::kinematics::configurations;
+/// let q = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6];
+/// let mut turned = q;
+/// turned[5] += std::f64::consts::TAU;
+/// let mut other = q;
+/// other[3] += std::f64::consts::PI;
+/// assert_eq!(configurations(&[q, turned, other]), 2);
+/// ```
+pub fn configurations(solutions: &[Joints]) -> usize {
+    let tau = std::f64::consts::TAU;
+    let full = (tau * 1e9).round() as i64;
+    // each joint as its angle within one turn, to 1e-9 rad, a full turn read as 0
+    let key = |q: &Joints| {
+        q.map(|v| {
+            let k = (v.rem_euclid(tau) * 1e9).round() as i64;
+            if k >= full {
+                0
+            } else {
+                k
+            }
+        })
+    };
+    let mut keys: Vec<[i64; 6]> = solutions.iter().map(key).collect();
+    keys.sort_unstable();
+    keys.dedup();
+    keys.len()
+}
+
 /// The solution nearest `previous`: the least largest joint change (`None` for none).
 pub fn nearest(solutions: &[Joints], previous: &Joints) -> Option<Joints> {
     let change = |q: &Joints| {

@@ -12,7 +12,7 @@ use serde::Serialize;
 
 use crate::conf::{conf, Conf};
 use crate::error::{CellError, Result};
-use crate::kinematics::{inverse, margins, nearest, Joints};
+use crate::kinematics::{configurations, inverse, margins, nearest, Joints};
 use crate::model::RobotModel;
 
 /// A robot in the cell and what it holds.
@@ -38,7 +38,8 @@ pub const PIECE_RAD: f64 = 2.5 * std::f64::consts::PI / 180.0;
 /// The solution at one pose.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct PoseSolution {
-    /// How many joint solutions reach the pose within the limits.
+    /// How many arm configurations reach the pose within the limits (whole turns of a
+    /// joint not counted apart: [`crate::kinematics::configurations`]).
     pub solutions: usize,
     /// The chosen joints, degrees (`None`: out of reach).
     pub joints: Option<[f64; 6]>,
@@ -201,7 +202,7 @@ pub fn sweep(holder: &Holder, tcp: &[Isometry3<f64>], start: &Joints) -> Result<
             .into_iter()
             .fold(f64::INFINITY, f64::min);
         poses.push(PoseSolution {
-            solutions: solutions.len(),
+            solutions: configurations(&solutions),
             joints: Some(q.map(f64::to_degrees)),
             conf: Some(c),
             margin: Some(margin.to_degrees()),

@@ -4,7 +4,7 @@
 //! again, and every solution lands on the pose to 1e-6 mm and 1e-9 rad.
 
 use cell::conf::{arm_geometry, conf};
-use cell::kinematics::{forward, inverse, margins, nearest, pose_distance, Joints};
+use cell::kinematics::{configurations, forward, inverse, margins, nearest, pose_distance, Joints};
 use cell::model::RobotModel;
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
@@ -92,6 +92,12 @@ proptest! {
         let hinted = inverse(m, &pose, Some(&q)).unwrap();
         let back = nearest(&hinted, &q).unwrap();
         prop_assert!(back.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9));
+        // the configurations are the pose's, whatever joints the robot comes from
+        let n = configurations(&solutions);
+        prop_assert!((1..=8).contains(&n), "{n}");
+        prop_assert_eq!(configurations(&hinted), n);
+        let other = solutions[solutions.len() / 2];
+        prop_assert_eq!(configurations(&inverse(m, &pose, Some(&other)).unwrap()), n);
     }
 }
 
@@ -156,6 +162,8 @@ fn wide_limits_keep_the_enumeration_bounded() {
     assert!(!all.is_empty() && all.len() <= 8 * 729, "{}", all.len());
     let hinted = inverse(&m, &pose, Some(&q)).unwrap();
     assert!(hinted.len() <= 8 * 64, "{}", hinted.len());
+    assert_eq!(configurations(&hinted), configurations(&all));
+    assert!(configurations(&all) <= 8);
     let back = nearest(&hinted, &q).unwrap();
     assert!(back.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9));
     // a turn away from the middle, found near the previous joints

@@ -280,7 +280,11 @@ fn usage_errors_exit_2() {
     assert_eq!(hotcut(&["--help"], dir.path()).status.code(), Some(0));
     let o = hotcut(&["validate", "missing.ron"], dir.path());
     assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("missing.ron: cannot read"));
+    assert!(
+        stderr(&o).contains("job file not found: missing.ron"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]
@@ -749,7 +753,7 @@ fn bad_designs_are_rejected_naming_the_station_and_face() {
         &["/surface", "design file"],
     );
     // a missing design file
-    common::expect_invalid(&ok, &["/task/Design/design", "cannot read"]);
+    common::expect_invalid(&ok, &["/task/Design/design", "design file not found"]);
 }
 
 #[test]

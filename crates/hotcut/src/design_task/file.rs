@@ -173,11 +173,11 @@ pub fn read(path: &Path) -> Result<DesignFile, String> {
     let file = parsed.map_err(|e| {
         let at = geom::text::clip(&e.path().to_string(), 200);
         let inner = geom::text::clip(&e.into_inner().to_string(), 200);
-        format!("design file {name} at {at}: {inner}")
+        format!("design file {name} at {at}: {inner} (its schema: schemas/design.schema.json)")
     })?;
     de.end().map_err(|e| {
         format!(
-            "design file {name}: {}",
+            "design file {name}: {} (its schema: schemas/design.schema.json)",
             geom::text::clip(&e.to_string(), 200)
         )
     })?;
