@@ -1,7 +1,7 @@
 //! Which identifiers a user may give a RAPID program (the heat's digital output, for
 //! one): not a reserved word, not a predefined data type, instruction, function or data
 //! object of the RAPID kernel, not a name the written modules declare. RAPID compares
-//! identifiers without case, and so does [`name_problem`].
+//! identifiers without case, and so does [`name_problem`](crate::rapid_names::name_problem).
 //!
 //! The lists follow ABB's *Technical reference manual — RAPID kernel* (reserved words,
 //! §"Reserved words") and *RAPID Instructions, Functions and Data types* (the names in

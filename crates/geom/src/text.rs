@@ -3,11 +3,11 @@
 //!
 //! | sink | function | what it guarantees |
 //! |---|---|---|
-//! | XML, SVG, HTML | [`xml`] | escaped markup, no character XML 1.0 forbids |
-//! | terminal | [`terminal`] | no control or bidi character: `{:?}`-style escapes |
-//! | G-code comment | [`gcode_comment`] | printable ASCII, no parentheses, ≤ 70 characters |
-//! | RAPID comment | [`rapid_comment`] | printable ASCII, ≤ 80 characters |
-//! | any message quoting input | [`clip`] | at most a given number of characters |
+//! | XML, SVG, HTML | [`xml`](crate::text::xml) | escaped markup, no character XML 1.0 forbids |
+//! | terminal | [`terminal`](crate::text::terminal) | no control or bidi character: `{:?}`-style escapes |
+//! | G-code comment | [`gcode_comment`](crate::text::gcode_comment) | printable ASCII, no parentheses, ≤ 70 characters |
+//! | RAPID comment | [`rapid_comment`](crate::text::rapid_comment) | printable ASCII, ≤ 80 characters |
+//! | any message quoting input | [`clip`](crate::text::clip) | at most a given number of characters |
 //!
 //! ```
 //! use geom::text;

@@ -3,7 +3,7 @@
 //! its feed mode behind the program's checks, or switch the heat anywhere but where the
 //! program does.
 //!
-//! - **Header, footer and end**: modal words only, those of [`SAFE_G`] (plane, units,
+//! - **Header, footer and end**: modal words only, those of [`SAFE_G`](crate::wire::dialect::SAFE_G) (plane, units,
 //!   cutter compensation off, work offsets, path mode, absolute distance,
 //!   units-per-minute), `P`/`Q` with `G64` (its tolerances), the words of the profile's
 //!   own heat-off line, and in `end` one program end (`M2` or `M30`). Comments are free.
