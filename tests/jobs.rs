@@ -50,6 +50,13 @@ fn run_and_check(path: &std::path::Path) {
         );
     }
     let what = path.display().to_string();
+    // the output estimate validation checks against `--max-output` is an upper bound
+    let written: usize = ta.iter().map(|(_, b)| b.len()).sum();
+    let estimated = job.estimate.output;
+    assert!(
+        estimated == 0.0 || written as f64 <= estimated,
+        "{what}: wrote {written} bytes, more than the {estimated} estimated"
+    );
     outputs_check::gltf_bounds_match_the_report(&first.dir, &what);
     outputs_check::json_files_validate(&first.dir, &root(), &what);
     let svg = outputs_check::svg_problems(&first.dir);

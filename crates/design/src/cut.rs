@@ -368,24 +368,77 @@ pub fn problems(p: &CutParams) -> Vec<String> {
                     .into_iter()
                     .map(|m| format!("station {i}: {m}")),
             );
-            for (k, piece) in s.curve.pieces().iter().enumerate() {
-                let [a, _, _, b] = piece.p;
-                let chord = (b[0] - a[0]).hypot(b[1] - a[1]);
-                if !(piece.length() > chord * (1.0 + STRAIGHT)) {
-                    out.push(format!(
-                        "station {i}: the piece in block {k} of the cut is straight (length {:.6}, its ends {chord:.6} apart): a blade bends, so a cut's pieces must too",
-                        piece.length()
-                    ));
-                }
-            }
+            out.extend(
+                piece_problems(&s.curve, None)
+                    .into_iter()
+                    .map(|m| format!("station {i}: {m}")),
+            );
         }
         if out.is_empty() {
-            if let Err(e) = loft(&p.stations) {
-                out.push(e.to_string());
+            match loft(&p.stations) {
+                Ok(loft) => out.extend(plane_problems(p, &loft)),
+                Err(e) => out.push(e.to_string()),
             }
         }
     }
     out
+}
+
+/// The pieces of `curve` that are straight, or longer than `blade` when given.
+fn piece_problems(curve: &DesignCurve, blade: Option<f64>) -> Vec<String> {
+    let mut out = Vec::new();
+    for (k, piece) in curve.pieces().iter().enumerate() {
+        let [a, _, _, b] = piece.p;
+        let chord = (b[0] - a[0]).hypot(b[1] - a[1]);
+        let length = piece.length();
+        if !(length > chord * (1.0 + STRAIGHT)) {
+            out.push(format!(
+                "the piece in block {k} of the cut is straight (length {length:.6}, its ends {chord:.6} apart): a blade bends, so a cut's pieces must too"
+            ));
+        } else if blade.is_some_and(|b| length > b) {
+            out.push(format!(
+                "the piece in block {k} of the cut is {length:.3} long, longer than the blade ({:.3})",
+                blade.unwrap_or(0.0)
+            ));
+        }
+    }
+    out
+}
+
+/// The problems of the lofted curves on the cutting planes [`solve`] solves: a curve that
+/// cannot be built, a straight piece (two stations bulging opposite ways loft to a straight
+/// curve between them), a piece longer than the blade. Those of the first plane that has
+/// any, and how many planes have some.
+fn plane_problems(p: &CutParams, loft: &Loft) -> Vec<String> {
+    let (entry, exit) = match (p.stations.first(), p.stations.last()) {
+        (Some(a), Some(b)) if p.planes >= 2 => (a.offset, b.offset),
+        _ => return Vec::new(),
+    };
+    let mut first = Vec::new();
+    let mut count = 0;
+    for j in 0..p.planes {
+        let offset = entry + (exit - entry) * j as f64 / (p.planes - 1) as f64;
+        let found = match p.stations[0].curve.with_params(&loft.at_offset(offset)) {
+            Ok(curve) => piece_problems(&curve, Some(p.blade.length)),
+            Err(e) => vec![e.to_string()],
+        };
+        if !found.is_empty() {
+            count += 1;
+            if first.is_empty() {
+                first = found
+                    .into_iter()
+                    .map(|m| format!("plane {} of {}: {m}", j + 1, p.planes))
+                    .collect();
+            }
+        }
+    }
+    if count > 1 {
+        first.push(format!(
+            "{count} of the {} planes have such problems (the lofted curves between stations must bend and fit the blade too)",
+            p.planes
+        ));
+    }
+    first
 }
 
 /// How much longer than its chord a piece must be, relatively: a little more than the

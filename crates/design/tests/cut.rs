@@ -215,6 +215,38 @@ fn broken_constructions_are_named() {
     assert!(solve_cut(&cut, &|| {}).is_err());
 }
 
+#[test]
+fn stations_bulging_opposite_ways_are_refused_where_they_loft_straight() {
+    // every piece bends at both stations, but the other way at the second: halfway along
+    // the cut every end angle lofts to 0 and every piece is straight
+    let slopes = [0.3, -0.3, 0.3, -0.3];
+    let curve =
+        |sign: f64| DesignCurve::Bezier(chain([300.0; 4], slopes.map(|s| sign * s), [1.0; 6]));
+    let cut = params(
+        vec![
+            Station {
+                offset: 0.0,
+                curve: curve(1.0),
+            },
+            Station {
+                offset: 500.0,
+                curve: curve(-1.0),
+            },
+        ],
+        11,
+    );
+    let p = problems(&cut);
+    assert!(
+        p.iter()
+            .any(|m| m.starts_with("plane 6 of 11") && m.contains("straight")),
+        "{p:?}"
+    );
+    assert!(solve_cut(&cut, &|| {}).is_err());
+    // an even number of planes misses the middle: the loft is bent on every one of them
+    let even = CutParams { planes: 10, ..cut };
+    assert!(problems(&even).is_empty(), "{:?}", problems(&even));
+}
+
 fn transformed(cut: &CutParams, scale: f64, shift: [f64; 2], along: f64) -> CutParams {
     let map = |p: [f64; 2]| [scale * p[0] + shift[0], scale * p[1] + shift[1]];
     let mut out = cut.clone();

@@ -1,7 +1,8 @@
 //! Estimates that count what the run does: each case that once slipped past validation
 //! (issue 36) is scaled up until it is just under a work limit, then run, and its wall
 //! time must stay within 3× of the time its estimate implies (10⁸ steps per second),
-//! plus half a second for starting the process and writing files. Scaled once more it is
+//! plus half a second for starting the process and writing files, and the files it writes
+//! must not exceed the estimate `--max-output` is checked against. Scaled once more it is
 //! refused at validation, naming the field to change.
 //!
 //! The cases: `FitCurves` with many curves from a file; `FitCurves` with the numerical
@@ -109,7 +110,7 @@ fn design(n: usize) -> Vec<(String, String)> {
     vec![
         (
             "job.ron".into(),
-            r#"Job(name: "e", units: Millimetre, blade: Blade(length: 900, max_curvature: 0.011, max_inflections: 2), task: Design(design: "d.json"), outputs: [Report])"#.into(),
+            r#"Job(name: "e", units: Millimetre, blade: Blade(length: 900, max_curvature: 0.011, max_inflections: 2), task: Design(design: "d.json"), outputs: [Report, Svg, Gltf, Html])"#.into(),
         ),
         ("d.json".into(), d),
     ]
@@ -132,9 +133,9 @@ fn put(dir: &Path, files: &[(String, String)]) {
     }
 }
 
-/// The estimated work `validate` prints for the job in `dir` under `work`, or `None` when
-/// it refuses the job.
-fn estimate(dir: &Path, work: f64) -> Option<f64> {
+/// The estimated work (steps) and files (MB, 0 when not estimated) `validate` prints for
+/// the job in `dir` under `work`, or `None` when it refuses the job.
+fn estimate(dir: &Path, work: f64) -> Option<(f64, f64)> {
     let o = hotcut(
         &["validate", "job.ron", "--max-work", &work.to_string()],
         dir,
@@ -149,12 +150,34 @@ fn estimate(dir: &Path, work: f64) -> Option<f64> {
     }
     let out = String::from_utf8_lossy(&o.stdout).into_owned();
     let steps = out.split("about ").nth(1)?.split(' ').next()?;
-    steps.parse().ok()
+    let mb = out
+        .split(" MB of files")
+        .next()
+        .filter(|s| s.len() < out.len())
+        .and_then(|s| s.rsplit(' ').next())
+        .map_or(Some(0.0), |m| m.parse().ok())?;
+    Some((steps.parse().ok()?, mb))
+}
+
+/// Bytes of the files under `dir`, recursively.
+fn bytes_under(dir: &Path) -> u64 {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let e = e.unwrap();
+            let t = e.file_type().unwrap();
+            if t.is_dir() {
+                bytes_under(&e.path())
+            } else {
+                e.metadata().unwrap().len()
+            }
+        })
+        .sum()
 }
 
 /// The largest scale the job passes validation at under `work` (with the estimate there),
 /// and the smallest it is refused at.
-fn just_under(case: &Case, dir: &Path) -> (usize, f64, usize) {
+fn just_under(case: &Case, dir: &Path) -> (usize, (f64, f64), usize) {
     let at = |n: usize| {
         put(dir, &(case.files)(n));
         estimate(dir, case.work)
@@ -180,7 +203,7 @@ fn just_under(case: &Case, dir: &Path) -> (usize, f64, usize) {
 
 fn check(case: &Case) {
     let dir = tempfile::tempdir().unwrap();
-    let (scale, steps, refused) = just_under(case, dir.path());
+    let (scale, (steps, mb), refused) = just_under(case, dir.path());
     put(dir.path(), &(case.files)(scale));
     let start = Instant::now();
     let o = hotcut(
@@ -197,9 +220,16 @@ fn check(case: &Case) {
     let took = start.elapsed().as_secs_f64();
     assert_eq!(o.status.code(), Some(0), "{}: {}", case.label, stderr(&o));
     let implied = steps / 1e8;
+    let written = bytes_under(&dir.path().join("out")) as f64 / 1e6;
     println!(
-        "{}: scale {scale} (refused at {refused}) under {:e} steps: estimate {steps:e} steps ({implied:.2} s), ran in {took:.2} s",
+        "{}: scale {scale} (refused at {refused}) under {:e} steps: estimate {steps:e} steps ({implied:.2} s), {mb} MB of files; ran in {took:.2} s, wrote {written:.3} MB",
         case.label, case.work
+    );
+    // the output estimate `--max-output` is checked against is an upper bound
+    assert!(
+        mb == 0.0 || written <= mb,
+        "{}: wrote {written} MB, more than the {mb} MB estimated",
+        case.label
     );
     assert!(
         took <= 3.0 * implied + 0.5,

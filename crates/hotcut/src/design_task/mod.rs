@@ -247,10 +247,11 @@ impl Task for Design {
             solves * (4e4 + 64.0 * p.points as f64) + cuts * 1e4 + envelope * 16.0 + 1e7,
             solves * 1e6 + envelope * 20.0,
             "/task/Design/resolution",
-            "use resolution Design, or split the design into fewer cuts, stations and blocks",
+            "use resolution Design if it is Production, or split the design into fewer cuts, stations and blocks",
         )
-        // drawings, glTF and report: every solved curve's points, some tens of bytes each
-        .with_output(solves * p.points as f64 * 120.0 + 1e5)
+        // drawings, glTF, report and page: every solved curve's points, some tens of bytes
+        // each in each (a 3-cut, 100-block, 100-station design wrote 145 per point)
+        .with_output(solves * p.points as f64 * 180.0 + 1e5)
     }
 
     fn run(params: &DesignParams, job: &Context, progress: &dyn Progress) -> Result<DesignRun> {

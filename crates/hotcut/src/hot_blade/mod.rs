@@ -266,10 +266,13 @@ impl Task for HotBlade {
             planes * (cost + 1e3 * points) + fits * samples * 400.0 + blocks * grid * 100.0,
             "/block/size",
             "enlarge block.size, or lower the task's targets_per_block, samples, refine or split_depth",
-        )
-        // glTF and drawings of every block's grid, its targets in the robot files, and the
-        // fits in the report
-        .with_output(blocks * (grid * 150.0 + per_block * 600.0) + fits * samples * 40.0 + 2e5);
+        );
+        // per block: its deviation grid; its swept surface (a row of grid_points vertices per
+        // target and refined plane) in OBJ and glTF, ~65 and ~70 bytes a vertex on
+        // jobs/hot-blade-facade.ron; its targets in the robot files. The fits in the report.
+        let rows = per_block * pipeline.grid_points as f64;
+        let per_block_bytes = grid * 30.0 + rows * 140.0 + per_block * 600.0;
+        let e = e.with_output(blocks * per_block_bytes + fits * samples * 40.0 + 2e5);
         Estimate { checks, ..e }
     }
 

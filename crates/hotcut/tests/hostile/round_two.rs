@@ -867,6 +867,8 @@ fn dialects(out: &mut Vec<Case>) {
         "#1=5",
         "O100 call",
         "G0 X5000 (park)",
+        "; G0 X5000",
+        "M30 ; G0 X5000",
         "X100",
         "F100",
     ];
@@ -1151,6 +1153,13 @@ fn parity(out: &mut Vec<Case>) {
         (
             "a straight piece at one station",
             one(&bezier(s_piece), &bezier(straight)),
+        ),
+        (
+            "stations bulging opposite ways (straight halfway)",
+            one(
+                &bezier(s_piece),
+                &bezier(r#"[[0, 200], [200, 150], [400, 150], [600, 200]]"#),
+            ),
         ),
         (
             "Bezier and Spline stations",

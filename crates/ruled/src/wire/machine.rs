@@ -261,9 +261,14 @@ impl Machine {
             return bad(
                 "power",
                 format!(
-                    "{} must be within 0.001–1e6: heat on would write S{}, a cold wire",
+                    "{} must be within 0.001–1e6: heat on would write S{}{}",
                     self.power,
-                    trim_number(self.power)
+                    trim_number(self.power),
+                    if self.power.abs() < 0.001 {
+                        ", a cold wire"
+                    } else {
+                        ""
+                    }
                 ),
             );
         }
@@ -409,6 +414,13 @@ fn line_problem(line: &str, power: bool) -> Option<String> {
     }
     if line.contains('%') {
         return Some("`%` is the program's wrapper, not a line's".into());
+    }
+    if line.contains(';') {
+        // LinuxCNC and GRBL end a line at `;`, but not every controller does, and one
+        // that does not would run what follows: comments go in parentheses
+        return Some(
+            "`;` does not start a comment on every controller: put comments in parentheses".into(),
+        );
     }
     let rest = if power {
         line.replace("{power}", "")
@@ -591,11 +603,9 @@ mod tests {
             ("heat_off", lines(&g, &[], "M64 P0", "M65 P1", "M2")),
             ("header", lines(&["G17"], &[], "M3", "M5", "M2")),
             ("header", lines(&["( G21 G90 )"], &[], "M3", "M5", "M2")),
-            // after `;` is a comment: the header passes, the footer does not
-            (
-                "footer",
-                lines(&["G21 G90 ; G91"], &["G91"], "M3", "M5", "M2"),
-            ),
+            // `;` comments are refused: not every controller reads them as comments
+            ("header", lines(&["G21 G90 ; G91"], &[], "M3", "M5", "M2")),
+            ("footer", lines(&g, &["; G0 X5000"], "M3", "M5", "M2")),
             ("footer", lines(&g, &["G91"], "M3", "M5", "M2")),
             ("header", lines(&["G21 G90 M2"], &[], "M3", "M5", "M2")),
             (
