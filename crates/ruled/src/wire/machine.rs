@@ -415,9 +415,19 @@ fn line_problem(line: &str, power: bool) -> Option<String> {
     if line.contains('%') {
         return Some("`%` is the program's wrapper, not a line's".into());
     }
-    if line.contains(';') {
+    let mut open = false;
+    let semicolon = line.chars().any(|c| {
+        match c {
+            '(' => open = true,
+            ')' => open = false,
+            _ => {}
+        }
+        c == ';' && !open
+    });
+    if semicolon {
         // LinuxCNC and GRBL end a line at `;`, but not every controller does, and one
-        // that does not would run what follows: comments go in parentheses
+        // that does not would run what follows: comments go in parentheses (where a `;`
+        // is only text)
         return Some(
             "`;` does not start a comment on every controller: put comments in parentheses".into(),
         );
@@ -463,7 +473,14 @@ mod tests {
             Machine::mach3(),
         ] {
             m.check().unwrap();
-            assert!(m.notes.iter().all(|n| line_problem(n, false).is_none()));
+            // `;` is text inside a comment, a comment's start nowhere else
+            assert!(line_problem("G21 G90 (tower A; tower B)", false).is_none());
+            assert!(line_problem("G21 G90 (a) ; G0 X5", false).is_some());
+            // a note is written as a comment line
+            assert!(m
+                .notes
+                .iter()
+                .all(|n| line_problem(&format!("({n})"), false).is_none()));
         }
         assert_eq!(Machine::linuxcnc_xyuv().heat_on_line(), "M3 S1000");
         assert_eq!(
