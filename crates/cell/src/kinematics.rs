@@ -177,22 +177,22 @@ fn turns(model: &RobotModel, q: &Joints, previous: Option<&Joints>) -> Vec<Joint
 /// ```
 pub fn configurations(solutions: &[Joints]) -> usize {
     let tau = std::f64::consts::TAU;
-    let full = (tau * 1e9).round() as i64;
-    // each joint as its angle within one turn, to 1e-9 rad, a full turn read as 0
-    let key = |q: &Joints| {
-        q.map(|v| {
-            let k = (v.rem_euclid(tau) * 1e9).round() as i64;
-            if k >= full {
-                0
-            } else {
-                k
-            }
+    // the same configuration: every joint within 1e-6 rad of the other's, whole turns
+    // aside (turns of one solution differ by rounding, ~1e-15 rad; distinct configurations
+    // by far more away from a singularity)
+    let same = |a: &Joints, b: &Joints| {
+        a.iter().zip(b).all(|(x, y)| {
+            let d = (x - y).rem_euclid(tau);
+            d.min(tau - d) <= 1e-6
         })
     };
-    let mut keys: Vec<[i64; 6]> = solutions.iter().map(key).collect();
-    keys.sort_unstable();
-    keys.dedup();
-    keys.len()
+    let mut kept: Vec<Joints> = Vec::new();
+    for q in solutions {
+        if !kept.iter().any(|k| same(k, q)) {
+            kept.push(*q);
+        }
+    }
+    kept.len()
 }
 
 /// The solution nearest `previous`: the least largest joint change (`None` for none).

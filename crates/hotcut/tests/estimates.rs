@@ -227,7 +227,7 @@ fn check(case: &Case) {
     );
     // the output estimate `--max-output` is checked against is an upper bound
     assert!(
-        mb == 0.0 || written <= mb,
+        mb == 0.0 || written <= mb + 0.005, // `validate` prints MB to two decimals
         "{}: wrote {written} MB, more than the {mb} MB estimated",
         case.label
     );

@@ -270,9 +270,16 @@ impl Task for HotBlade {
         // per block: its deviation grid; its swept surface (a row of grid_points vertices per
         // target and refined plane) in OBJ and glTF, ~65 and ~70 bytes a vertex on
         // jobs/hot-blade-facade.ron; its targets in the robot files. The fits in the report.
+        // A block split into up to 2^split_depth parts has a swept surface and targets
+        // per part: the bound counts them all.
+        let parts = blocks * f64::from(1u32 << pipeline.split_depth.min(16));
         let rows = per_block * pipeline.grid_points as f64;
-        let per_block_bytes = grid * 30.0 + rows * 140.0 + per_block * 600.0;
-        let e = e.with_output(blocks * per_block_bytes + fits * samples * 40.0 + 2e5);
+        let e = e.with_output(
+            blocks * grid * 30.0
+                + parts * (rows * 140.0 + per_block * 600.0)
+                + fits * samples * 40.0
+                + 2e5,
+        );
         Estimate { checks, ..e }
     }
 
