@@ -39,8 +39,9 @@ impl Material {
 pub struct Mesh {
     /// Name (also the node's name).
     pub name: String,
-    /// Vertex positions.
-    pub positions: Vec<[f32; 3]>,
+    /// Vertex positions, in the source units (written in metres as single precision; the
+    /// model's bounds are computed from these, in double precision).
+    pub positions: Vec<[f64; 3]>,
     /// Per-vertex linear RGBA colours (same length as `positions`), if any.
     pub colors: Option<Vec<[f32; 4]>>,
     /// Triangles as vertex indices, three per triangle.
@@ -51,9 +52,9 @@ pub struct Mesh {
 
 pub use crate::SourceUnits;
 
-/// A position as glTF's single precision.
-pub fn f32s(v: &nalgebra::Vector3<f64>) -> [f32; 3] {
-    [v.x as f32, v.y as f32, v.z as f32]
+/// A position as a mesh holds it.
+pub fn xyz(v: &nalgebra::Vector3<f64>) -> [f64; 3] {
+    [v.x, v.y, v.z]
 }
 
 impl Mesh {
@@ -61,7 +62,7 @@ impl Mesh {
     pub fn from_trimesh(name: impl Into<String>, m: &geom::mesh::TriMesh, material: usize) -> Self {
         Self {
             name: name.into(),
-            positions: m.vertices().iter().map(f32s).collect(),
+            positions: m.vertices().iter().map(xyz).collect(),
             colors: None,
             indices: m.faces().iter().flatten().copied().collect(),
             material,
@@ -85,7 +86,7 @@ impl Mesh {
         };
         Self {
             name: name.into(),
-            positions: (0..8).map(|i| f32s(&corner(i))).collect(),
+            positions: (0..8).map(|i| xyz(&corner(i))).collect(),
             colors: None,
             indices: geom::mesh::BOX_FACES.iter().flatten().copied().collect(),
             material,
@@ -96,10 +97,7 @@ impl Mesh {
 /// The bounding box `(min, max)` of every position of `meshes`, in their own units
 /// (`None` without any position, or with one that is not finite).
 pub fn bounds(meshes: &[Mesh]) -> Option<([f64; 3], [f64; 3])> {
-    let mut it = meshes
-        .iter()
-        .flat_map(|m| &m.positions)
-        .map(|p| p.map(f64::from));
+    let mut it = meshes.iter().flat_map(|m| &m.positions).copied();
     if it.clone().flatten().any(|v| !v.is_finite()) {
         return None;
     }
@@ -168,12 +166,12 @@ pub fn write_gltf(
         let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
         for p in &m.positions {
             for k in 0..3 {
-                let v = (f64::from(p[k]) * units.metres) as f32;
+                let v = (p[k] * units.metres) as f32;
                 if !v.is_finite() {
                     return Err(crate::ExportError::Data(format!(
                         "glTF: mesh {:?} has a position beyond single precision ({} m): the model is too large to draw",
                         m.name,
-                        f64::from(p[k]) * units.metres
+                        p[k] * units.metres
                     )));
                 }
                 bytes.extend_from_slice(&v.to_le_bytes());
@@ -265,4 +263,27 @@ pub fn write_gltf(
 
 fn gl_meshes_is_empty(doc: &Value) -> bool {
     doc["meshes"].as_array().is_none_or(|a| a.is_empty())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bounds_keep_double_precision() {
+        // 1.8 m as single precision reads 1.79999995: the report's bounds must not
+        let m = Mesh {
+            name: "box".into(),
+            positions: vec![[0.1, -0.495, 0.0], [1.8, 0.495, 1234.5678]],
+            colors: None,
+            indices: vec![0, 1, 0],
+            material: 0,
+        };
+        let (lo, hi) = bounds(std::slice::from_ref(&m)).unwrap();
+        assert_eq!(lo, [0.1, -0.495, 0.0]);
+        assert_eq!(hi, [1.8, 0.495, 1234.5678]);
+        let mut bad = m;
+        bad.positions[0][2] = f64::NAN;
+        assert_eq!(bounds(&[bad]), None);
+    }
 }

@@ -53,7 +53,10 @@ pub struct Targets {
 pub struct TargetsBlock {
     /// Block number.
     pub block: usize,
-    /// The block's min corner, the work object's origin (job coordinates).
+    /// The work object's origin, in job coordinates: the block's corner that is least in
+    /// the block's own frame (`rotation`: x along the cut, y across it, z up). It is the
+    /// block's min corner in world coordinates only when the cut runs along +x; for a cut
+    /// along y or an oblique one it is another corner.
     pub origin: [f64; 3],
     /// Orientation `[w, x, y, z]` of the block axes (work object frame).
     pub rotation: [f64; 4],

@@ -206,7 +206,9 @@ pub struct BlockReport {
     pub column: usize,
     /// How many times the column was halved for this block.
     pub split_level: u32,
-    /// World position of the block's min corner (the work object's origin).
+    /// World position of the work object's origin: the block's corner least along the
+    /// grid axes (along the cut, across it, up); the world min corner only when the cut
+    /// runs along +x.
     pub origin: [f64; 3],
     /// Block edge lengths along the grid axes.
     pub size: [f64; 3],

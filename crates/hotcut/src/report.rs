@@ -11,8 +11,9 @@ use crate::context::Context;
 /// The hotcut version every report carries (`hotcut_version`).
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
-/// The bounding box of what `model.gltf` shows, in job units (the glTF holds the same box
-/// in metres, turned y up).
+/// The bounding box of what `model.gltf` shows, in job units and double precision (the
+/// glTF holds the same box in metres, turned y up, rounded to single precision as its
+/// positions are).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 #[schemars(deny_unknown_fields)]
 pub struct ModelBounds {

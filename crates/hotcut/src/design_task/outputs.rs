@@ -5,7 +5,7 @@
 
 use design::cut::CutResult;
 use elastica::sweep::frame_quaternion;
-use export::gltf::{f32s, write_gltf, Material, Mesh};
+use export::gltf::{write_gltf, xyz, Material, Mesh};
 use export::robot::{Targets, TargetsBlock};
 use nalgebra::{Vector2, Vector3};
 
@@ -173,7 +173,7 @@ pub(super) fn scene(run: &super::DesignRun, n: usize, tol: f64) -> Vec<Mesh> {
     for m in &run.multi {
         let Some(e) = &m.envelope else { continue };
         let id = &run.blocks[m.block].id;
-        let at = |k: usize, z: f64| [e.points[k][0] as f32, e.points[k][1] as f32, z as f32];
+        let at = |k: usize, z: f64| [e.points[k][0], e.points[k][1], z];
         meshes.push(Mesh {
             name: format!("envelope_design_{id}"),
             positions: (0..e.points.len()).map(|k| at(k, e.design[k])).collect(),
@@ -206,8 +206,8 @@ pub(super) fn scene(run: &super::DesignRun, n: usize, tol: f64) -> Vec<Mesh> {
                 let (d, e) = c.sampled(piece, n);
                 for (p, q) in d.iter().zip(&e) {
                     let w = |v: &[f64; 2]| r.frame.to_world(c.offset, &Vector2::new(v[0], v[1]));
-                    design.push(f32s(&w(p)));
-                    elastica.push(f32s(&w(q)));
+                    design.push(xyz(&w(p)));
+                    elastica.push(xyz(&w(q)));
                     colors.push(deviation_color((p[0] - q[0]).hypot(p[1] - q[1]), tol));
                 }
             }

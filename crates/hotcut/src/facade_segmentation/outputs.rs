@@ -4,7 +4,7 @@
 //! shared with `HotBlade`.
 
 use export::csv::Table;
-use export::gltf::{f32s, write_gltf, Material, Mesh, SourceUnits};
+use export::gltf::{write_gltf, xyz, Material, Mesh, SourceUnits};
 use export::obj::ObjWriter;
 use export::svg::{bounds, Legend, Mark, SvgDoc, Viewport};
 use facade_seg::Piece;
@@ -328,7 +328,7 @@ pub(super) fn scene(run: &SegmentationRun) -> Vec<Mesh> {
         };
         meshes.push(Mesh {
             name: format!("piece_{}", piece.id),
-            positions: positions.iter().map(f32s).collect(),
+            positions: positions.iter().map(xyz).collect(),
             colors: None,
             indices,
             material: 1 + (piece.id + PALETTE.len() - 1) % PALETTE.len(),

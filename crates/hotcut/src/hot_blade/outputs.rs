@@ -4,7 +4,7 @@
 //! fitted section.
 
 use export::csv::Table;
-use export::gltf::{f32s, write_gltf, Material, Mesh, SourceUnits};
+use export::gltf::{write_gltf, xyz, Material, Mesh, SourceUnits};
 use export::svg::{bounds, Legend, Mark, SvgDoc, Viewport};
 use hotblade::{BlockResult, Rationalization};
 use nalgebra::Vector3;
@@ -153,7 +153,7 @@ pub(super) fn scene(run: &Rationalization, tol: f64) -> Vec<Mesh> {
             .collect();
         meshes.push(Mesh {
             name: format!("surface_{}", b.report.block),
-            positions: verts.iter().map(f32s).collect(),
+            positions: verts.iter().map(xyz).collect(),
             colors: Some(colors),
             indices: faces.iter().flatten().copied().collect(),
             material: 1,
