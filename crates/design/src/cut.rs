@@ -126,19 +126,22 @@ impl DesignCurve {
                 let mut points = Vec::with_capacity(2 * n + 2);
                 let mut angles = Vec::with_capacity(n + 1);
                 let mut legs = Vec::with_capacity(2 * n);
+                // the joints' tangent angles unwrapped along the curve by each piece's
+                // true turning (∫κ ds), not by the nearest angle: a piece turning by π or
+                // more (a vault's arch) keeps its turn, and lofts the short way
                 for (i, b) in pieces.iter().enumerate() {
                     points.extend(b.p[0]);
-                    angles.push(b.start_angle()?);
+                    let start = b.start_angle()?;
+                    if i == 0 {
+                        angles.push(start);
+                    }
+                    let at = angles[i];
+                    angles.push(at + (b.end_angle_unwrapped()? - start));
                     legs.push((b.p[1][0] - b.p[0][0]).hypot(b.p[1][1] - b.p[0][1]));
                     legs.push((b.p[3][0] - b.p[2][0]).hypot(b.p[3][1] - b.p[2][1]));
                     if i + 1 == n {
                         points.extend(b.p[3]);
-                        angles.push(b.end_angle()?);
                     }
-                }
-                // unwrap along the curve so that neighbouring joints' angles are close
-                for k in 1..angles.len() {
-                    angles[k] = angles[k - 1] + wrap(angles[k] - angles[k - 1]);
                 }
                 Ok(points.into_iter().chain(angles).chain(legs).collect())
             }
@@ -405,6 +408,34 @@ fn piece_problems(curve: &DesignCurve, blade: Option<f64>) -> Vec<String> {
     out
 }
 
+/// The design curves lofted on every cutting plane [`solve`] solves, with their offsets
+/// along the cut, without solving their elastica: a preview of the loft.
+///
+/// # Errors
+/// [`DesignError::Invalid`] with the first of [`problems`] before the loft (faces,
+/// stations, constructions); a curve that cannot be built.
+pub fn plane_curves(p: &CutParams) -> Result<Vec<(f64, DesignCurve)>> {
+    if p.planes < 2 || p.stations.len() < 2 {
+        return Err(DesignError::Invalid(
+            "a cut needs at least 2 planes and 2 stations".into(),
+        ));
+    }
+    let loft = loft(&p.stations)?;
+    let (entry, exit) = (
+        p.stations[0].offset,
+        p.stations[p.stations.len() - 1].offset,
+    );
+    (0..p.planes)
+        .map(|j| {
+            let offset = entry + (exit - entry) * j as f64 / (p.planes - 1) as f64;
+            Ok((
+                offset,
+                p.stations[0].curve.with_params(&loft.at_offset(offset))?,
+            ))
+        })
+        .collect()
+}
+
 /// The problems of the lofted curves on the cutting planes [`solve`] solves: a curve that
 /// cannot be built, a straight piece (two stations bulging opposite ways loft to a straight
 /// curve between them), a piece longer than the blade. Those of the first plane that has
@@ -448,10 +479,28 @@ const STRAIGHT: f64 = 1e-9;
 /// The loft of the stations' curves along the cut.
 fn loft(stations: &[Station]) -> Result<Loft> {
     let pieces: Vec<Vec<Bezier>> = stations.iter().map(|s| s.curve.pieces()).collect();
-    let lofted = stations
+    let mut lofted = stations
         .iter()
         .map(|s| Ok((s.offset, s.curve.loft_params()?)))
         .collect::<Result<Vec<_>>>()?;
+    // each station's angles turned by whole turns to lie nearest the previous station's:
+    // the tangents rotate the short way between stations
+    if let Some(DesignCurve::Bezier(first)) = stations.first().map(|s| &s.curve) {
+        let n = first.len();
+        let angles = 2 * n + 2..3 * n + 3;
+        for i in 1..lofted.len() {
+            let (done, rest) = lofted.split_at_mut(i);
+            let (previous, current) = (&done[i - 1].1, &mut rest[0].1);
+            if current.len() < angles.end || previous.len() < angles.end {
+                break;
+            }
+            let tau = std::f64::consts::TAU;
+            let shift = tau * ((previous[angles.start] - current[angles.start]) / tau).round();
+            for a in &mut current[angles.clone()] {
+                *a += shift;
+            }
+        }
+    }
     Loft::new(&lofted, |i| {
         chord(
             &pieces[i - 1],

@@ -286,3 +286,133 @@ proptest! {
         }
     }
 }
+
+/// One block across `[0, w]`, two stations 500 apart, one piece each.
+fn arch_cut(w: f64, a: Bezier, b: Bezier, planes: usize) -> CutParams {
+    CutParams {
+        frame: PlaneFrame::from_direction(Vector3::x()).unwrap(),
+        faces: vec![0.0, w],
+        stations: vec![
+            Station {
+                offset: 0.0,
+                curve: DesignCurve::Bezier(vec![a]),
+            },
+            Station {
+                offset: 500.0,
+                curve: DesignCurve::Bezier(vec![b]),
+            },
+        ],
+        blade: BladeParams::new(4.0 * w),
+        planes,
+        offset: 0.0,
+    }
+}
+
+/// The start angle and the true turning of the one piece of `c`.
+fn start_and_turn(c: &DesignCurve) -> (f64, f64) {
+    let DesignCurve::Bezier(p) = c else {
+        panic!("a Bézier chain")
+    };
+    let a = p[0].start_angle().unwrap();
+    (a, p[0].end_angle_unwrapped().unwrap() - a)
+}
+
+/// Checks that every plane's piece starts between the stations' start angles and turns
+/// between their turnings, monotonically along the cut (the short way), and that no two
+/// neighbouring planes' tangents differ by more than the stations' do.
+fn lofts_the_short_way(cut: &CutParams) -> Result<(), TestCaseError> {
+    let curves = design::cut::plane_curves(cut).unwrap();
+    let (s0, t0) = start_and_turn(&cut.stations[0].curve);
+    let (s1, t1) = start_and_turn(&cut.stations[1].curve);
+    // the short way between the stations' start angles
+    let ds = design::bezier::wrap(s1 - s0);
+    let eps = 1e-9;
+    let mut last: Option<(f64, f64)> = None;
+    for (j, (_, c)) in curves.iter().enumerate() {
+        let (s, t) = start_and_turn(c);
+        let along = design::bezier::wrap(s - s0);
+        prop_assert!(
+            along * ds.signum() >= -eps && along.abs() <= ds.abs() + eps,
+            "plane {j}: start {s} not between {s0} and {s1} the short way"
+        );
+        prop_assert!(
+            t >= t0.min(t1) - 1e-6 && t <= t0.max(t1) + 1e-6,
+            "plane {j}: turns {t}, stations {t0} and {t1}"
+        );
+        if let Some((ls, lt)) = last {
+            prop_assert!(design::bezier::wrap(s - ls).abs() <= ds.abs() + eps);
+            prop_assert!((t - lt).abs() <= (t1 - t0).abs() + 1e-6);
+        }
+        last = Some((s, t));
+    }
+    Ok(())
+}
+
+#[test]
+fn a_vault_turning_half_a_circle_lofts_the_short_way() {
+    // the barrel vault: both end tangents vertical at station 0 (a turn of
+    // exactly -π), a little less at station 1
+    let a = Bezier {
+        p: [[0.0, 50.0], [0.0, 380.0], [700.0, 380.0], [700.0, 50.0]],
+    };
+    let b = Bezier {
+        p: [[0.0, 50.0], [40.0, 380.0], [660.0, 380.0], [700.0, 50.0]],
+    };
+    let cut = arch_cut(700.0, a, b, 21);
+    assert!(problems(&cut).is_empty(), "{:?}", problems(&cut));
+    lofts_the_short_way(&cut).unwrap();
+    // every plane's piece is as long as the stations' or between them
+    let len = |c: &DesignCurve| match c {
+        DesignCurve::Bezier(p) => p[0].length(),
+        DesignCurve::Spline(_) => unreachable!(),
+    };
+    let (l0, l1) = (len(&cut.stations[0].curve), len(&cut.stations[1].curve));
+    for (_, c) in design::cut::plane_curves(&cut).unwrap() {
+        let l = len(&c);
+        assert!(
+            l >= 0.98 * l0.min(l1) && l <= 1.02 * l0.max(l1),
+            "{l} vs {l0}, {l1}"
+        );
+    }
+}
+
+/// An arch over `[0, w]` from height `h0` to `h1`, starting at `start` radians and turning
+/// clockwise by `turn`, legs `la`, `lb` (fractions of `w`).
+fn arch(w: f64, h: [f64; 2], start: f64, turn: f64, legs: [f64; 2]) -> Bezier {
+    let end = start - turn;
+    let (la, lb) = (legs[0] * w, legs[1] * w);
+    Bezier {
+        p: [
+            [0.0, h[0]],
+            [la * start.cos(), h[0] + la * start.sin()],
+            [w - lb * end.cos(), h[1] - lb * end.sin()],
+            [w, h[1]],
+        ],
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    /// Pieces turning 150°–200° at each station, in millimetres or metres, loft the short
+    /// way on every plane.
+    #[test]
+    fn arches_turning_150_to_200_degrees_loft_the_short_way(
+        start in proptest::array::uniform2(60.0f64..120.0),
+        turn in proptest::array::uniform2(150.0f64..200.0),
+        legs in proptest::array::uniform4(0.3f64..0.9),
+        h in proptest::array::uniform4(0.0f64..0.2),
+        metres in any::<bool>(),
+    ) {
+        let w = if metres { 0.7 } else { 700.0 };
+        let r = f64::to_radians;
+        let a = arch(w, [h[0] * w, h[1] * w], r(start[0]), r(turn[0]), [legs[0], legs[1]]);
+        let b = arch(w, [h[2] * w, h[3] * w], r(start[1]), r(turn[1]), [legs[2], legs[3]]);
+        // the Béziers really turn by the given angles (their polygons are convex arches)
+        for (z, t) in [(&a, turn[0]), (&b, turn[1])] {
+            let got = z.end_angle_unwrapped().unwrap() - z.start_angle().unwrap();
+            prop_assume!((got + r(t)).abs() < 1e-6);
+        }
+        lofts_the_short_way(&arch_cut(w, a, b, 17))?;
+    }
+}
