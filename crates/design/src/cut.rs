@@ -398,10 +398,9 @@ fn piece_problems(curve: &DesignCurve, blade: Option<f64>) -> Vec<String> {
             out.push(format!(
                 "the piece in block {k} of the cut is straight (length {length:.6}, its ends {chord:.6} apart): a blade bends, so a cut's pieces must too"
             ));
-        } else if blade.is_some_and(|b| length > b) {
+        } else if let Some(b) = blade.filter(|&b| length > b) {
             out.push(format!(
-                "the piece in block {k} of the cut is {length:.3} long, longer than the blade ({:.3})",
-                blade.unwrap_or(0.0)
+                "the piece in block {k} of the cut is {length:.3} long, longer than the blade ({b:.3})"
             ));
         }
     }
@@ -421,19 +420,22 @@ pub fn plane_curves(p: &CutParams) -> Result<Vec<(f64, DesignCurve)>> {
         ));
     }
     let loft = loft(&p.stations)?;
+    (0..p.planes).map(|j| plane_curve(p, &loft, j)).collect()
+}
+
+/// Cutting plane `j`'s offset along the cut (planes evenly from the first station to the
+/// last; `p.planes ≥ 2` and stations present, as [`problems`] requires) and its lofted
+/// design curve: what [`solve`], [`plane_curves`] and the checks all use.
+fn plane_curve(p: &CutParams, loft: &Loft, j: usize) -> Result<(f64, DesignCurve)> {
     let (entry, exit) = (
         p.stations[0].offset,
         p.stations[p.stations.len() - 1].offset,
     );
-    (0..p.planes)
-        .map(|j| {
-            let offset = entry + (exit - entry) * j as f64 / (p.planes - 1) as f64;
-            Ok((
-                offset,
-                p.stations[0].curve.with_params(&loft.at_offset(offset))?,
-            ))
-        })
-        .collect()
+    let offset = entry + (exit - entry) * j as f64 / (p.planes - 1) as f64;
+    Ok((
+        offset,
+        p.stations[0].curve.with_params(&loft.at_offset(offset))?,
+    ))
 }
 
 /// The problems of the lofted curves on the cutting planes [`solve`] solves: a curve that
@@ -441,16 +443,14 @@ pub fn plane_curves(p: &CutParams) -> Result<Vec<(f64, DesignCurve)>> {
 /// curve between them), a piece longer than the blade. Those of the first plane that has
 /// any, and how many planes have some.
 fn plane_problems(p: &CutParams, loft: &Loft) -> Vec<String> {
-    let (entry, exit) = match (p.stations.first(), p.stations.last()) {
-        (Some(a), Some(b)) if p.planes >= 2 => (a.offset, b.offset),
-        _ => return Vec::new(),
-    };
+    if p.planes < 2 || p.stations.is_empty() {
+        return Vec::new();
+    }
     let mut first = Vec::new();
     let mut count = 0;
     for j in 0..p.planes {
-        let offset = entry + (exit - entry) * j as f64 / (p.planes - 1) as f64;
-        let found = match p.stations[0].curve.with_params(&loft.at_offset(offset)) {
-            Ok(curve) => piece_problems(&curve, Some(p.blade.length)),
+        let found = match plane_curve(p, loft, j) {
+            Ok((_, curve)) => piece_problems(&curve, Some(p.blade.length)),
             Err(e) => vec![e.to_string()],
         };
         if !found.is_empty() {
@@ -532,16 +532,11 @@ pub fn solve(p: &CutParams, tick: &(dyn Fn() + Sync)) -> Result<CutResult> {
                 .map_err(|e| DesignError::Invalid(format!("station {i}: {e}")))
         })
         .collect::<Result<Vec<_>>>()?;
-    let (entry, exit) = (
-        p.stations[0].offset,
-        p.stations[p.stations.len() - 1].offset,
-    );
     let planes = (0..p.planes)
         .into_par_iter()
         .map(|j| {
             tick();
-            let offset = entry + (exit - entry) * j as f64 / (p.planes - 1) as f64;
-            let curve = p.stations[0].curve.with_params(&loft.at_offset(offset))?;
+            let (offset, curve) = plane_curve(p, &loft, j)?;
             solve_curve(&curve, offset, p)
                 .map_err(|e| DesignError::Invalid(format!("plane {} of {}: {e}", j + 1, p.planes)))
         })
