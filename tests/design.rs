@@ -274,3 +274,33 @@ fn a_block_cut_twice_has_a_crease_and_drops_the_cut_above() {
         assert_eq!(p["poses"].as_array().unwrap().len(), 51);
     }
 }
+
+/// Issue 37: the vault (a piece turning by exactly 180° at the entry face) lofts the short
+/// way — no plane's blade bends more than the stations' blades, no flag — and the nearly
+/// flat panel (a 5 mm sag, a straight middle plane, a 3 mm S) is solved on every plane.
+/// (Both run in metres too, in `tests/units.rs`, with the same results.)
+#[test]
+fn the_vault_and_the_flat_panel_cut_clean() {
+    let root = hotcut_workspace_tests::root().join("jobs");
+    for name in ["design-vault.ron", "design-flat.ron"] {
+        let job = load_job(&root.join(name)).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let out = run_job(&job, dir.path(), &NoProgress).unwrap();
+        let report = json(&out.dir.join("report.json"));
+        let cut = &report["cuts"][0];
+        let planes = &cut["planes"];
+        assert_eq!(planes["strain_flags"].as_u64(), Some(0), "{name}");
+        assert_eq!(planes["inflection_flags"].as_u64(), Some(0), "{name}");
+        let stations = cut["curves"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["blade_max_curvature"].as_f64().unwrap())
+            .fold(0.0, f64::max);
+        let on_planes = planes["blade_max_curvature"].as_f64().unwrap();
+        assert!(
+            on_planes <= stations * (1.0 + 1e-6),
+            "{name}: {on_planes} > {stations}"
+        );
+    }
+}

@@ -387,16 +387,17 @@ pub fn problems(p: &CutParams) -> Vec<String> {
     out
 }
 
-/// The pieces of `curve` that are straight, or longer than `blade` when given.
+/// The pieces of `curve` whose ends coincide, or longer than `blade` when given. A
+/// straight piece is cut by a straight blade (issue 37).
 fn piece_problems(curve: &DesignCurve, blade: Option<f64>) -> Vec<String> {
     let mut out = Vec::new();
     for (k, piece) in curve.pieces().iter().enumerate() {
         let [a, _, _, b] = piece.p;
         let chord = (b[0] - a[0]).hypot(b[1] - a[1]);
         let length = piece.length();
-        if !(length > chord * (1.0 + STRAIGHT)) {
+        if !(chord > 0.0) || !length.is_finite() {
             out.push(format!(
-                "the piece in block {k} of the cut is straight (length {length:.6}, its ends {chord:.6} apart): a blade bends, so a cut's pieces must too"
+                "the piece in block {k} of the cut has its ends at one point: it spans no block"
             ));
         } else if let Some(b) = blade.filter(|&b| length > b) {
             out.push(format!(
@@ -439,8 +440,7 @@ fn plane_curve(p: &CutParams, loft: &Loft, j: usize) -> Result<(f64, DesignCurve
 }
 
 /// The problems of the lofted curves on the cutting planes [`solve`] solves: a curve that
-/// cannot be built, a straight piece (two stations bulging opposite ways loft to a straight
-/// curve between them), a piece longer than the blade. Those of the first plane that has
+/// cannot be built, a piece longer than the blade. Those of the first plane that has
 /// any, and how many planes have some.
 fn plane_problems(p: &CutParams, loft: &Loft) -> Vec<String> {
     if p.planes < 2 || p.stations.is_empty() {
@@ -471,10 +471,6 @@ fn plane_problems(p: &CutParams, loft: &Loft) -> Vec<String> {
     }
     first
 }
-
-/// How much longer than its chord a piece must be, relatively: a little more than the
-/// boundary-value solve's own `1e-12`, so that every piece this accepts is solved.
-const STRAIGHT: f64 = 1e-9;
 
 /// The loft of the stations' curves along the cut.
 fn loft(stations: &[Station]) -> Result<Loft> {

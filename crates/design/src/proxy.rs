@@ -77,7 +77,8 @@ pub fn eq11_residual(b: &Bezier) -> f64 {
 
 /// The eq. (11) residual of a curve of `length` sampled at `rows` (point, curvature),
 /// evenly along it: κ fitted by λ₂x − λ₁y + α by least squares (coordinates about their
-/// centroid), the RMS residual times the length. NaN when the fit is singular.
+/// centroid), the RMS residual times the length (the least-norm fit where it is singular:
+/// 0 for a straight curve). NaN only for non-finite samples.
 pub fn affine_curvature_residual(rows: &[([f64; 2], f64)], length: f64) -> f64 {
     let n = rows.len() as f64;
     let c = rows
@@ -89,7 +90,14 @@ pub fn affine_curvature_residual(rows: &[([f64; 2], f64)], length: f64) -> f64 {
         a += v * v.transpose();
         y += v * *k;
     }
-    let Some(x) = a.lu().solve(&y) else {
+    // singular where the curve is straight (y constant): the least-squares solution of
+    // least norm then, which fits κ ≡ 0 exactly
+    let tiny = 1e-12 * a.amax();
+    let Some(x) = a
+        .lu()
+        .solve(&y)
+        .or_else(|| a.svd(true, true).solve(&y, tiny).ok())
+    else {
         return f64::NAN;
     };
     let ss: f64 = rows

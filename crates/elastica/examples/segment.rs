@@ -23,6 +23,7 @@ fn answer(v: &Value) -> Result<Vec<(&'static str, String)>, String> {
         }
     };
     let params = ElasticaParams {
+        one_minus_k: None,
         family,
         k: number(v, "k")?,
         s0: number(v, "s0")?,

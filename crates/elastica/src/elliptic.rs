@@ -118,6 +118,8 @@ pub struct Elliptic {
     bottom_scale: f64,
     /// Parameter at the bottom of the chain.
     bottom_m: f64,
+    /// 1 − m is 0: the functions are hyperbolic (m itself may round to 1 with 1 − m > 0).
+    at_one: bool,
 }
 
 impl Elliptic {
@@ -153,6 +155,28 @@ impl Elliptic {
         Ok(Self::with_complement(k * k, k, one_minus_m))
     }
 
+    /// Precompute for the modulus `k = 1 − one_minus_k` given by its distance from 1,
+    /// `one_minus_k ∈ [0, 1]`: near 1 this keeps what `k` in `f64` cannot — every digit of
+    /// 1 − k below 1.1·10⁻¹⁶ (an elastica under strong tension has 1 − k ≈ 10⁻²⁰, which
+    /// rounds k to 1) — and 1 − m = (1 − k)(1 + k) is formed from it exactly.
+    ///
+    /// ```
+    /// use elastica::elliptic::Elliptic;
+    /// let e = Elliptic::from_complement(1e-20).unwrap();
+    /// // K = ln(4/k′) with k′² = 1 − m ≈ 2·10⁻²⁰, although k rounds to 1
+    /// assert!((e.k() - (4.0 / 2e-20f64.sqrt()).ln()).abs() < 1e-12);
+    /// assert_eq!(e.m(), 1.0);
+    /// ```
+    pub fn from_complement(one_minus_k: f64) -> Result<Self, EllipticError> {
+        if !(0.0..=1.0).contains(&one_minus_k) {
+            return Err(EllipticError::Parameter(one_minus_k));
+        }
+        let c = Dd::from_f64(one_minus_k);
+        let one_minus_m = c.mul(Dd::from_f64(2.0).add(Dd::from_f64(-one_minus_k)));
+        let k = 1.0 - one_minus_k;
+        Ok(Self::with_complement(k * k, k, one_minus_m))
+    }
+
     /// Precompute from m, k = √m and 1 − m in double-double (m ∈ [0, 1] checked).
     fn with_complement(m: f64, k: f64, one_minus_m: Dd) -> Self {
         let m1 = one_minus_m.hi;
@@ -167,9 +191,11 @@ impl Elliptic {
             levels: 0,
             bottom_scale: 1.0,
             bottom_m: m,
+            at_one: false,
         };
         if m1 == 0.0 {
             s.m = 1.0;
+            s.at_one = true;
             return s;
         }
         // K by the AGM in double-double.
@@ -293,7 +319,7 @@ impl Elliptic {
                 d: f64::NAN,
             };
         }
-        if self.m == 1.0 {
+        if self.at_one {
             let t = u.tanh();
             let sech = 1.0 / u.cosh();
             return JacobiValues {
@@ -358,7 +384,7 @@ impl Elliptic {
     /// ∂F(φ|m)/∂m, DLMF 19.4.1; at m = 1 its limit −¼(sinh u − u sech u)). Loses digits
     /// like ε/(1 − m) as m → 1, where the functions themselves become that sensitive.
     pub fn dm(&self, u: f64, v: &JacobiValues) -> JacobiDm {
-        let am = if self.m == 1.0 {
+        let am = if self.at_one {
             -0.25 * (u.sinh() - u / u.cosh())
         } else {
             (v.sn * v.cn - v.dn * (u - v.d)) / (2.0 * self.m1)
@@ -383,7 +409,8 @@ impl Elliptic {
         let j = (phi / std::f64::consts::PI).round();
         let psi = phi - j * std::f64::consts::PI;
         let (s, c) = psi.sin_cos();
-        let base = s * crate::carlson::carlson_rf(c * c, 1.0 - self.m * s * s, 1.0);
+        // 1 − m sin² = cos² + (1 − m) sin², without cancellation as m → 1
+        let base = s * crate::carlson::carlson_rf(c * c, c * c + self.m1 * s * s, 1.0);
         if j == 0.0 {
             base
         } else {

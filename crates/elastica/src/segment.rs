@@ -32,6 +32,22 @@ pub struct ElasticaParams {
     pub x0: f64,
     /// Translation y₀.
     pub y0: f64,
+    /// `1 − k` to full precision, for shapes whose modulus is too close to 1 for `k` in
+    /// `f64` (under strong tension 1 − k falls to 10⁻²⁰ and below); when given, it defines
+    /// the modulus and `k` is its rounded value.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub one_minus_k: Option<f64>,
+}
+
+impl ElasticaParams {
+    /// The normalized curve of these parameters (its modulus from
+    /// [`ElasticaParams::one_minus_k`] when given, else from `k`).
+    pub fn unit(&self) -> Result<UnitElastica, EllipticError> {
+        match self.one_minus_k {
+            Some(c) => UnitElastica::with_complement(self.family, c),
+            None => UnitElastica::new(self.family, self.k),
+        }
+    }
 }
 
 /// Names of the seven parameters in the order of [`ElasticaSegment::point_gradient`].
@@ -178,7 +194,7 @@ impl ElasticaSegment {
             return Err(EllipticError::Parameter(f64::NAN));
         }
         Ok(ElasticaSegment {
-            unit: UnitElastica::new(params.family, params.k)?,
+            unit: params.unit()?,
             params,
         })
     }
@@ -303,7 +319,7 @@ impl Segment {
     pub fn curvature_zeros(&self) -> Result<Vec<f64>, EllipticError> {
         match *self {
             Segment::Elastica(p) => {
-                let u = UnitElastica::new(p.family, p.k)?;
+                let u = p.unit()?;
                 let mut ts: Vec<f64> = u
                     .inflections_between(p.s0, p.s0 + p.l)
                     .into_iter()
@@ -321,7 +337,7 @@ impl Segment {
     pub fn max_abs_curvature(&self) -> Result<f64, EllipticError> {
         Ok(match *self {
             Segment::Elastica(p) => {
-                let u = UnitElastica::new(p.family, p.k)?;
+                let u = p.unit()?;
                 u.max_abs_curvature_between(p.s0, p.s0 + p.l) / p.scale
             }
             Segment::Line { .. } => 0.0,
@@ -350,6 +366,7 @@ impl Segment {
         p1: [f64; 2],
     ) -> Option<Segment> {
         let unit = Segment::Elastica(ElasticaParams {
+            one_minus_k: None,
             family,
             k,
             s0,
@@ -375,6 +392,7 @@ impl Segment {
             return None;
         }
         Some(Segment::Elastica(ElasticaParams {
+            one_minus_k: None,
             family,
             k,
             s0,
@@ -384,6 +402,38 @@ impl Segment {
             x0: p0[0] - (ax * z0[0] - ay * z0[1]),
             y0: p0[1] - (ax * z0[1] + ay * z0[0]),
         }))
+    }
+
+    /// The segment moved by the similarity that puts its ends (t = 0, 1) on `p0` and `p1`
+    /// (a turn, a scale and a shift: the shape is kept); `None` when its ends coincide.
+    ///
+    /// ```
+    /// use elastica::segment::Segment;
+    /// let arc = Segment::Arc { x0: 0.0, y0: 0.0, phi: 0.5, curvature: 1.0, length: 1.0 };
+    /// let moved = arc.with_ends([2.0, 1.0], [2.0, 3.0]).unwrap();
+    /// let (a, b) = (moved.eval(0.0).unwrap().p, moved.eval(1.0).unwrap().p);
+    /// assert!((a[0] - 2.0).abs() < 1e-12 && (a[1] - 1.0).abs() < 1e-12);
+    /// assert!((b[0] - 2.0).abs() < 1e-12 && (b[1] - 3.0).abs() < 1e-12);
+    /// ```
+    pub fn with_ends(&self, p0: [f64; 2], p1: [f64; 2]) -> Option<Segment> {
+        let e = self.evaluator().ok()?;
+        let (z0, z1) = (e.eval(0.0).p, e.eval(1.0).p);
+        let (dzx, dzy) = (z1[0] - z0[0], z1[1] - z0[1]);
+        let dz2 = dzx * dzx + dzy * dzy;
+        if !(dz2 > 0.0) || !dz2.is_finite() {
+            return None;
+        }
+        // a = (p1 − p0)/(z1 − z0) as complex numbers, b = p0 − a·z0
+        let (dpx, dpy) = (p1[0] - p0[0], p1[1] - p0[1]);
+        let a = [(dpx * dzx + dpy * dzy) / dz2, (dpy * dzx - dpx * dzy) / dz2];
+        if !(a[0].hypot(a[1]) > 0.0) {
+            return None;
+        }
+        let b = [
+            p0[0] - (a[0] * z0[0] - a[1] * z0[1]),
+            p0[1] - (a[0] * z0[1] + a[1] * z0[0]),
+        ];
+        Some(self.mapped(a, b))
     }
 
     /// The same curve continued by `before` length units before t = 0 and `after` beyond

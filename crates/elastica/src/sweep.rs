@@ -13,7 +13,7 @@ use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector2, Vector3};
 use serde::Serialize;
 
 use crate::blade::Blade;
-use crate::segment::Segment;
+use crate::segment::{ElasticaParams, Segment};
 
 fn lerp(a: f64, b: f64, w: f64) -> f64 {
     a + (b - a) * w
@@ -46,14 +46,30 @@ pub fn interpolate(a: &Segment, b: &Segment, w: f64) -> Option<Segment> {
     let dir = (p1[1] - p0[1]).atan2(p1[0] - p0[0]);
     match (*a, *b) {
         (Segment::Elastica(p), Segment::Elastica(q)) if p.family == q.family => {
-            Segment::elastica_between(
+            // near the separatrix the moduli are mixed by their distances from 1
+            let complement = (p.one_minus_k.is_some() || q.one_minus_k.is_some()).then(|| {
+                let c = |e: &ElasticaParams| e.one_minus_k.unwrap_or(1.0 - e.k);
+                lerp(c(&p), c(&q), w)
+            });
+            let k = complement.map_or(lerp(p.k, q.k, w), |c| 1.0 - c);
+            match Segment::elastica_between(
                 p.family,
-                lerp(p.k, q.k, w),
+                k,
                 lerp(p.s0, q.s0, w),
                 lerp(p.l, q.l, w),
                 p0,
                 p1,
-            )
+            )? {
+                Segment::Elastica(e) if complement.is_some() => {
+                    // the shape's ends again, from the precise modulus
+                    let shape = ElasticaParams {
+                        one_minus_k: complement,
+                        ..e
+                    };
+                    Some(Segment::Elastica(shape).with_ends(p0, p1)?)
+                }
+                other => Some(other),
+            }
         }
         (Segment::Line { .. }, Segment::Line { .. }) => Some(Segment::Line {
             x0: p0[0],

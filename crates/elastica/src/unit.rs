@@ -63,6 +63,20 @@ impl UnitElastica {
         })
     }
 
+    /// The normalized curve of `family` with modulus `k = 1 − one_minus_k`, given by its
+    /// distance from 1 ([`Elliptic::from_complement`]): for shapes near the separatrix,
+    /// whose `1 − k` is below what `k` in `f64` resolves.
+    pub fn with_complement(family: Family, one_minus_k: f64) -> Result<Self, EllipticError> {
+        if family == Family::NonInflectional && !(one_minus_k < 1.0) {
+            return Err(EllipticError::Parameter(one_minus_k));
+        }
+        Ok(UnitElastica {
+            family,
+            k: 1.0 - one_minus_k,
+            ell: Elliptic::from_complement(one_minus_k)?,
+        })
+    }
+
     /// The family.
     pub fn family(&self) -> Family {
         self.family

@@ -21,6 +21,7 @@ fn params() -> impl Strategy<Value = ElasticaParams> {
         -2.0f64..2.0,
     )
         .prop_map(|(family, k, s0, l, scale, phi, x0, y0)| ElasticaParams {
+            one_minus_k: None,
             family,
             k,
             s0,
@@ -136,6 +137,7 @@ proptest! {
 #[test]
 fn backwards_traversal_mirrors_the_turning_direction() {
     let p = ElasticaParams {
+        one_minus_k: None,
         family: Family::NonInflectional,
         k: 0.8,
         s0: 0.3,
@@ -208,6 +210,7 @@ fn reproduces_the_shared_exact_curves() {
             _ => Family::NonInflectional,
         };
         let seg = Segment::Elastica(ElasticaParams {
+            one_minus_k: None,
             family,
             k: f("k"),
             s0: f("s0"),
@@ -255,6 +258,7 @@ fn blade_extends_along_the_elastica_and_counts_inflections() {
     use elastica::blade::{extend_to_blade, BladeError, BladeParams};
     // one full inflection inside the section, another one in the lead-out
     let p = ElasticaParams {
+        one_minus_k: None,
         family: Family::Inflectional,
         k: 0.7,
         s0: 0.2,
@@ -306,6 +310,7 @@ fn discrete_elastica_converges_to_the_closed_form() {
         (Family::Inflectional, 0.002, -1.0, 6.0),
     ] {
         let seg = Segment::Elastica(ElasticaParams {
+            one_minus_k: None,
             family,
             k,
             s0,

@@ -150,6 +150,7 @@ fn sampled_segments_lines_and_arcs_are_recovered() {
     use elastica::unit::Family;
     let e = |family, k, s0, l| {
         Segment::Elastica(ElasticaParams {
+            one_minus_k: None,
             family,
             k,
             s0,

@@ -74,6 +74,7 @@ pub fn fit_points_baseline(
         .ok_or_else(|| FitError::Failed("degenerate guess".into()))?;
     let mut x = V7::from([theta[0], theta[1], theta[2], a.norm(), a.arg(), b.re, b.im]);
     let params = |x: &V7| ElasticaParams {
+        one_minus_k: None,
         family,
         k: x[0],
         s0: x[1],

@@ -228,6 +228,7 @@ impl Shape {
                 family,
                 fixed_length,
             } => Segment::Elastica(ElasticaParams {
+                one_minus_k: None,
                 family: *family,
                 k: theta[0],
                 s0: theta[1],
