@@ -11,6 +11,8 @@
 //! still share points and tangents across the faces.
 
 use elastica::blade::{extend_to_blade, Blade, BladeParams};
+use elastica::clearance::{clearance, Clearance, Section};
+use elastica::segment::Segment;
 use elastica::sweep::{blade_pose, BladePose};
 use geom::slice::PlaneFrame;
 use rayon::prelude::*;
@@ -212,6 +214,10 @@ pub struct CutParams {
     /// How far the blade's path lies off the design, along each curve's left normal
     /// (`+v`, up: the side the blade removes): half its kerf. 0: on the design.
     pub offset: f64,
+    /// Per block (as `faces`), its base and top in `v`: each plane's blade outside its
+    /// piece is checked against what the block keeps below the piece, and placed along
+    /// the blade to keep out of it ([`place_blade`]). Empty: not checked.
+    pub heights: Vec<[f64; 2]>,
 }
 
 /// One piece of a curve and its elastica.
@@ -227,6 +233,9 @@ pub struct PieceResult {
     pub blade: Blade,
     /// The blade's pose in 3D.
     pub pose: BladePose,
+    /// The blade outside the piece against the block (when [`CutParams::heights`] are
+    /// given).
+    pub clearance: Option<Clearance>,
 }
 
 /// Where two neighbouring pieces' elastica meet on a face.
@@ -301,6 +310,60 @@ fn elastica_err(e: impl ToString) -> DesignError {
     DesignError::Elastica(e.to_string())
 }
 
+/// Where along the blade the piece may sit: the blade's own share of the extension
+/// before the piece first, then the piece a quarter of the way, three quarters, and at
+/// either end (all the extension on one side).
+const LEAD_IN_SHARES: [f64; 4] = [0.25, 0.75, 0.0, 1.0];
+
+/// The elastica `section` of block `block` extended to the blade, placed along it so that
+/// the blade outside the piece keeps out of the material the block keeps below the piece
+/// and the held ends out of the block (issue 37): the blade's own `lead_in_share` when it
+/// is clean, else the first clean of [`LEAD_IN_SHARES`], else the one with the shallowest
+/// gouge (then the most holder clearance) — whose [`Clearance`] then says so. Without
+/// [`CutParams::heights`], the blade as `p.blade` places it, unchecked.
+///
+/// # Errors
+/// The blade cannot be extended or evaluated.
+pub fn place_blade(
+    section: &Segment,
+    p: &CutParams,
+    block: usize,
+) -> std::result::Result<(Blade, Option<Clearance>), String> {
+    let first = extend_to_blade(section, &p.blade).map_err(|e| e.to_string())?;
+    let (Some(&[base, top]), Some(&u0), Some(&u1)) = (
+        p.heights.get(block),
+        p.faces.get(block),
+        p.faces.get(block + 1),
+    ) else {
+        return Ok((first, None));
+    };
+    let sec = Section {
+        rect: [[u0.min(u1), base.min(top)], [u0.max(u1), base.max(top)]],
+        keeps_below: true,
+    };
+    let tolerance = 1e-6 * p.blade.length;
+    let check = |b: &Blade| clearance(b, &sec, tolerance).map_err(|e| e.to_string());
+    let mut best = (check(&first)?, first);
+    for share in LEAD_IN_SHARES {
+        if best.0.is_clean() {
+            break;
+        }
+        let params = BladeParams {
+            lead_in_share: share,
+            ..p.blade.clone()
+        };
+        let blade = extend_to_blade(section, &params).map_err(|e| e.to_string())?;
+        let c = check(&blade)?;
+        let better = c.gouge_depth < best.0.gouge_depth
+            || (c.gouge_depth == best.0.gouge_depth
+                && c.holder_clearance > best.0.holder_clearance);
+        if better {
+            best = (c, blade);
+        }
+    }
+    Ok((best.1, Some(best.0)))
+}
+
 /// The elastica of every piece of `curve` at `offset`.
 fn solve_curve(curve: &DesignCurve, offset: f64, p: &CutParams) -> Result<CurveResult> {
     let pieces = curve
@@ -310,7 +373,7 @@ fn solve_curve(curve: &DesignCurve, offset: f64, p: &CutParams) -> Result<CurveR
         .map(|(i, design)| {
             let proxy = proxy_offset(&design, p.offset)
                 .map_err(|e| DesignError::Invalid(format!("block {i} of the cut: {e}")))?;
-            let blade = extend_to_blade(&proxy.elastica, &p.blade)
+            let (blade, clearance) = place_blade(&proxy.elastica, p, i)
                 .map_err(|e| DesignError::Invalid(format!("block {i} of the cut: {e}")))?;
             let pose = blade_pose(&p.frame, offset, &blade);
             Ok(PieceResult {
@@ -319,6 +382,7 @@ fn solve_curve(curve: &DesignCurve, offset: f64, p: &CutParams) -> Result<CurveR
                 proxy,
                 blade,
                 pose,
+                clearance,
             })
         })
         .collect::<Result<Vec<_>>>()?;

@@ -48,6 +48,7 @@ fn params(stations: Vec<Station>, planes: usize) -> CutParams {
         blade: BladeParams::new(1500.0),
         planes,
         offset: 0.0,
+        heights: Vec::new(),
     }
 }
 
@@ -316,6 +317,7 @@ fn arch_cut(w: f64, a: Bezier, b: Bezier, planes: usize) -> CutParams {
         blade: BladeParams::new(4.0 * w),
         planes,
         offset: 0.0,
+        heights: Vec::new(),
     }
 }
 
@@ -426,4 +428,70 @@ proptest! {
         }
         lofts_the_short_way(&arch_cut(w, a, b, 17))?;
     }
+}
+
+/// Issue 37 item 3: the blade outside its piece against the block. A piece leaving its
+/// block's left face straight up, 50 above the base: half the extension before it would
+/// run down and curl under the piece into what the block keeps; the planner puts the
+/// whole extension after the piece, where it runs out of the block. An arch springing
+/// 50 above the base at both faces cannot be placed clear: its clearance says how deep.
+#[test]
+fn the_blade_outside_its_piece_keeps_out_of_the_block_where_it_can() {
+    let w = 700.0;
+    let lean = Bezier {
+        p: [[0.0, 50.0], [0.0, 300.0], [400.0, 380.0], [w, 380.0]],
+    };
+    let mut cut = arch_cut(w, lean, lean, 3);
+    cut.blade = BladeParams::new(1100.0);
+    cut.heights = vec![[0.0, 600.0]];
+    let solved = solve_cut(&cut, &|| {}).unwrap();
+    for plane in &solved.planes {
+        let p = &plane.pieces[0];
+        let c = p.clearance.unwrap();
+        assert!(c.is_clean(), "{c:?}");
+        assert!(p.blade.lead_in < 1e-9, "all the extension after the piece");
+    }
+    // the default place (half before) would gouge
+    let half = elastica::blade::extend_to_blade(
+        &solved.planes[0].pieces[0].proxy.elastica,
+        &BladeParams::new(1100.0),
+    )
+    .unwrap();
+    let section = elastica::clearance::Section {
+        rect: [[0.0, 0.0], [w, 600.0]],
+        keeps_below: true,
+    };
+    let c = elastica::clearance::clearance(&half, &section, 1e-6).unwrap();
+    assert!(c.gouge_depth > 1.0 && c.gouge_length > 10.0, "{c:?}");
+
+    // the issue's vault: vertical at both faces, 50 above the base
+    let vault = |inset: f64| Bezier {
+        p: [[0.0, 50.0], [inset, 380.0], [w - inset, 380.0], [w, 50.0]],
+    };
+    let mut cut = arch_cut(w, vault(0.0), vault(40.0), 5);
+    cut.blade = BladeParams::new(1500.0);
+    cut.heights = vec![[0.0, 600.0]];
+    let solved = solve_cut(&cut, &|| {}).unwrap();
+    let worst = solved
+        .planes
+        .iter()
+        .map(|c| c.pieces[0].clearance.unwrap().gouge_depth)
+        .fold(0.0, f64::max);
+    assert!(worst > 1.0, "{worst}");
+    // in metres: the same depth, a thousandth
+    let m = transformed(&cut, 1e-3, [0.0, 0.0], 0.0);
+    let m = CutParams {
+        heights: vec![[0.0, 0.6]],
+        ..m
+    };
+    let solved_m = solve_cut(&m, &|| {}).unwrap();
+    let worst_m = solved_m
+        .planes
+        .iter()
+        .map(|c| c.pieces[0].clearance.unwrap().gouge_depth)
+        .fold(0.0, f64::max);
+    assert!(
+        (worst_m * 1e3 - worst).abs() <= 1e-6 * worst,
+        "{worst_m} {worst}"
+    );
 }

@@ -9,6 +9,8 @@
 pub mod blade;
 /// Carlson's symmetric elliptic integrals R_F, R_D.
 pub mod carlson;
+/// The blade outside its cut against the block: gouges into kept material, holder clearance.
+pub mod clearance;
 /// Double-double arithmetic for the quarter period.
 mod dd;
 /// Discrete elastica from boundary data (turning-angle energy, Newton–KKT, augmented-Lagrangian fallback).

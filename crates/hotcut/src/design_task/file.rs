@@ -235,6 +235,8 @@ pub struct ResolvedCut {
     pub faces: Vec<f64>,
     /// Entry and exit offsets along the cut.
     pub span: (f64, f64),
+    /// Per block, its base and top along the planes' `v` (up).
+    pub heights: Vec<[f64; 2]>,
     /// Stations.
     pub stations: Vec<Station>,
 }
@@ -335,12 +337,20 @@ pub fn resolve_cut(c: &CutSpec, blocks: &[Block]) -> Result<ResolvedCut, Vec<(St
         }
     }
     if errors.is_empty() {
+        let heights = idx
+            .iter()
+            .map(|&k| {
+                let (lo, hi) = extent(&blocks[k], &frame.v);
+                [lo, hi]
+            })
+            .collect();
         Ok(ResolvedCut {
             id: c.id.clone(),
             blocks: idx,
             frame,
             faces,
             span,
+            heights,
             stations,
         })
     } else {

@@ -284,6 +284,7 @@ impl Task for Design {
                     blade: params.blade.clone(),
                     planes: params.planes,
                     offset: params.offset,
+                    heights: r.heights.clone(),
                 };
                 design::cut::solve(&cp, &tick)
                     .map(|res| (r, res))
@@ -294,6 +295,10 @@ impl Task for Design {
         let grid = (2 * params.planes - 1).min(101);
         let multi = multi::block_cuts(&blocks, &cuts, grid, params.points);
         let order = multi::robot_order(&multi, &cuts);
+        let strict = job.cell.as_ref().is_some_and(|c| c.strict);
+        if let (true, Some(m)) = (strict, gouge_message(&cuts, &blocks)) {
+            return Err(job.fail(format!("strict: no robot program for a blade that {m}")));
+        }
         let cell = if job.rapid || job.cell.is_some() {
             let (t, sizes) =
                 outputs::targets(&blocks, &cuts, &order, params.blade.length, job.units);
@@ -409,12 +414,22 @@ impl Task for Design {
             }
         }
         let verdict = if s.all_ok {
-            "  every blade within its curvature and inflection limits".to_string()
+            "  every blade within its curvature and inflection limits, clear of what the blocks keep".to_string()
         } else {
-            format!(
-                "  warning: blades breaking a limit — strain {}, inflections {}",
-                s.strain_flags, s.inflection_flags
-            )
+            let mut v = Vec::new();
+            if s.strain_flags + s.inflection_flags > 0 {
+                v.push(format!(
+                    "  warning: blades breaking a limit — strain {}, inflections {}",
+                    s.strain_flags, s.inflection_flags
+                ));
+            }
+            if let Some(first) = first_gouge(r) {
+                v.push(format!(
+                    "  warning: the blade outside its piece runs into what a block keeps on {} plane(s), holders inside a block on {}: first {first}",
+                    s.gouge_flags, s.collision_flags
+                ));
+            }
+            v.join("\n")
         };
         let cell = r
             .cell
@@ -470,4 +485,51 @@ fn block_info(b: &Block, m: &multi::BlockCuts, run: &DesignRun) -> BlockInfo {
             crease_points: [e.design_crease.len(), e.elastica_crease.len()],
         }),
     }
+}
+
+/// The first plane whose blade gouges or whose holder collides, named: cut, plane,
+/// block, depth and clearance.
+fn first_gouge(r: &DesignReport) -> Option<String> {
+    r.cuts.iter().find_map(|c| {
+        c.planes
+            .clearance
+            .iter()
+            .find(|k| k.gouge_depth > 0.0 || k.holder_clearance < 0.0)
+            .map(|k| {
+                format!(
+                    "cut `{}`, plane {} of {}, block `{}`: {:.3} deep over {:.3}, holder clearance {:.3}",
+                    geom::text::terminal(&geom::text::clip(&c.id, 40)),
+                    k.plane + 1,
+                    c.planes.planes,
+                    geom::text::terminal(&geom::text::clip(&k.block, 40)),
+                    k.gouge_depth,
+                    k.gouge_length,
+                    k.holder_clearance
+                )
+            })
+    })
+}
+
+/// What the first plane whose blade outside its piece enters what a block keeps, or
+/// whose held end lies inside a block, does: for `strict`.
+fn gouge_message(cuts: &[(ResolvedCut, CutResult)], blocks: &[Block]) -> Option<String> {
+    cuts.iter().find_map(|(r, res)| {
+        res.planes.iter().enumerate().find_map(|(j, c)| {
+            c.pieces.iter().enumerate().find_map(|(k, p)| {
+                let g = p.clearance.filter(|g| !g.is_clean())?;
+                Some(format!(
+                    "runs {:.3} deep into what block `{}` keeps (holder clearance {:.3}) on plane {} of {} of cut `{}`",
+                    g.gouge_depth,
+                    r.blocks
+                        .get(k)
+                        .and_then(|&b| blocks.get(b))
+                        .map_or(String::new(), |b| geom::text::terminal(&geom::text::clip(&b.id, 40))),
+                    g.holder_clearance,
+                    j + 1,
+                    res.planes.len(),
+                    geom::text::terminal(&geom::text::clip(&r.id, 40))
+                ))
+            })
+        })
+    })
 }

@@ -217,6 +217,36 @@ pub struct PlanesReport {
     pub strain_flags: usize,
     /// Planes on which a blade has too many inflections.
     pub inflection_flags: usize,
+    /// Deepest the blade outside its piece runs into material a block keeps, over the
+    /// planes (0: nowhere).
+    pub max_gouge_depth: f64,
+    /// Planes on which the blade outside a piece runs into kept material.
+    pub gouge_flags: usize,
+    /// Smallest distance of a held blade end from its block (negative: inside it).
+    pub min_holder_clearance: f64,
+    /// Planes on which a held blade end lies inside its block.
+    pub collision_flags: usize,
+    /// Per plane and block: the blade outside the piece against the block.
+    pub clearance: Vec<PlaneClearance>,
+}
+
+/// The blade outside its piece against the block, on one plane (issue 37).
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneClearance {
+    /// The plane (0 at the entry face).
+    pub plane: usize,
+    /// The block.
+    pub block: String,
+    /// How deep the blade outside the piece runs into what the block keeps (0: clean).
+    pub gouge_depth: f64,
+    /// How much of the blade outside the piece lies in it.
+    pub gouge_length: f64,
+    /// The smaller distance of the blade's held ends from the block (negative: inside).
+    pub holder_clearance: f64,
+    /// The blade's length before the piece: where along the blade the planner put the
+    /// piece to keep the blade out of the block (half the extension unless that gouges).
+    pub lead_in: f64,
 }
 
 /// Totals.
@@ -239,7 +269,13 @@ pub struct DesignSummary {
     pub strain_flags: usize,
     /// Planes or stations whose blade has too many inflections.
     pub inflection_flags: usize,
-    /// Every blade within its limits.
+    /// Deepest gouge of a blade outside its piece into kept material (0: none).
+    pub max_gouge_depth: f64,
+    /// Planes on which a blade outside its piece gouges kept material.
+    pub gouge_flags: usize,
+    /// Planes on which a held blade end lies inside its block.
+    pub collision_flags: usize,
+    /// Every blade within its limits, out of what the blocks keep, its held ends outside.
     pub all_ok: bool,
 }
 
@@ -283,7 +319,7 @@ fn curves(station: usize, c: &CurveResult, names: &[String]) -> Vec<CurveReport>
         .collect()
 }
 
-fn planes(r: &CutResult) -> PlanesReport {
+fn planes(r: &CutResult, names: &[String]) -> PlanesReport {
     let mut out = PlanesReport {
         planes: r.planes.len(),
         max_deviation: 0.0,
@@ -295,7 +331,36 @@ fn planes(r: &CutResult) -> PlanesReport {
         max_curvature_jump: 0.0,
         strain_flags: 0,
         inflection_flags: 0,
+        max_gouge_depth: 0.0,
+        gouge_flags: 0,
+        min_holder_clearance: 0.0,
+        collision_flags: 0,
+        clearance: Vec::new(),
     };
+    let mut least = f64::INFINITY;
+    for (j, c) in r.planes.iter().enumerate() {
+        let (mut gouge, mut collision) = (false, false);
+        for (p, name) in c.pieces.iter().zip(names) {
+            let Some(k) = p.clearance else { continue };
+            out.max_gouge_depth = out.max_gouge_depth.max(k.gouge_depth);
+            least = least.min(k.holder_clearance);
+            gouge |= k.gouge_depth > 0.0;
+            collision |= k.holder_clearance < 0.0;
+            out.clearance.push(PlaneClearance {
+                plane: j,
+                block: name.clone(),
+                gouge_depth: k.gouge_depth,
+                gouge_length: k.gouge_length,
+                holder_clearance: k.holder_clearance,
+                lead_in: p.blade.lead_in,
+            });
+        }
+        out.gouge_flags += usize::from(gouge);
+        out.collision_flags += usize::from(collision);
+    }
+    if least.is_finite() {
+        out.min_holder_clearance = least;
+    }
     for c in &r.planes {
         for p in &c.pieces {
             out.max_deviation = out.max_deviation.max(p.proxy.max_deviation);
@@ -348,7 +413,7 @@ pub fn cut_report(id: &str, blocks: &[&Block], faces: &[f64], r: &CutResult) -> 
                 })
             })
             .collect(),
-        planes: planes(r),
+        planes: planes(r, &names),
     }
 }
 
@@ -363,6 +428,9 @@ pub fn summary(cuts: &[CutReport]) -> DesignSummary {
         blade_max_curvature: 0.0,
         strain_flags: 0,
         inflection_flags: 0,
+        max_gouge_depth: 0.0,
+        gouge_flags: 0,
+        collision_flags: 0,
         all_ok: true,
     };
     for c in cuts {
@@ -372,6 +440,9 @@ pub fn summary(cuts: &[CutReport]) -> DesignSummary {
         s.blade_max_curvature = s.blade_max_curvature.max(c.planes.blade_max_curvature);
         s.strain_flags += c.planes.strain_flags;
         s.inflection_flags += c.planes.inflection_flags;
+        s.max_gouge_depth = s.max_gouge_depth.max(c.planes.max_gouge_depth);
+        s.gouge_flags += c.planes.gouge_flags;
+        s.collision_flags += c.planes.collision_flags;
         for k in &c.curves {
             s.max_deviation_percent = s.max_deviation_percent.max(k.max_deviation_percent);
             s.max_eq11_residual = s.max_eq11_residual.max(k.eq11_residual);
@@ -380,6 +451,9 @@ pub fn summary(cuts: &[CutReport]) -> DesignSummary {
             s.inflection_flags += usize::from(k.inflection_flag);
         }
     }
-    s.all_ok = s.strain_flags == 0 && s.inflection_flags == 0;
+    s.all_ok = s.strain_flags == 0
+        && s.inflection_flags == 0
+        && s.gouge_flags == 0
+        && s.collision_flags == 0;
     s
 }

@@ -47,8 +47,10 @@ pub struct CellSpec {
     /// Default: 100 mm.
     #[serde(default)]
     pub clearance: Option<f64>,
-    /// Whether a pose out of reach, a configuration change or a joint jump fails the run
-    /// (no robot files are written). Default: `false`, they are flagged in the report.
+    /// Whether a pose out of reach, a configuration change or a joint jump — and, for
+    /// `Design`, a blade whose part outside its piece runs into what a block keeps or
+    /// whose held end lies inside a block — fails the run (no robot files are written).
+    /// Default: `false`, they are flagged in the report.
     #[serde(default)]
     pub strict: bool,
 }

@@ -1147,21 +1147,6 @@ fn parity(out: &mut Vec<Case>) {
     let s_piece = r#"[[0, 200], [200, 250], [400, 250], [600, 200]]"#;
     let designs = [
         (
-            "a straight piece",
-            one(&bezier(straight), &bezier(straight)),
-        ),
-        (
-            "a straight piece at one station",
-            one(&bezier(s_piece), &bezier(straight)),
-        ),
-        (
-            "stations bulging opposite ways (straight halfway)",
-            one(
-                &bezier(s_piece),
-                &bezier(r#"[[0, 200], [200, 150], [400, 150], [600, 200]]"#),
-            ),
-        ),
-        (
             "Bezier and Spline stations",
             one(
                 &bezier(s_piece),
@@ -1203,6 +1188,36 @@ fn parity(out: &mut Vec<Case>) {
             refused(),
         ));
     }
+    // straight pieces are cut by a straight blade (issue 37; issue 36 refused them):
+    // validate and run agree that they run
+    let runs = || Extra {
+        expect: Some(0),
+        ..Extra::of("validation parity")
+    };
+    for (label, d) in [
+        (
+            "a straight piece",
+            one(&bezier(straight), &bezier(straight)),
+        ),
+        (
+            "a straight piece at one station",
+            one(&bezier(s_piece), &bezier(straight)),
+        ),
+        (
+            "stations bulging opposite ways (straight halfway)",
+            one(
+                &bezier(s_piece),
+                &bezier(r#"[[0, 200], [200, 150], [400, 150], [600, 200]]"#),
+            ),
+        ),
+    ] {
+        out.push(case(
+            format!("parity: design with {label}"),
+            &design_job("Report, Svg"),
+            vec![file("d.json", d)],
+            runs(),
+        ));
+    }
     let g = ["G17 G21 G90 G94 G61"];
     for (label, job) in [
         (
@@ -1228,11 +1243,17 @@ fn parity(out: &mut Vec<Case>) {
     // a good job and a bad one in one call: nothing is written
     let bad = design_job("Report").replace("name: \"h\"", "name: \"h2\"");
     out.push(case(
-        "parity: a good job then a straight design in one call".into(),
+        "parity: a good job then a design longer than its blade in one call".into(),
         &format!(r#"Job(name: "h", {HEIGHT} task: Analyze(), outputs: [Report])"#),
         vec![
             file("bad.ron", bad),
-            file("d.json", one(&bezier(straight), &bezier(straight))),
+            file(
+                "d.json",
+                one(
+                    &bezier(r#"[[0, 200], [200, 900], [400, 900], [600, 200]]"#),
+                    &bezier(s_piece),
+                ),
+            ),
         ],
         Extra {
             jobs: vec!["bad.ron".into()],
