@@ -62,6 +62,10 @@ struct Cell {
     signal: String,
     /// With a carrier: the block's frame in its flange's frame, from the report.
     grip: Option<Isometry3<f64>>,
+    /// The report's deepest gouge of a blade outside its piece into what a block keeps,
+    /// and how many planes it checked (issue 37; `Design` and `HotBlade` on parallel
+    /// planes).
+    gouge: (f64, usize),
 }
 
 fn run(path: &Path) -> Cell {
@@ -111,7 +115,31 @@ fn run(path: &Path) -> Cell {
         robots,
         signal: cell["heat_signal"].as_str().unwrap().to_string(),
         grip,
+        gouge: gouge_figure(&report),
     }
+}
+
+/// The report's gouge figure: the deepest depth and the number of (plane, block) rows, over
+/// `cuts[].planes.clearance` (Design) or `blocks[].clearance` (HotBlade).
+fn gouge_figure(report: &serde_json::Value) -> (f64, usize) {
+    let rows: Vec<&serde_json::Value> = report["cuts"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .flat_map(|c| c["planes"]["clearance"].as_array().into_iter().flatten())
+        .chain(
+            report["blocks"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .flat_map(|b| b["clearance"].as_array().into_iter().flatten()),
+        )
+        .collect();
+    let deepest = rows
+        .iter()
+        .map(|r| r["gouge_depth"].as_f64().unwrap())
+        .fold(0.0, f64::max);
+    (deepest, rows.len())
 }
 
 /// What the check measured.
@@ -420,6 +448,13 @@ fn replay_all(prefix: &str) {
         let cell = run(&path);
         let r = check(&cell).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert!(r.moves > 0 && r.cuts > 0, "{}: {r:?}", path.display());
+        // every shipped job that writes robot programs is clean: its report says 0
+        let (deepest, rows) = cell.gouge;
+        assert_eq!(deepest, 0.0, "{}: a gouge in the report", path.display());
+        println!(
+            "{}: gouge 0 on {rows} (plane, block) rows",
+            path.file_name().unwrap().to_string_lossy()
+        );
     }
 }
 

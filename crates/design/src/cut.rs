@@ -11,7 +11,7 @@
 //! still share points and tangents across the faces.
 
 use elastica::blade::{extend_to_blade, Blade, BladeParams};
-use elastica::clearance::{clearance, Clearance, Section};
+use elastica::clearance::{place, Clearance, Section};
 use elastica::segment::Segment;
 use elastica::sweep::{blade_pose, BladePose};
 use geom::slice::PlaneFrame;
@@ -310,17 +310,10 @@ fn elastica_err(e: impl ToString) -> DesignError {
     DesignError::Elastica(e.to_string())
 }
 
-/// Where along the blade the piece may sit: the blade's own share of the extension
-/// before the piece first, then the piece a quarter of the way, three quarters, and at
-/// either end (all the extension on one side).
-const LEAD_IN_SHARES: [f64; 4] = [0.25, 0.75, 0.0, 1.0];
-
-/// The elastica `section` of block `block` extended to the blade, placed along it so that
-/// the blade outside the piece keeps out of the material the block keeps below the piece
-/// and the held ends out of the block (issue 37): the blade's own `lead_in_share` when it
-/// is clean, else the first clean of [`LEAD_IN_SHARES`], else the one with the shallowest
-/// gouge (then the most holder clearance) — whose [`Clearance`] then says so. Without
-/// [`CutParams::heights`], the blade as `p.blade` places it, unchecked.
+/// The elastica `section` of block `block` extended to the blade and placed along it
+/// ([`elastica::clearance::place`]) so that the blade outside the piece keeps out of the
+/// material the block keeps below the piece, and the held ends out of the block (issue
+/// 37). Without [`CutParams::heights`], the blade as `p.blade` places it, unchecked.
 ///
 /// # Errors
 /// The blade cannot be extended or evaluated.
@@ -329,39 +322,22 @@ pub fn place_blade(
     p: &CutParams,
     block: usize,
 ) -> std::result::Result<(Blade, Option<Clearance>), String> {
-    let first = extend_to_blade(section, &p.blade).map_err(|e| e.to_string())?;
     let (Some(&[base, top]), Some(&u0), Some(&u1)) = (
         p.heights.get(block),
         p.faces.get(block),
         p.faces.get(block + 1),
     ) else {
-        return Ok((first, None));
+        return extend_to_blade(section, &p.blade)
+            .map(|b| (b, None))
+            .map_err(|e| e.to_string());
     };
     let sec = Section {
         rect: [[u0.min(u1), base.min(top)], [u0.max(u1), base.max(top)]],
         keeps_below: true,
     };
-    let tolerance = 1e-6 * p.blade.length;
-    let check = |b: &Blade| clearance(b, &sec, tolerance).map_err(|e| e.to_string());
-    let mut best = (check(&first)?, first);
-    for share in LEAD_IN_SHARES {
-        if best.0.is_clean() {
-            break;
-        }
-        let params = BladeParams {
-            lead_in_share: share,
-            ..p.blade.clone()
-        };
-        let blade = extend_to_blade(section, &params).map_err(|e| e.to_string())?;
-        let c = check(&blade)?;
-        let better = c.gouge_depth < best.0.gouge_depth
-            || (c.gouge_depth == best.0.gouge_depth
-                && c.holder_clearance > best.0.holder_clearance);
-        if better {
-            best = (c, blade);
-        }
-    }
-    Ok((best.1, Some(best.0)))
+    place(section, &p.blade, &sec, 1e-6 * p.blade.length)
+        .map(|(b, c)| (b, Some(c)))
+        .map_err(|e| e.to_string())
 }
 
 /// The elastica of every piece of `curve` at `offset`.

@@ -10,8 +10,9 @@
 
 use serde::Serialize;
 
-use crate::blade::Blade;
+use crate::blade::{extend_to_blade, Blade, BladeError, BladeParams};
 use crate::elliptic::EllipticError;
+use crate::segment::Segment;
 
 /// Samples along the whole blade (the extension's samples are those outside the piece).
 pub const SAMPLES: usize = 1000;
@@ -174,6 +175,64 @@ pub fn clearance(
         gouge_length,
         holder_clearance,
     })
+}
+
+/// Where along the blade the piece may sit, after the blade's own share of the extension
+/// before the piece: a quarter of the way, three quarters, and at either end (all the
+/// extension on one side).
+pub const LEAD_IN_SHARES: [f64; 4] = [0.25, 0.75, 0.0, 1.0];
+
+/// `section` extended to the blade and placed along it so that the blade outside the
+/// piece keeps out of what `block` keeps and its held ends out of the block: the blade's
+/// own `lead_in_share` when that is clean, else the first clean of [`LEAD_IN_SHARES`],
+/// else the one with the shallowest gouge (then the most holder clearance) — whose
+/// [`Clearance`] then says so. `tolerance` as in [`clearance`].
+///
+/// ```
+/// use elastica::blade::BladeParams;
+/// use elastica::clearance::{place, Section};
+/// use elastica::segment::Segment;
+/// // a quarter circle leaving the left face of a block [0, 1] × [0, 2] straight up and
+/// // turning right to the top's far corner: half the extension before it would follow
+/// // the circle down under the piece, into what the block keeps; all after it runs out
+/// let quarter = std::f64::consts::FRAC_PI_2;
+/// let piece = Segment::Arc { x0: 0.0, y0: 1.0, phi: quarter, curvature: -1.0, length: quarter };
+/// let block = Section { rect: [[0.0, 0.0], [1.0, 2.0]], keeps_below: true };
+/// let (blade, c) = place(&piece, &BladeParams::new(quarter + 1.0), &block, 1e-9).unwrap();
+/// assert!(c.is_clean());
+/// assert_eq!(blade.lead_in, 0.0);
+/// ```
+///
+/// # Errors
+/// The blade cannot be extended or evaluated.
+pub fn place(
+    section: &Segment,
+    params: &BladeParams,
+    block: &Section,
+    tolerance: f64,
+) -> Result<(Blade, Clearance), BladeError> {
+    let first = extend_to_blade(section, params)?;
+    let mut best = (clearance(&first, block, tolerance)?, first);
+    for share in LEAD_IN_SHARES {
+        if best.0.is_clean() {
+            break;
+        }
+        let blade = extend_to_blade(
+            section,
+            &BladeParams {
+                lead_in_share: share,
+                ..params.clone()
+            },
+        )?;
+        let c = clearance(&blade, block, tolerance)?;
+        let better = c.gouge_depth < best.0.gouge_depth
+            || (c.gouge_depth == best.0.gouge_depth
+                && c.holder_clearance > best.0.holder_clearance);
+        if better {
+            best = (c, blade);
+        }
+    }
+    Ok((best.1, best.0))
 }
 
 #[cfg(test)]

@@ -9,7 +9,9 @@ use nalgebra::Vector2;
 use crate::fit::design_polyline;
 use crate::grid::Plane;
 use crate::pipeline::{Context, FittedPart};
-use crate::result::{BlockReport, BlockResult, FittedSection, Flags, Stats, SurfaceVertex};
+use crate::result::{
+    BlockReport, BlockResult, FittedSection, Flags, SectionClearance, Stats, SurfaceVertex,
+};
 use crate::SWEEP_SHARE;
 
 /// Block `row` of column part `part`: its fitted sections (the row's targets), the swept
@@ -64,6 +66,20 @@ pub(crate) fn build_block(
         tangent_failures: sections.iter().filter(|s| !s.tangents_kept).count(),
         flags: Flags::default(),
         overlaps,
+        clearance: sections
+            .iter()
+            .enumerate()
+            .filter_map(|(i, s)| {
+                s.clearance.map(|c| SectionClearance {
+                    section: i,
+                    gouge_depth: c.gouge_depth,
+                    gouge_length: c.gouge_length,
+                    holder_clearance: c.holder_clearance,
+                    lead_in: s.blade.lead_in,
+                })
+            })
+            .collect(),
+        max_gouge_depth: fold(&sections, |s| s.clearance.map_or(0.0, |c| c.gouge_depth)),
     };
     let flags = flags(ctx, &report, &sections);
     Some(BlockResult {
@@ -112,6 +128,9 @@ fn flags(ctx: &Context<'_>, r: &BlockReport, sections: &[FittedSection]) -> Flag
         flat_blade: r.max_plane_angle > p.max_plane_angle,
         block_height,
         overlap: !r.overlaps.is_empty(),
+        gouge: sections
+            .iter()
+            .any(|s| s.clearance.is_some_and(|c| !c.is_clean())),
     }
 }
 

@@ -166,9 +166,14 @@ pub(crate) fn fit_part(
         progress(Progress::Tick);
         // a failed C¹ fit keeps its C⁰ fit; the block reports it and the face angle shows it
         fits.push(match slot {
-            Some((design, fit, tangents_kept)) => {
-                Some(pose_section(ctx, plane, design, fit, tangents_kept)?)
-            }
+            Some((design, fit, tangents_kept)) => Some(pose_section(
+                ctx,
+                plane,
+                part.range,
+                design,
+                fit,
+                tangents_kept,
+            )?),
             None => None,
         });
     }
@@ -226,13 +231,35 @@ fn keep_tangents(
 fn pose_section(
     ctx: &Context<'_>,
     plane: usize,
+    range: (f64, f64),
     design: Clipped,
     fit: FitResult,
     tangents_kept: bool,
 ) -> Result<FittedSection, HotBladeError> {
-    let blade = make_blade(&fit.segment, &ctx.params.blade)
-        .map_err(|source| HotBladeError::Blade { plane, source })?;
     let plane_ref = &ctx.planes[plane];
+    // the block where the surface covers it: a section shorter than its block (at the
+    // surface's edge) leaves the rest of the block's width to no design
+    let covered = design
+        .points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), q| {
+            (lo.min(q[0]), hi.max(q[0]))
+        });
+    let range = (range.0.max(covered.0), range.1.min(covered.1));
+    let (blade, clearance) = match block_section(ctx, plane_ref, range) {
+        Some(section) => {
+            let bp = blade_params(&fit.segment, &ctx.params.blade);
+            let tolerance = 1e-6 * bp.length;
+            let (b, c) = elastica::clearance::place(&fit.segment, &bp, &section, tolerance)
+                .map_err(|source| HotBladeError::Blade { plane, source })?;
+            (b, Some(c))
+        }
+        None => (
+            make_blade(&fit.segment, &ctx.params.blade)
+                .map_err(|source| HotBladeError::Blade { plane, source })?,
+            None,
+        ),
+    };
     let pose = blade_pose(&plane_ref.frame, plane_ref.offset, &blade);
     let world: Vec<Vector3<f64>> = design
         .points
@@ -257,6 +284,7 @@ fn pose_section(
         pose,
         plane_angle,
         tangents_kept,
+        clearance,
     })
 }
 
@@ -289,17 +317,40 @@ fn design_tangents(
     (t0, t1)
 }
 
-/// The fit extended to the blade's length; a section longer than the blade keeps its own
-/// length (and its block is flagged).
-pub fn make_blade(
-    segment: &Segment,
-    limits: &BladeLimits,
-) -> std::result::Result<Blade, BladeError> {
-    let bp = BladeParams {
+/// The block's section on `plane` in the plane's coordinates — `range` across the cut (the
+/// part's, where the surface covers it) by the grid's height — when the plane is one of
+/// the grid's parallel planes
+/// (its axes the grid's); `None` on planes that follow a curve, whose section of the block
+/// is no rectangle (not checked). The block keeps what lies below the surface.
+fn block_section(
+    ctx: &Context<'_>,
+    plane: &crate::grid::Plane,
+    range: (f64, f64),
+) -> Option<elastica::clearance::Section> {
+    let (f, g) = (&plane.frame, &ctx.grid.frame);
+    let same = (f.u - g.u).norm() <= 1e-12 && (f.v - g.v).norm() <= 1e-12;
+    let v = (ctx.grid.origin[2], ctx.grid.origin[2] + ctx.grid.size[2]);
+    same.then_some(elastica::clearance::Section {
+        rect: [[range.0, v.0], [range.1, v.1]],
+        keeps_below: true,
+    })
+}
+
+/// The blade's parameters for `segment`: the limits' length (or the segment's own when
+/// it is longer: its block is flagged), half the extension before the piece.
+pub fn blade_params(segment: &Segment, limits: &BladeLimits) -> BladeParams {
+    BladeParams {
         length: limits.length.max(segment.length()),
         lead_in_share: 0.5,
         max_curvature: Some(limits.max_curvature),
         max_inflections: Some(limits.max_inflections as usize),
-    };
-    extend_to_blade(segment, &bp)
+    }
+}
+
+/// The fit extended to the blade's length ([`blade_params`]).
+pub fn make_blade(
+    segment: &Segment,
+    limits: &BladeLimits,
+) -> std::result::Result<Blade, BladeError> {
+    extend_to_blade(segment, &blade_params(segment, limits))
 }

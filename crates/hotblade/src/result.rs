@@ -48,6 +48,9 @@ pub struct FittedSection {
     /// With `C1`: whether the fit keeps the design's end tangents (false: the end-point fit
     /// was kept because the tangent solve failed).
     pub tangents_kept: bool,
+    /// The blade outside the section against the block (planes parallel to the grid's;
+    /// `None` on planes that follow a curve).
+    pub clearance: Option<elastica::clearance::Clearance>,
 }
 
 /// A vertex of the rationalized surface mesh with its deviation from the design.
@@ -180,6 +183,9 @@ pub struct Flags {
     pub block_height: bool,
     /// Two cutting planes cross inside the block, so material would be cut twice (§5.1.5).
     pub overlap: bool,
+    /// The blade outside a section runs into what the block keeps, or a held end lies
+    /// inside the block (issue 37).
+    pub gouge: bool,
 }
 
 impl Flags {
@@ -192,6 +198,7 @@ impl Flags {
             || self.flat_blade
             || self.block_height
             || self.overlap
+            || self.gouge
     }
 }
 
@@ -244,8 +251,28 @@ pub struct BlockReport {
     pub tangent_failures: usize,
     /// Pairs of target indices whose planes cross inside the block.
     pub overlaps: Vec<[usize; 2]>,
+    /// The blade outside each section against the block, in cutting order (empty where
+    /// the planes follow a curve: not checked).
+    pub clearance: Vec<SectionClearance>,
+    /// Deepest the blade outside a section runs into what the block keeps (0: nowhere).
+    pub max_gouge_depth: f64,
     /// Broken constraints.
     pub flags: Flags,
+}
+
+/// The blade outside one section against its block (issue 37).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+pub struct SectionClearance {
+    /// The section (index among the block's targets).
+    pub section: usize,
+    /// How deep the blade outside the section runs into what the block keeps (0: clean).
+    pub gouge_depth: f64,
+    /// How much of the blade outside the section lies in it.
+    pub gouge_length: f64,
+    /// The smaller distance of the blade's held ends from the block (negative: inside).
+    pub holder_clearance: f64,
+    /// The blade's length before the section: where the planner put it along the blade.
+    pub lead_in: f64,
 }
 
 /// A column halving.
@@ -309,6 +336,8 @@ pub struct FlagCounts {
     pub block_height: usize,
     /// Overlapping planes.
     pub overlap: usize,
+    /// The blade outside a section in what the block keeps, or a holder inside it.
+    pub gouge: usize,
 }
 
 impl FlagCounts {
@@ -324,6 +353,7 @@ impl FlagCounts {
             flat_blade: c(&|f| f.flat_blade),
             block_height: c(&|f| f.block_height),
             overlap: c(&|f| f.overlap),
+            gouge: c(&|f| f.gouge),
         }
     }
 }

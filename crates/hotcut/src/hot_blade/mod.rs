@@ -300,6 +300,22 @@ impl Task for HotBlade {
                 other => job.fail(other.to_string()),
             })?;
         let posed = cut.blocks.iter().any(|b| !b.sections.is_empty());
+        let strict = job.cell.as_ref().is_some_and(|c| c.strict);
+        let gouging = cut.blocks.iter().find_map(|b| {
+            b.report
+                .clearance
+                .iter()
+                .find(|c| c.gouge_depth > 0.0 || c.holder_clearance < 0.0)
+                .map(|c| (b.report.block, c))
+        });
+        if let (true, Some((block, c))) = (strict, gouging) {
+            return Err(job.fail(format!(
+                "strict: no robot program for a blade that runs {:.3} deep into what block {block} keeps (holder clearance {:.3}) at its section {}",
+                c.gouge_depth,
+                c.holder_clearance,
+                c.section + 1
+            )));
+        }
         let cell = if (job.rapid || job.cell.is_some()) && posed {
             let (t, sizes) = outputs::targets(&cut, params.pipeline.blade.length, job.units);
             let m = &params.motion;
@@ -379,8 +395,8 @@ impl Task for HotBlade {
             "  every block meets every constraint".to_string()
         } else {
             format!(
-                "  warning: blocks breaking a constraint — approximation {}, blade strain {}, shape {}, blade length {}, flat blade {}, block height {}, overlap {}",
-                f.approximation, f.blade_strain, f.shape, f.blade_length, f.flat_blade, f.block_height, f.overlap
+                "  warning: blocks breaking a constraint — approximation {}, blade strain {}, shape {}, blade length {}, flat blade {}, block height {}, overlap {}, gouge {}",
+                f.approximation, f.blade_strain, f.shape, f.blade_length, f.flat_blade, f.block_height, f.overlap, f.gouge
             )
         };
         let cell = r

@@ -103,6 +103,12 @@ pub fn body(r: &HotBladeReport, job: &Context) -> Body {
             measured: n(f.overlap),
             ok: f.overlap == 0,
         },
+        Constraint {
+            name: "blade outside the section vs the block".into(),
+            limit: "no gouge, holders outside".into(),
+            measured: n(f.gouge),
+            ok: f.gouge == 0,
+        },
     ];
     let mut tables = vec![blocks(r, job)];
     if let Some(cell) = &r.cell {
@@ -129,6 +135,7 @@ fn flags(b: &hotblade::result::BlockReport) -> Option<Vec<&'static str>> {
         (f.flat_blade, "flat blade"),
         (f.block_height, "block height"),
         (f.overlap, "overlap"),
+        (f.gouge, "gouge"),
     ]
     .into_iter()
     .filter_map(|(on, what)| on.then_some(what))
