@@ -16,16 +16,16 @@
 //! is solved by shooting in (κ₀, λ₁, λ₂), which has no such singularity, and gives the
 //! family, the modulus and the normalized length of the closed form exactly.
 //!
-//! Nearly straight curves (length within [`NEAR_STRAIGHT`] of the chord; issue 37) are
+//! Nearly straight curves (slack within `NEAR_STRAIGHT` = 5 % of the chord; issue 37) are
 //! solved first by Levenberg–Marquardt on the pendulum data `(κ₀, λ₁, λ₂)` with the closed
-//! form as the exact integrator ([`pendulum::segment_of_pendulum`]): those data stay well
+//! form as the exact integrator (`pendulum::segment_of_pendulum`): those data stay well
 //! conditioned down to a straight line, where `(k, s₀, ℓ)` do not (the window shrinks to a
 //! point of the normalized curve or its modulus tends to 1). Under a strong pull, where
 //! shooting amplifies its errors like `e^{√λ L}`, the result is polished about the
-//! pendulum's top ([`taut`]), with `1 − k` kept to full precision
+//! pendulum's top (`taut`), with `1 − k` kept to full precision
 //! (`ElasticaParams::one_minus_k`); near a buckling load, in `(q, s₀, ℓ)` with wide
-//! differences. A curve whose slack is below [`STRAIGHT_SLACK`] and whose tangents lie
-//! within [`STRAIGHT_ANGLE`] of its chord is a line.
+//! differences. A curve whose slack is below [`crate::bvp::STRAIGHT_SLACK`] and whose
+//! tangents lie within [`crate::bvp::STRAIGHT_ANGLE`] of its chord is a line.
 //!
 //! Known limit (issue 22 in progress). Measured on random Béziers with a unit chord:
 //! - legs 0.2–0.7 of the chord, end tangents 10°–60° and −40°–60°: 3000 of 3000 solved,
