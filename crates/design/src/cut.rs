@@ -331,8 +331,10 @@ pub fn place_blade(
             .map(|b| (b, None))
             .map_err(|e| e.to_string());
     };
+    let rect = [[u0.min(u1), base.min(top)], [u0.max(u1), base.max(top)]];
     let sec = Section {
-        rect: [[u0.min(u1), base.min(top)], [u0.max(u1), base.max(top)]],
+        rect,
+        block: rect,
         keeps_below: true,
     };
     place(section, &p.blade, &sec, 1e-6 * p.blade.length)

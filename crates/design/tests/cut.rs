@@ -431,34 +431,47 @@ proptest! {
 }
 
 /// Issue 37 item 3: the blade outside its piece against the block. A piece leaving its
-/// block's left face straight up, 50 above the base: half the extension before it would
-/// run down and curl under the piece into what the block keeps; the planner puts the
-/// whole extension after the piece, where it runs out of the block. An arch springing
-/// 50 above the base at both faces cannot be placed clear: its clearance says how deep.
+/// block's left face 50 above the base at 70° and running to the right face: with half
+/// the 1800 mm blade's extension before it, that extension turns back under the piece into
+/// what the block keeps; the planner puts a quarter of it before the piece, where it stays
+/// out and both held ends clear the block. An arch springing 50 above the base at both
+/// faces cannot be placed clear: its clearance says how deep.
 #[test]
 fn the_blade_outside_its_piece_keeps_out_of_the_block_where_it_can() {
     let w = 700.0;
+    let t = 70f64.to_radians();
     let lean = Bezier {
-        p: [[0.0, 50.0], [0.0, 300.0], [400.0, 380.0], [w, 380.0]],
+        p: [
+            [0.0, 50.0],
+            [200.0 * t.cos(), 50.0 + 200.0 * t.sin()],
+            [450.0, 420.0],
+            [w, 420.0],
+        ],
     };
     let mut cut = arch_cut(w, lean, lean, 3);
-    cut.blade = BladeParams::new(1100.0);
+    cut.blade = BladeParams::new(1800.0);
     cut.heights = vec![[0.0, 600.0]];
     let solved = solve_cut(&cut, &|| {}).unwrap();
     for plane in &solved.planes {
         let p = &plane.pieces[0];
         let c = p.clearance.unwrap();
         assert!(c.is_clean(), "{c:?}");
-        assert!(p.blade.lead_in < 1e-9, "all the extension after the piece");
+        let extra = 1800.0 - p.proxy.elastica.length();
+        assert!(
+            (p.blade.lead_in - 0.25 * extra).abs() < 1e-6 * extra,
+            "a quarter before"
+        );
     }
     // the default place (half before) would gouge
     let half = elastica::blade::extend_to_blade(
         &solved.planes[0].pieces[0].proxy.elastica,
-        &BladeParams::new(1100.0),
+        &BladeParams::new(1800.0),
     )
     .unwrap();
+    let r = [[0.0, 0.0], [w, 600.0]];
     let section = elastica::clearance::Section {
-        rect: [[0.0, 0.0], [w, 600.0]],
+        rect: r,
+        block: r,
         keeps_below: true,
     };
     let c = elastica::clearance::clearance(&half, &section, 1e-6).unwrap();

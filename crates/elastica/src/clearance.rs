@@ -27,12 +27,25 @@ pub struct Clearance {
     /// The smaller distance of the blade's two held ends from the block's rectangle;
     /// negative when an end lies inside it.
     pub holder_clearance: f64,
+    /// Both held ends at least [`HOLDER_MARGIN`] of the blade's length from the block: a
+    /// holder closer than that touches it (a holder has a size; an end exactly on a face
+    /// is a collision, whatever the sign of its rounding).
+    pub holders_clear: bool,
 }
 
+/// How far, as a share of the blade's length, a held end must stay from the block.
+pub const HOLDER_MARGIN: f64 = 0.01;
+
 impl Clearance {
-    /// No gouge and both held ends outside the block.
+    /// No gouge and both held ends clear of the block.
     pub fn is_clean(&self) -> bool {
-        self.gouge_depth == 0.0 && self.holder_clearance >= 0.0
+        self.gouge_depth == 0.0 && self.holders_clear
+    }
+
+    /// How bad a placement is: the gouge's depth plus how far a held end falls short of
+    /// `margin` (0: clean).
+    fn badness(&self, margin: f64) -> f64 {
+        self.gouge_depth + (margin - self.holder_clearance).max(0.0)
     }
 }
 
@@ -40,8 +53,11 @@ impl Clearance {
 /// and the side of the piece it keeps.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Section {
-    /// The rectangle.
+    /// The rectangle of material the piece shapes (where the kept region is sought).
     pub rect: [[f64; 2]; 2],
+    /// The whole block's rectangle, which the held ends must keep out of (wider than
+    /// `rect` where the design covers only part of the block).
+    pub block: [[f64; 2]; 2],
     /// `true`: the block keeps what lies below the piece (towards `v_min`), as when a cut
     /// shapes a block's top; `false`: above it.
     pub keeps_below: bool,
@@ -99,7 +115,8 @@ fn to_rect(p: [f64; 2], r: [[f64; 2]; 2]) -> f64 {
 /// // its extensions run outside the block, its ends 1 away from it
 /// let piece = Segment::Line { x0: 0.0, y0: 1.0, phi: 0.0, length: 2.0 };
 /// let blade = extend_to_blade(&piece, &BladeParams::new(4.0)).unwrap();
-/// let section = Section { rect: [[0.0, 0.0], [2.0, 1.0]], keeps_below: true };
+/// let r = [[0.0, 0.0], [2.0, 1.0]];
+/// let section = Section { rect: r, block: r, keeps_below: true };
 /// let c = clearance(&blade, &section, 1e-9).unwrap();
 /// assert_eq!(c.gouge_depth, 0.0);
 /// assert!((c.holder_clearance - 1.0).abs() < 1e-12);
@@ -117,14 +134,12 @@ pub fn clearance(
     let holder_clearance = blade
         .ends
         .iter()
-        .map(|e| to_rect(e.position, section.rect))
+        .map(|e| to_rect(e.position, section.block))
         .fold(f64::INFINITY, f64::min);
-    if !(length > 0.0) {
-        return Ok(Clearance {
-            holder_clearance,
-            ..Clearance::default()
-        });
+    if !(length > 0.0) || !holder_clearance.is_finite() {
+        return Err(EllipticError::Parameter(length));
     }
+    let holders_clear = holder_clearance > HOLDER_MARGIN * length;
     let (a, b) = (blade.lead_in / length, 1.0 - blade.lead_out / length);
     // the kept region: the piece, then the block's corners on the kept side
     let [lo, hi] = section.rect;
@@ -164,7 +179,11 @@ pub fn clearance(
         if t > a && t < b {
             continue;
         }
-        let d = depth_at(eval.eval(t).p);
+        let p = eval.eval(t).p;
+        if !(p[0].is_finite() && p[1].is_finite()) {
+            return Err(EllipticError::Parameter(t));
+        }
+        let d = depth_at(p);
         if d > 0.0 {
             gouge_depth = gouge_depth.max(d);
             gouge_length += step * length;
@@ -174,6 +193,7 @@ pub fn clearance(
         gouge_depth,
         gouge_length,
         holder_clearance,
+        holders_clear,
     })
 }
 
@@ -184,8 +204,9 @@ pub const LEAD_IN_SHARES: [f64; 4] = [0.25, 0.75, 0.0, 1.0];
 
 /// `section` extended to the blade and placed along it so that the blade outside the
 /// piece keeps out of what `block` keeps and its held ends out of the block: the blade's
-/// own `lead_in_share` when that is clean, else the first clean of [`LEAD_IN_SHARES`],
-/// else the one with the shallowest gouge (then the most holder clearance) — whose
+/// own `lead_in_share` when that is clean (and within the blade's limits), else the first
+/// such of [`LEAD_IN_SHARES`], else the least bad — within the blade's limits first, then
+/// the smallest gouge depth plus shortfall of a held end below [`HOLDER_MARGIN`] — whose
 /// [`Clearance`] then says so. `tolerance` as in [`clearance`].
 ///
 /// ```
@@ -197,9 +218,12 @@ pub const LEAD_IN_SHARES: [f64; 4] = [0.25, 0.75, 0.0, 1.0];
 /// // the circle down under the piece, into what the block keeps; all after it runs out
 /// let quarter = std::f64::consts::FRAC_PI_2;
 /// let piece = Segment::Arc { x0: 0.0, y0: 1.0, phi: quarter, curvature: -1.0, length: quarter };
-/// let block = Section { rect: [[0.0, 0.0], [1.0, 2.0]], keeps_below: true };
+/// let r = [[0.0, 0.0], [1.0, 2.0]];
+/// let block = Section { rect: r, block: r, keeps_below: true };
 /// let (blade, c) = place(&piece, &BladeParams::new(quarter + 1.0), &block, 1e-9).unwrap();
-/// assert!(c.is_clean());
+/// // all the extension after the piece: no gouge, but the held end sits on the face
+/// assert_eq!(c.gouge_depth, 0.0);
+/// assert!(!c.holders_clear);
 /// assert_eq!(blade.lead_in, 0.0);
 /// ```
 ///
@@ -211,10 +235,13 @@ pub fn place(
     block: &Section,
     tolerance: f64,
 ) -> Result<(Blade, Clearance), BladeError> {
+    let margin = HOLDER_MARGIN * params.length;
+    // within the blade's limits first, then the least bad (gouge + holder shortfall)
+    let key = |b: &Blade, c: &Clearance| (!(b.curvature_ok && b.inflections_ok), c.badness(margin));
     let first = extend_to_blade(section, params)?;
     let mut best = (clearance(&first, block, tolerance)?, first);
     for share in LEAD_IN_SHARES {
-        if best.0.is_clean() {
+        if best.0.is_clean() && best.1.curvature_ok && best.1.inflections_ok {
             break;
         }
         let blade = extend_to_blade(
@@ -225,10 +252,8 @@ pub fn place(
             },
         )?;
         let c = clearance(&blade, block, tolerance)?;
-        let better = c.gouge_depth < best.0.gouge_depth
-            || (c.gouge_depth == best.0.gouge_depth
-                && c.holder_clearance > best.0.holder_clearance);
-        if better {
+        let (k, kb) = (key(&blade, &c), key(&best.1, &best.0));
+        if k.0 < kb.0 || (k.0 == kb.0 && k.1 < kb.1) {
             best = (c, blade);
         }
     }

@@ -426,7 +426,8 @@ impl Segment {
         // a = (p1 − p0)/(z1 − z0) as complex numbers, b = p0 − a·z0
         let (dpx, dpy) = (p1[0] - p0[0], p1[1] - p0[1]);
         let a = [(dpx * dzx + dpy * dzy) / dz2, (dpy * dzx - dpx * dzy) / dz2];
-        if !(a[0].hypot(a[1]) > 0.0) {
+        let scale = a[0].hypot(a[1]);
+        if !(scale > 0.0) || !scale.is_finite() {
             return None;
         }
         let b = [

@@ -51,25 +51,18 @@ pub fn interpolate(a: &Segment, b: &Segment, w: f64) -> Option<Segment> {
                 let c = |e: &ElasticaParams| e.one_minus_k.unwrap_or(1.0 - e.k);
                 lerp(c(&p), c(&q), w)
             });
-            let k = complement.map_or(lerp(p.k, q.k, w), |c| 1.0 - c);
-            match Segment::elastica_between(
-                p.family,
-                k,
-                lerp(p.s0, q.s0, w),
-                lerp(p.l, q.l, w),
-                p0,
-                p1,
-            )? {
-                Segment::Elastica(e) if complement.is_some() => {
-                    // the shape's ends again, from the precise modulus
-                    let shape = ElasticaParams {
-                        one_minus_k: complement,
-                        ..e
-                    };
-                    Some(Segment::Elastica(shape).with_ends(p0, p1)?)
-                }
-                other => Some(other),
-            }
+            let shape = ElasticaParams {
+                family: p.family,
+                k: complement.map_or(lerp(p.k, q.k, w), |c| 1.0 - c),
+                s0: lerp(p.s0, q.s0, w),
+                l: lerp(p.l, q.l, w),
+                scale: 1.0,
+                phi: 0.0,
+                x0: 0.0,
+                y0: 0.0,
+                one_minus_k: complement,
+            };
+            Segment::Elastica(shape).with_ends(p0, p1)
         }
         (Segment::Line { .. }, Segment::Line { .. }) => Some(Segment::Line {
             x0: p0[0],

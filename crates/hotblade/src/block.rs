@@ -128,9 +128,10 @@ fn flags(ctx: &Context<'_>, r: &BlockReport, sections: &[FittedSection]) -> Flag
         flat_blade: r.max_plane_angle > p.max_plane_angle,
         block_height,
         overlap: !r.overlaps.is_empty(),
-        gouge: sections
-            .iter()
-            .any(|s| s.clearance.is_some_and(|c| !c.is_clean())),
+        // a section longer than the blade has no blade outside it (flag `blade_length`)
+        gouge: sections.iter().any(|s| {
+            s.design.length <= p.blade.length && s.clearance.is_some_and(|c| !c.is_clean())
+        }),
     }
 }
 

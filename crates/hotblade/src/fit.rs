@@ -245,8 +245,8 @@ fn pose_section(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), q| {
             (lo.min(q[0]), hi.max(q[0]))
         });
-    let range = (range.0.max(covered.0), range.1.min(covered.1));
-    let (blade, clearance) = match block_section(ctx, plane_ref, range) {
+    let covered = (range.0.max(covered.0), range.1.min(covered.1));
+    let (blade, clearance) = match block_section(ctx, plane_ref, covered, range) {
         Some(section) => {
             let bp = blade_params(&fit.segment, &ctx.params.blade);
             let tolerance = 1e-6 * bp.length;
@@ -317,21 +317,24 @@ fn design_tangents(
     (t0, t1)
 }
 
-/// The block's section on `plane` in the plane's coordinates — `range` across the cut (the
-/// part's, where the surface covers it) by the grid's height — when the plane is one of
-/// the grid's parallel planes
+/// The block's section on `plane` in the plane's coordinates — across the cut `covered`
+/// (where the surface covers the part; what the check seeks kept material in) and `range`
+/// (the whole part, which the held ends must keep out of), by the grid's height — when
+/// the plane is one of the grid's parallel planes
 /// (its axes the grid's); `None` on planes that follow a curve, whose section of the block
 /// is no rectangle (not checked). The block keeps what lies below the surface.
 fn block_section(
     ctx: &Context<'_>,
     plane: &crate::grid::Plane,
+    covered: (f64, f64),
     range: (f64, f64),
 ) -> Option<elastica::clearance::Section> {
     let (f, g) = (&plane.frame, &ctx.grid.frame);
     let same = (f.u - g.u).norm() <= 1e-12 && (f.v - g.v).norm() <= 1e-12;
     let v = (ctx.grid.origin[2], ctx.grid.origin[2] + ctx.grid.size[2]);
     same.then_some(elastica::clearance::Section {
-        rect: [[range.0, v.0], [range.1, v.1]],
+        rect: [[covered.0, v.0], [covered.1, v.1]],
+        block: [[range.0, v.0], [range.1, v.1]],
         keeps_below: true,
     })
 }

@@ -343,7 +343,16 @@ fn solve_unit(d: &EndData) -> Result<Solution> {
                 }
                 // near a buckling load, where λ₁ creeps: polished in (k, s₀, ℓ), with
                 // differences wide enough to see the slack
-                if let (false, Segment::Elastica(p)) = (done, seg) {
+                // (not near the separatrix: (q, s₀, ℓ) would drop the exact 1 − k)
+                if let (
+                    false,
+                    Segment::Elastica(
+                        p @ ElasticaParams {
+                            one_minus_k: None, ..
+                        },
+                    ),
+                ) = (done, seg)
+                {
                     done = keep(newton(d, p.family, [p.k, p.s0, p.l], WIDE_STEP));
                 }
             }

@@ -227,6 +227,8 @@ pub(crate) fn quantize_segment(seg: Segment) -> Segment {
     let q = quantize;
     match seg {
         Segment::Elastica(e) => Segment::Elastica(ElasticaParams {
+            // the modulus is the rounded k's (a fit's segments carry no complement)
+            one_minus_k: None,
             k: q(e.k),
             s0: q(e.s0),
             l: q(e.l),
@@ -394,6 +396,7 @@ pub(crate) fn with_length(seg: Segment, exact: &[[f64; 2]], length: f64) -> Segm
             let a = chord / dz;
             let b = p0 - a * C::new(f0[0], f0[1]);
             Segment::Elastica(ElasticaParams {
+                one_minus_k: None,
                 k: th[0],
                 s0: th[1],
                 l: th[2],

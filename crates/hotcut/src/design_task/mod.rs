@@ -295,7 +295,8 @@ impl Task for Design {
         let grid = (2 * params.planes - 1).min(101);
         let multi = multi::block_cuts(&blocks, &cuts, grid, params.points);
         let order = multi::robot_order(&multi, &cuts);
-        let strict = job.cell.as_ref().is_some_and(|c| c.strict);
+        // strict refuses robot programs for such a blade; a report alone is written
+        let strict = job.rapid && job.cell.as_ref().is_some_and(|c| c.strict);
         if let (true, Some(m)) = (strict, gouge_message(&cuts, &blocks)) {
             return Err(job.fail(format!("strict: no robot program for a blade that {m}")));
         }
@@ -425,7 +426,7 @@ impl Task for Design {
             }
             if let Some(first) = first_gouge(r) {
                 v.push(format!(
-                    "  warning: the blade outside its piece runs into what a block keeps on {} plane(s), holders inside a block on {}: first {first}",
+                    "  warning: the blade outside its piece runs into what a block keeps on {} plane(s), holders touching a block on {}: {first}",
                     s.gouge_flags, s.collision_flags
                 ));
             }
@@ -487,49 +488,74 @@ fn block_info(b: &Block, m: &multi::BlockCuts, run: &DesignRun) -> BlockInfo {
     }
 }
 
-/// The first plane whose blade gouges or whose holder collides, named: cut, plane,
-/// block, depth and clearance.
-fn first_gouge(r: &DesignReport) -> Option<String> {
-    r.cuts.iter().find_map(|c| {
-        c.planes
-            .clearance
-            .iter()
-            .find(|k| k.gouge_depth > 0.0 || k.holder_clearance < 0.0)
-            .map(|k| {
-                format!(
-                    "cut `{}`, plane {} of {}, block `{}`: {:.3} deep over {:.3}, holder clearance {:.3}",
-                    geom::text::terminal(&geom::text::clip(&c.id, 40)),
-                    k.plane + 1,
-                    c.planes.planes,
-                    geom::text::terminal(&geom::text::clip(&k.block, 40)),
-                    k.gouge_depth,
-                    k.gouge_length,
-                    k.holder_clearance
-                )
-            })
-    })
+/// A length for a message: 3 decimals, or 3 significant digits below 0.01.
+fn short(x: f64) -> String {
+    if x != 0.0 && x.abs() < 0.01 {
+        format!("{x:.3e}")
+    } else {
+        format!("{x:.3}")
+    }
 }
 
-/// What the first plane whose blade outside its piece enters what a block keeps, or
-/// whose held end lies inside a block, does: for `strict`.
+/// The worst plane whose blade gouges or whose holder touches a block, named: cut, plane
+/// (report.json's index), block, depth and clearance.
+fn first_gouge(r: &DesignReport) -> Option<String> {
+    let rows = r
+        .cuts
+        .iter()
+        .flat_map(|c| c.planes.clearance.iter().map(move |k| (c, k)));
+    rows.filter(|(_, k)| k.gouge_depth > 0.0 || !k.holders_clear)
+        .max_by(|a, b| {
+            a.1.gouge_depth
+                .total_cmp(&b.1.gouge_depth)
+                .then(b.1.holder_clearance.total_cmp(&a.1.holder_clearance))
+        })
+        .map(|(c, k)| {
+            format!(
+                "worst cut `{}`, plane {} (of 0–{}), block `{}`: {} deep over {}, holder clearance {}",
+                geom::text::terminal(&geom::text::clip(&c.id, 40)),
+                k.plane,
+                c.planes.planes.saturating_sub(1),
+                geom::text::terminal(&geom::text::clip(&k.block, 40)),
+                short(k.gouge_depth),
+                short(k.gouge_length),
+                short(k.holder_clearance)
+            )
+        })
+}
+
+/// For `strict`: the worst plane whose blade outside its piece enters what a block keeps,
+/// or whose held end touches a block.
 fn gouge_message(cuts: &[(ResolvedCut, CutResult)], blocks: &[Block]) -> Option<String> {
-    cuts.iter().find_map(|(r, res)| {
-        res.planes.iter().enumerate().find_map(|(j, c)| {
-            c.pieces.iter().enumerate().find_map(|(k, p)| {
-                let g = p.clearance.filter(|g| !g.is_clean())?;
-                Some(format!(
-                    "runs {:.3} deep into what block `{}` keeps (holder clearance {:.3}) on plane {} of {} of cut `{}`",
-                    g.gouge_depth,
-                    r.blocks
+    let mut worst: Option<(f64, f64, String)> = None;
+    for (r, res) in cuts {
+        for (j, c) in res.planes.iter().enumerate() {
+            for (k, p) in c.pieces.iter().enumerate() {
+                let Some(g) = p.clearance.filter(|g| !g.is_clean()) else {
+                    continue;
+                };
+                let worse = worst.as_ref().is_none_or(|w| {
+                    g.gouge_depth > w.0 || (g.gouge_depth == w.0 && g.holder_clearance < w.1)
+                });
+                if worse {
+                    let block = r
+                        .blocks
                         .get(k)
                         .and_then(|&b| blocks.get(b))
-                        .map_or(String::new(), |b| geom::text::terminal(&geom::text::clip(&b.id, 40))),
-                    g.holder_clearance,
-                    j + 1,
-                    res.planes.len(),
-                    geom::text::terminal(&geom::text::clip(&r.id, 40))
-                ))
-            })
-        })
-    })
+                        .map_or(String::new(), |b| {
+                            geom::text::terminal(&geom::text::clip(&b.id, 40))
+                        });
+                    let what = format!(
+                        "runs {} deep into what block `{block}` keeps (holder clearance {}) on plane {j} (of 0–{}) of cut `{}`",
+                        short(g.gouge_depth),
+                        short(g.holder_clearance),
+                        res.planes.len().saturating_sub(1),
+                        geom::text::terminal(&geom::text::clip(&r.id, 40))
+                    );
+                    worst = Some((g.gouge_depth, g.holder_clearance, what));
+                }
+            }
+        }
+    }
+    worst.map(|w| w.2)
 }

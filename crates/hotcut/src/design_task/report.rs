@@ -224,7 +224,8 @@ pub struct PlanesReport {
     pub gouge_flags: usize,
     /// Smallest distance of a held blade end from its block (negative: inside it).
     pub min_holder_clearance: f64,
-    /// Planes on which a held blade end lies inside its block.
+    /// Planes on which a held blade end lies inside its block or closer to it than 1 % of
+    /// the blade's length (`elastica::clearance::HOLDER_MARGIN`).
     pub collision_flags: usize,
     /// Per plane and block: the blade outside the piece against the block.
     pub clearance: Vec<PlaneClearance>,
@@ -244,6 +245,8 @@ pub struct PlaneClearance {
     pub gouge_length: f64,
     /// The smaller distance of the blade's held ends from the block (negative: inside).
     pub holder_clearance: f64,
+    /// Both held ends at least 1 % of the blade's length from the block.
+    pub holders_clear: bool,
     /// The blade's length before the piece: where along the blade the planner put the
     /// piece to keep the blade out of the block (half the extension unless that gouges).
     pub lead_in: f64,
@@ -345,13 +348,14 @@ fn planes(r: &CutResult, names: &[String]) -> PlanesReport {
             out.max_gouge_depth = out.max_gouge_depth.max(k.gouge_depth);
             least = least.min(k.holder_clearance);
             gouge |= k.gouge_depth > 0.0;
-            collision |= k.holder_clearance < 0.0;
+            collision |= !k.holders_clear;
             out.clearance.push(PlaneClearance {
                 plane: j,
                 block: name.clone(),
                 gouge_depth: k.gouge_depth,
                 gouge_length: k.gouge_length,
                 holder_clearance: k.holder_clearance,
+                holders_clear: k.holders_clear,
                 lead_in: p.blade.lead_in,
             });
         }

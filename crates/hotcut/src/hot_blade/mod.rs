@@ -300,20 +300,23 @@ impl Task for HotBlade {
                 other => job.fail(other.to_string()),
             })?;
         let posed = cut.blocks.iter().any(|b| !b.sections.is_empty());
-        let strict = job.cell.as_ref().is_some_and(|c| c.strict);
-        let gouging = cut.blocks.iter().find_map(|b| {
-            b.report
-                .clearance
-                .iter()
-                .find(|c| c.gouge_depth > 0.0 || c.holder_clearance < 0.0)
-                .map(|c| (b.report.block, c))
-        });
-        if let (true, Some((block, c))) = (strict, gouging) {
+        let strict = job.rapid && job.cell.as_ref().is_some_and(|c| c.strict);
+        let gouging = cut
+            .blocks
+            .iter()
+            .filter(|b| b.report.flags.gouge)
+            .flat_map(|b| {
+                b.sections
+                    .iter()
+                    .enumerate()
+                    .filter_map(move |(i, s)| Some((b.report.block, i, s.clearance?)))
+            })
+            .filter(|(_, _, c)| !c.is_clean())
+            .max_by(|a, b| a.2.gouge_depth.total_cmp(&b.2.gouge_depth));
+        if let (true, Some((block, section, c))) = (strict, gouging) {
             return Err(job.fail(format!(
-                "strict: no robot program for a blade that runs {:.3} deep into what block {block} keeps (holder clearance {:.3}) at its section {}",
-                c.gouge_depth,
-                c.holder_clearance,
-                c.section + 1
+                "strict: no robot program for a blade that runs {:.4e} deep into what block {block} keeps (holder clearance {:.4e}) at its section {section} (report.json's index)",
+                c.gouge_depth, c.holder_clearance
             )));
         }
         let cell = if (job.rapid || job.cell.is_some()) && posed {
