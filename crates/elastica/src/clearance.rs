@@ -253,7 +253,8 @@ pub fn place(
         )?;
         let c = clearance(&blade, block, tolerance)?;
         let (k, kb) = (key(&blade, &c), key(&best.1, &best.0));
-        if k.0 < kb.0 || (k.0 == kb.0 && k.1 < kb.1) {
+        // (within the limits, then the least bad): tuples compare in that order
+        if k.0.cmp(&kb.0).then(k.1.total_cmp(&kb.1)).is_lt() {
             best = (c, blade);
         }
     }
