@@ -11,7 +11,7 @@
 //! still share points and tangents across the faces.
 
 use elastica::blade::{extend_to_blade, Blade, BladeParams};
-use elastica::clearance::{place, Clearance, Section};
+use elastica::clearance::{place, place_all, Clearance, Section};
 use elastica::segment::Segment;
 use elastica::sweep::{blade_pose, BladePose};
 use geom::slice::PlaneFrame;
@@ -342,6 +342,55 @@ pub fn place_blade(
         .map_err(|e| e.to_string())
 }
 
+/// Where a block's blade had to be placed off its default on some plane, one place along
+/// the blade for all its planes ([`elastica::clearance::place_all`]): the robots then
+/// cut the block without sliding the blade through their holders between planes.
+fn one_place_per_block(planes: &mut [CurveResult], p: &CutParams) -> Result<()> {
+    let blocks = planes.first().map_or(0, |c| c.pieces.len());
+    for k in 0..blocks {
+        let moved = planes.iter().any(|c| {
+            c.pieces
+                .get(k)
+                .is_some_and(|x| x.clearance.is_some_and(|g| !g.is_clean()) || moved_off(x, p))
+        });
+        let (Some(&[base, top]), Some(&u0), Some(&u1)) =
+            (p.heights.get(k), p.faces.get(k), p.faces.get(k + 1))
+        else {
+            continue;
+        };
+        if !moved {
+            continue;
+        }
+        let rect = [[u0.min(u1), base.min(top)], [u0.max(u1), base.max(top)]];
+        let sec = Section {
+            rect,
+            block: rect,
+            keeps_below: true,
+        };
+        let sections: Vec<Segment> = planes.iter().map(|c| c.pieces[k].proxy.elastica).collect();
+        let placed = place_all(
+            &sections,
+            &p.blade,
+            &vec![sec; sections.len()],
+            1e-6 * p.blade.length,
+        )
+        .map_err(|e| DesignError::Invalid(format!("block {k} of the cut: {e}")))?;
+        for (c, (blade, clearance)) in planes.iter_mut().zip(placed) {
+            let piece = &mut c.pieces[k];
+            piece.pose = blade_pose(&p.frame, c.offset, &blade);
+            piece.blade = blade;
+            piece.clearance = Some(clearance);
+        }
+    }
+    Ok(())
+}
+
+/// Whether a piece's blade sits off the blade's own share of the extension.
+fn moved_off(x: &PieceResult, p: &CutParams) -> bool {
+    let extra = x.blade.lead_in + x.blade.lead_out;
+    extra > 0.0 && (x.blade.lead_in - p.blade.lead_in_share * extra).abs() > 1e-9 * p.blade.length
+}
+
 /// The elastica of every piece of `curve` at `offset`.
 fn solve_curve(curve: &DesignCurve, offset: f64, p: &CutParams) -> Result<CurveResult> {
     let pieces = curve
@@ -570,7 +619,7 @@ pub fn solve(p: &CutParams, tick: &(dyn Fn() + Sync)) -> Result<CutResult> {
                 .map_err(|e| DesignError::Invalid(format!("station {i}: {e}")))
         })
         .collect::<Result<Vec<_>>>()?;
-    let planes = (0..p.planes)
+    let mut planes = (0..p.planes)
         .into_par_iter()
         .map(|j| {
             tick();
@@ -579,6 +628,7 @@ pub fn solve(p: &CutParams, tick: &(dyn Fn() + Sync)) -> Result<CutResult> {
                 .map_err(|e| DesignError::Invalid(format!("plane {} of {}: {e}", j + 1, p.planes)))
         })
         .collect::<Result<Vec<_>>>()?;
+    one_place_per_block(&mut planes, p)?;
     Ok(CutResult {
         form,
         stations,

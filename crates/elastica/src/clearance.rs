@@ -261,6 +261,75 @@ pub fn place(
     Ok((best.1, best.0))
 }
 
+/// [`place`] for the sections of one block on consecutive cutting planes, with one place
+/// along the blade for all of them — so that the robots do not slide the blade through
+/// its holders between two neighbouring planes: the blade's own share when it is clean on
+/// every plane, else the first of [`LEAD_IN_SHARES`] that is, else the one that leaves
+/// the fewest planes outside the blade's limits, then the fewest not clean, then the
+/// smallest worst badness. `sections[i]` is checked against `blocks[i]`.
+///
+/// # Errors
+/// A blade cannot be extended or evaluated; `sections` and `blocks` differ in length.
+pub fn place_all(
+    sections: &[Segment],
+    params: &BladeParams,
+    blocks: &[Section],
+    tolerance: f64,
+) -> Result<Vec<(Blade, Clearance)>, BladeError> {
+    if sections.len() != blocks.len() {
+        return Err(BladeError::Invalid(format!(
+            "{} sections for {} blocks",
+            sections.len(),
+            blocks.len()
+        )));
+    }
+    let margin = HOLDER_MARGIN * params.length;
+    let at = |share: f64| -> Result<Vec<(Blade, Clearance)>, BladeError> {
+        let p = BladeParams {
+            lead_in_share: share,
+            ..params.clone()
+        };
+        sections
+            .iter()
+            .zip(blocks)
+            .map(|(s, b)| {
+                let blade = extend_to_blade(s, &p)?;
+                let c = clearance(&blade, b, tolerance)?;
+                Ok((blade, c))
+            })
+            .collect()
+    };
+    let score = |all: &[(Blade, Clearance)]| {
+        let broken = all
+            .iter()
+            .filter(|(b, _)| !(b.curvature_ok && b.inflections_ok))
+            .count();
+        let unclean = all.iter().filter(|(_, c)| !c.is_clean()).count();
+        let worst = all
+            .iter()
+            .map(|(_, c)| c.badness(margin))
+            .fold(0.0, f64::max);
+        (broken, unclean, worst)
+    };
+    let mut best = at(params.lead_in_share)?;
+    let mut best_score = score(&best);
+    for share in LEAD_IN_SHARES {
+        if best_score.0 == 0 && best_score.1 == 0 {
+            break;
+        }
+        let all = at(share)?;
+        let s = score(&all);
+        if (s.0, s.1)
+            .cmp(&(best_score.0, best_score.1))
+            .then(s.2.total_cmp(&best_score.2))
+            .is_lt()
+        {
+            (best, best_score) = (all, s);
+        }
+    }
+    Ok(best)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
