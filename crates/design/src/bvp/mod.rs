@@ -189,6 +189,34 @@ fn newton(
     damped_newton(&res, y, [to_q(1e-9), 40.0], step)
 }
 
+/// The central-difference Jacobian of `res` at `y` (residuals `r` there), with step
+/// `step(yⱼ)` per unknown; one-sided where a neighbour holds no curve, `None` where
+/// neither does.
+fn jacobian(
+    res: &dyn Fn([f64; 3]) -> Option<[f64; 3]>,
+    y: [f64; 3],
+    r: [f64; 3],
+    step: &dyn Fn(f64) -> f64,
+) -> Option<nalgebra::Matrix3<f64>> {
+    let mut jac = nalgebra::Matrix3::zeros();
+    for j in 0..3 {
+        let h = step(y[j]);
+        let (mut up, mut down) = (y, y);
+        up[j] += h;
+        down[j] -= h;
+        let (ru, rd, width) = match (res(up), res(down)) {
+            (Some(u), Some(v)) => (u, v, 2.0 * h),
+            (Some(u), None) => (u, r, h),
+            (None, Some(v)) => (r, v, h),
+            (None, None) => return None,
+        };
+        for i in 0..3 {
+            jac[(i, j)] = (ru[i] - rd[i]) / width;
+        }
+    }
+    Some(jac)
+}
+
 /// A residual map of three unknowns: the segment and its residuals, `None` where the
 /// unknowns hold no curve.
 type ResidualMap<'a> = dyn Fn([f64; 3]) -> Option<(Segment, [f64; 3])> + 'a;
@@ -207,23 +235,9 @@ fn damped_newton(
         if norm(&r) <= TOLERANCE {
             return Some((seg, r, it));
         }
-        let mut jac = nalgebra::Matrix3::zeros();
-        for j in 0..3 {
-            let h = step * y[j].abs().max(1e-3);
-            let (mut up, mut down) = (y, y);
-            up[j] += h;
-            down[j] -= h;
-            // one-sided where a neighbour holds no curve
-            let (ru, rd, width) = match (res(up), res(down)) {
-                (Some(u), Some(v)) => (u.1, v.1, 2.0 * h),
-                (Some(u), None) => (u.1, r, h),
-                (None, Some(v)) => (r, v.1, h),
-                (None, None) => return None,
-            };
-            for i in 0..3 {
-                jac[(i, j)] = (ru[i] - rd[i]) / width;
-            }
-        }
+        let jac = jacobian(&|x| res(x).map(|v| v.1), y, r, &|v| {
+            step * v.abs().max(1e-3)
+        })?;
         let dy = jac.lu().solve(&nalgebra::Vector3::from(r))?;
         let mut w = 1.0;
         let mut accepted = false;

@@ -11,7 +11,7 @@ use elastica::unit::{Family, UnitElastica};
 
 use crate::bezier::wrap;
 
-use super::{norm, other, residuals, EndData};
+use super::{jacobian, norm, other, residuals, EndData};
 
 /// Steps of the shooting integration (RK4; its error, O(h⁴), is far below the
 /// tolerances on a unit chord).
@@ -316,22 +316,9 @@ pub(super) fn newton_pendulum(
         if norm(&r) <= tolerance {
             return Some((seg, r, it));
         }
-        let mut jac = nalgebra::Matrix3::zeros();
-        for j in 0..3 {
-            let h = 1e-5 * u[j].abs().max(1.0);
-            let (mut up, mut down) = (u, u);
-            up[j] += h;
-            down[j] -= h;
-            let (ru, rd, width) = match (pendulum_residuals(d, up), pendulum_residuals(d, down)) {
-                (Some(a), Some(b)) => (a.1, b.1, 2.0 * h),
-                (Some(a), None) => (a.1, r, h),
-                (None, Some(b)) => (r, b.1, h),
-                (None, None) => return None,
-            };
-            for i in 0..3 {
-                jac[(i, j)] = (ru[i] - rd[i]) / width;
-            }
-        }
+        let jac = jacobian(&|x| pendulum_residuals(d, x).map(|v| v.1), u, r, &|v| {
+            1e-5 * v.abs().max(1.0)
+        })?;
         let jt = jac.transpose();
         let (jtj, jtr) = (jt * jac, jt * nalgebra::Vector3::from(r));
         let mut accepted = false;
