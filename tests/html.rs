@@ -205,7 +205,7 @@ fn page_problems(dir: &Path, report: &serde_json::Value) -> Vec<String> {
 }
 
 /// The rows a page highlights against the report's own verdicts: pieces with a failed
-/// constraint (FacadeSegmentation), blocks with a flag (HotBlade), sections with a
+/// constraint, a gouge or a holder collision (FacadeSegmentation), blocks with a flag (HotBlade), sections with a
 /// violation (Analyze).
 fn flagged_rows_problems(html: &str, report: &serde_json::Value) -> Vec<String> {
     let list = |key: &str| report[key].as_array().cloned().unwrap_or_default();
@@ -215,11 +215,14 @@ fn flagged_rows_problems(html: &str, report: &serde_json::Value) -> Vec<String> 
             let bad = p
                 .iter()
                 .filter(|x| {
-                    x["verdicts"]
+                    let broken = x["verdicts"]
                         .as_object()
                         .unwrap()
                         .values()
-                        .any(|v| v == &serde_json::Value::Bool(false))
+                        .any(|v| v == &serde_json::Value::Bool(false));
+                    // or a blade outside its part that gouges, or a holder on the block
+                    let gouge = x["max_gouge_depth"].as_f64().is_some_and(|d| d > 0.0);
+                    broken || gouge || x["holders_clear"] == serde_json::Value::Bool(false)
                 })
                 .count();
             ("Pieces", p.len(), bad)

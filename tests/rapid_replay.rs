@@ -17,6 +17,8 @@
 //!   the robot's base and the tool, lands on it (to the precision the file prints), the
 //!   joints are within the robot's limits, and its configuration data are theirs.
 
+#[path = "rapid/kept.rs"]
+mod kept;
 #[path = "rapid/reader.rs"]
 mod reader;
 #[path = "rapid/robot.rs"]
@@ -66,6 +68,9 @@ struct Cell {
     /// and how many planes it checked (issue 37; `Design` and `HotBlade` on parallel
     /// planes).
     gouge: (f64, usize),
+    /// What the blocks keep, rebuilt from the job's surface (`HotBlade`,
+    /// `FacadeSegmentation`).
+    kept: Option<kept::Kept>,
 }
 
 fn run(path: &Path) -> Cell {
@@ -116,11 +121,13 @@ fn run(path: &Path) -> Cell {
         signal: cell["heat_signal"].as_str().unwrap().to_string(),
         grip,
         gouge: gouge_figure(&report),
+        kept: kept::Kept::of(&job, &report),
     }
 }
 
 /// The report's gouge figure: the deepest depth and the number of (plane, block) rows, over
-/// `cuts[].planes.clearance` (Design) or `blocks[].clearance` (HotBlade).
+/// `cuts[].planes.clearance` (Design), `blocks[].clearance` (HotBlade) or
+/// `pieces[].sections[].blade_fit` (FacadeSegmentation).
 fn gouge_figure(report: &serde_json::Value) -> (f64, usize) {
     let rows: Vec<&serde_json::Value> = report["cuts"]
         .as_array()
@@ -133,6 +140,15 @@ fn gouge_figure(report: &serde_json::Value) -> (f64, usize) {
                 .into_iter()
                 .flatten()
                 .flat_map(|b| b["clearance"].as_array().into_iter().flatten()),
+        )
+        .chain(
+            report["pieces"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .flat_map(|p| p["sections"].as_array().into_iter().flatten())
+                .map(|s| &s["blade_fit"])
+                .filter(|f| f.is_object()),
         )
         .collect();
     let deepest = rows
@@ -150,6 +166,16 @@ struct Replay {
     cuts: usize,
     samples: usize,
     worst_fk_mm: f64,
+    /// Heated targets whose blade was checked against what the block keeps.
+    heated_targets: usize,
+    /// The deepest a heated blade went below the design surface inside the block, mm.
+    deepest_below: f64,
+    /// The farthest a heated blade inside the block stayed from the surface, mm (among
+    /// those that touch it).
+    farthest_touch: f64,
+    /// Heated targets whose blade, rebuilt from its ends, misses the design altogether:
+    /// it took the other equilibrium of a nearly taut blade (not checked).
+    other_equilibrium: usize,
 }
 
 /// Position and angle precision of a printed robtarget against forward kinematics: 3
@@ -310,6 +336,75 @@ fn check_blade(
     Ok(())
 }
 
+/// At every heated target, the blade rebuilt from its ends against what the block keeps
+/// (issue 37): where the rebuilt blade touches the design (the cut: which shows the
+/// surface, the block's placement and the blade were rebuilt right), no point of it inside
+/// the block lies deeper below the design than the tolerance.
+fn check_heated(
+    a: &reader::Task,
+    b: &reader::Task,
+    blade: f64,
+    kept: &kept::Kept,
+    r: &mut Replay,
+) -> Result<(), String> {
+    for (ma, mb) in a.moves.iter().zip(&b.moves) {
+        let (Some(true), Some(block)) = (ma.heat, ma.block) else {
+            continue;
+        };
+        let size = a
+            .blocks
+            .get(&block)
+            .ok_or(format!("no size of block {block}"))?;
+        let to_block = ma.wobj.inverse();
+        let normal = to_block.rotation * (ma.pose.rotation * nalgebra::Vector3::z());
+        // the blade the ends allow that runs through the cut: the shortest turning first
+        let mut best: Option<(f64, f64)> = None;
+        for turns in [0.0, -1.0, 1.0] {
+            let Ok(points) = robot::blade_turned([&ma.pose, &mb.pose], blade, 128, turns) else {
+                continue;
+            };
+            let local: Vec<nalgebra::Vector3<f64>> = points
+                .iter()
+                .map(|p| (to_block * nalgebra::Point3::from(*p)).coords)
+                .collect();
+            if let Some(c) = kept.below(block, size, &normal, &local)? {
+                if best.is_none_or(|b| c.1 < b.1) {
+                    best = Some(c);
+                }
+            }
+            if best.is_some_and(|b| b.1 <= kept.consistency) {
+                break;
+            }
+        }
+        let Some((deepest, nearest)) = best else {
+            continue;
+        };
+        if deepest > kept.tolerance && (nearest <= kept.consistency || !kept.is_facade()) {
+            return Err(format!(
+                "{} (\\ID {:?}): the heated blade runs {deepest:.1} mm below the design inside block {block} (a gouge)",
+                ma.target, ma.id
+            ));
+        }
+        if nearest > kept.consistency {
+            // a facade's blade may have other equilibria with the same ends (a longer
+            // blade with waves beyond its part): one that misses the cut is not the one
+            // the program means, and says nothing of it; a hot blade's always meets it
+            if kept.is_facade() {
+                r.other_equilibrium += 1;
+                continue;
+            }
+            return Err(format!(
+                "{} (\\ID {:?}): the heated blade in block {block} misses the design by {nearest:.2} mm",
+                ma.target, ma.id
+            ));
+        }
+        r.heated_targets += 1;
+        r.deepest_below = r.deepest_below.max(deepest);
+        r.farthest_touch = r.farthest_touch.max(nearest);
+    }
+    Ok(())
+}
+
 /// The tasks' MultiMove rules: the same synchronized segments, increasing `\ID`s, every
 /// move synchronized, as many moves in each.
 fn check_sync(tasks: &[reader::Task]) -> Result<(), String> {
@@ -433,6 +528,9 @@ fn check(cell: &Cell) -> Result<Replay, String> {
         ..Replay::default()
     };
     check_blade(a, b, cell.blade, &mut r)?;
+    if let Some(kept) = &cell.kept {
+        check_heated(a, b, cell.blade, kept, &mut r)?;
+    }
     let world = vec![Isometry3::identity(); parents.len()];
     for (k, t) in tasks.iter().enumerate() {
         let frames = if k < 2 { &parents } else { &world };
@@ -451,8 +549,24 @@ fn replay_all(prefix: &str) {
         // every shipped job that writes robot programs is clean: its report says 0
         let (deepest, rows) = cell.gouge;
         assert_eq!(deepest, 0.0, "{}: a gouge in the report", path.display());
+        // and the replay measured that on the blades the programs hold
+        if cell.kept.is_some() {
+            assert!(
+                r.heated_targets > 0,
+                "{}: no heated target judged",
+                path.display()
+            );
+        }
+        let replayed = if cell.kept.is_some() {
+            format!(
+                "; replayed: {} heated targets ({} more rebuilt on the other equilibrium), deepest below the design {:.2} mm, farthest from it {:.2} mm",
+                r.heated_targets, r.other_equilibrium, r.deepest_below, r.farthest_touch
+            )
+        } else {
+            String::new()
+        };
         println!(
-            "{}: gouge 0 on {rows} (plane, block) rows",
+            "{}: gouge 0 on {rows} (plane, block) rows{replayed}",
             path.file_name().unwrap().to_string_lossy()
         );
     }
@@ -510,6 +624,26 @@ fn the_check_fails_on_programs_made_unsafe_on_purpose() {
     );
     let e = check(&with(l1, l2)).unwrap_err();
     assert!(e.contains("inside block"), "{e}");
+    // a cutting target lowered by 10 mm in both tasks: the heated blade below the design
+    let (l1, l2) = (
+        shifted(&r1, "pB1_C5", [0.0, 0.0, -10.0]),
+        shifted(&r2, "pB1_C5", [0.0, 0.0, -10.0]),
+    );
+    let e = check(&with(l1, l2)).unwrap_err();
+    assert!(
+        e.contains("pB1_C5") && e.contains("below the design"),
+        "{e}"
+    );
+    // or raised by 1 mm: it misses the design (a hot blade's always meets it)
+    let (l1, l2) = (
+        shifted(&r1, "pB1_C5", [0.0, 0.0, 1.0]),
+        shifted(&r2, "pB1_C5", [0.0, 0.0, 1.0]),
+    );
+    let e = check(&with(l1, l2)).unwrap_err();
+    assert!(
+        e.contains("pB1_C5") && e.contains("misses the design"),
+        "{e}"
+    );
     // the travel's joints no longer those of its target, or the configuration changed
     let moved = shifted(&r1, "pB2_T3", [0.0, 0.0, 1.0]);
     assert!(check(&with(moved, r2.clone()))

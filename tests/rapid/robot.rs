@@ -115,6 +115,18 @@ impl Robot {
 /// The blade of `length` held by two TCP frames (x along the blade, z the plane's
 /// normal): points along it, in the world.
 pub fn blade(ends: [&Isometry3<f64>; 2], length: f64) -> Result<Vec<Vector3<f64>>, String> {
+    blade_turned(ends, length, 32, 0.0)
+}
+
+/// The blade of `length` held by two TCP frames as [`blade`] takes it, but on `segments`
+/// chords and with its total turning `turns` whole turns off the shortest (a held tangent
+/// says nothing of whole turns: a blade far longer than its chord may loop).
+pub fn blade_turned(
+    ends: [&Isometry3<f64>; 2],
+    length: f64,
+    segments: usize,
+    turns: f64,
+) -> Result<Vec<Vector3<f64>>, String> {
     let (p0, p1) = (ends[0].translation.vector, ends[1].translation.vector);
     let chord = (p1 - p0).norm();
     if !(chord < length) {
@@ -129,14 +141,14 @@ pub fn blade(ends: [&Isometry3<f64>; 2], length: f64) -> Result<Vec<Vector3<f64>
         t.dot(&y).atan2(t.dot(&x))
     };
     let (a0, a1) = (angle(0), angle(1));
-    let turn =
-        (a1 - a0 + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+    let tau = std::f64::consts::TAU;
+    let turn = (a1 - a0 + std::f64::consts::PI).rem_euclid(tau) - std::f64::consts::PI;
     let d = discrete_elastica(&DiscreteParams {
-        segments: 32,
+        segments,
         start: [0.0, 0.0],
         start_angle: a0,
         end: [chord, 0.0],
-        end_angle: a0 + turn,
+        end_angle: a0 + turn + turns * tau,
         length,
         max_iterations: 200,
     })

@@ -91,8 +91,9 @@ fn inside(p: [f64; 2], poly: &[[f64; 2]]) -> bool {
     odd
 }
 
-/// Signed distance from `p` to the rectangle `r`: positive outside, negative inside.
-fn to_rect(p: [f64; 2], r: [[f64; 2]; 2]) -> f64 {
+/// Signed distance from `p` to the rectangle `r = [min, max]`: positive outside, negative
+/// inside.
+pub fn to_rect(p: [f64; 2], r: [[f64; 2]; 2]) -> f64 {
     let dx = (r[0][0] - p[0]).max(p[0] - r[1][0]);
     let dy = (r[0][1] - p[1]).max(p[1] - r[1][1]);
     if dx <= 0.0 && dy <= 0.0 {
@@ -276,24 +277,45 @@ pub fn place_all(
     blocks: &[Section],
     tolerance: f64,
 ) -> Result<Vec<(Blade, Clearance)>, BladeError> {
-    if sections.len() != blocks.len() {
-        return Err(BladeError::Invalid(format!(
-            "{} sections for {} blocks",
-            sections.len(),
-            blocks.len()
-        )));
-    }
+    place_all_by(sections, params, tolerance, &|_| blocks.to_vec()).map(|(placed, _)| placed)
+}
+
+/// [`place_all`] where the block may depend on the blades: `blocks(blades)` gives, for
+/// the blades of one place along the blade, the block's section on each plane (a block
+/// that is moved to clear the held ends). Returns the placed blades with their
+/// clearances, and the share of the extension before the piece that was chosen.
+///
+/// # Errors
+/// A blade cannot be extended or evaluated; `blocks` returns other than one section per
+/// plane.
+pub fn place_all_by(
+    sections: &[Segment],
+    params: &BladeParams,
+    tolerance: f64,
+    blocks: &dyn Fn(&[Blade]) -> Vec<Section>,
+) -> Result<(Vec<(Blade, Clearance)>, f64), BladeError> {
     let margin = HOLDER_MARGIN * params.length;
     let at = |share: f64| -> Result<Vec<(Blade, Clearance)>, BladeError> {
         let p = BladeParams {
             lead_in_share: share,
             ..params.clone()
         };
-        sections
+        let blades = sections
             .iter()
-            .zip(blocks)
-            .map(|(s, b)| {
-                let blade = extend_to_blade(s, &p)?;
+            .map(|s| extend_to_blade(s, &p))
+            .collect::<Result<Vec<_>, _>>()?;
+        let secs = blocks(&blades);
+        if secs.len() != blades.len() {
+            return Err(BladeError::Invalid(format!(
+                "{} sections for {} blocks",
+                blades.len(),
+                secs.len()
+            )));
+        }
+        blades
+            .into_iter()
+            .zip(&secs)
+            .map(|(blade, b)| {
                 let c = clearance(&blade, b, tolerance)?;
                 Ok((blade, c))
             })
@@ -311,8 +333,8 @@ pub fn place_all(
             .fold(0.0, f64::max);
         (broken, unclean, worst)
     };
-    let mut best = at(params.lead_in_share)?;
-    let mut best_score = score(&best);
+    let mut best = (at(params.lead_in_share)?, params.lead_in_share);
+    let mut best_score = score(&best.0);
     for share in LEAD_IN_SHARES {
         if best_score.0 == 0 && best_score.1 == 0 {
             break;
@@ -324,7 +346,7 @@ pub fn place_all(
             .then(s.2.total_cmp(&best_score.2))
             .is_lt()
         {
-            (best, best_score) = (all, s);
+            (best, best_score) = ((all, share), s);
         }
     }
     Ok(best)

@@ -48,6 +48,8 @@ mod across;
 pub mod constraints;
 /// Why a segmentation failed.
 pub mod error;
+/// A piece's block against its blades: its section on a plane, slid to clear the holders.
+pub mod holders;
 /// The inflection-points algorithm (§5.2).
 pub mod inflection;
 /// The longest-elastica algorithm (§5.4).

@@ -21,7 +21,9 @@ pub struct PiecePart {
 }
 
 /// A block placed to hold a piece: axis-aligned in the facade's frame (cutting direction,
-/// `u`, `v`), `origin` its min corner in world coordinates.
+/// `u`, `v`), `origin` its min corner in world coordinates. Along the cut it is its row's
+/// slab; across the cut it is centred on the piece; up, its base is at the piece's lowest
+/// point.
 #[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Block {
     /// Min corner (world).
@@ -193,7 +195,14 @@ pub fn piece_of(
         });
     let used = [d_hi - d_lo, hi[0] - lo[0], hi[1] - lo[1]];
     let f = &facade.frame;
-    let origin = f.normal * d0 + f.u * lo[0] + f.v * lo[1];
+    // across the cut the block is centred on the piece: the blade, longer than the block
+    // is wide, then runs through the whole block with both held ends beyond its faces
+    // (issue 37: a piece at the block's edge leaves one holder inside the block). Up, the
+    // piece's highest point is at the block's top: the block keeps what lies below the
+    // design (the mould), the blade removes what lies above.
+    let u0 = 0.5 * (lo[0] + hi[0]) - 0.5 * c.block[1];
+    let v0 = hi[1] - c.block[2];
+    let origin = f.normal * d0 + f.u * u0 + f.v * v0;
     let fits = (0..3).all(|k| used[k] <= c.block[k] * (1.0 + 1e-12));
     let mut verdicts = Verdicts {
         dimension: fits,

@@ -5,13 +5,17 @@
 //! Entry points: [`pose_piece`](crate::rationalize::pose_piece),
 //! [`pose_pieces`](crate::rationalize::pose_pieces).
 
-use elastica::blade::Blade;
+use elastica::blade::{Blade, BladeParams};
+use elastica::clearance::{place_all_by, Clearance, Section};
 use elastica::fit::{fit_points_with_arclength, FitConstraint, FitParams, FitResult};
 use elastica::sweep::{blade_pose, frame_quaternion, BladePose};
-use hotblade::{make_blade, sweep_fits, BladeLimits, Clipped, SHORTEST_PART};
+use hotblade::fit::blade_params_over;
+use hotblade::{sweep_fits, BladeLimits, Clipped, SHORTEST_PART};
 use rayon::prelude::*;
 use serde::Serialize;
 
+use crate::holders::{block_section, slide_block};
+use crate::piece::Block;
 use crate::{Facade, Piece, SegError};
 
 /// Parameters of [`pose_piece`].
@@ -42,6 +46,9 @@ pub struct PosedPart {
     pub blade: Blade,
     /// The 3D pose.
     pub pose: BladePose,
+    /// The blade outside the part against the piece's block (issue 37): how deep it runs
+    /// into what the block keeps, and how far its held ends stay from the block.
+    pub clearance: Clearance,
 }
 
 /// A rationalized piece.
@@ -49,6 +56,9 @@ pub struct PosedPart {
 pub struct PosedPiece {
     /// Piece id.
     pub id: usize,
+    /// The block it is cut from: the segmentation's, slid across the cut where that
+    /// clears the blades' held ends ([`crate::holders::slide_block`]).
+    pub block: Block,
     /// Orientation `[w, x, y, z]` of the block axes (along the cut, across it, up).
     pub rotation: [f64; 4],
     /// Posed parts in cutting order (slivers shorter than [`SHORTEST_PART`] of the blade
@@ -104,23 +114,57 @@ pub fn pose_piece(
     if constraint == FitConstraint::EndPointsAndLength {
         restart_poor_fits(&designs, &mut fits, params.tolerance_max);
     }
-    let mut parts = Vec::new();
-    for (k, (design, fit)) in designs.into_iter().zip(fits).enumerate() {
-        let (Some(design), Some(fit)) = (design, fit) else {
-            continue;
-        };
-        let blade = make_blade(&fit.segment, &params.blade).map_err(|e| fail(k, e.to_string()))?;
-        let pose = blade_pose(&facade.frame, piece.parts[k].offset, &blade);
-        parts.push(PosedPart {
+    let kept: Vec<(usize, Clipped, FitResult)> = designs
+        .into_iter()
+        .zip(fits)
+        .enumerate()
+        .filter_map(|(k, (d, f))| Some((k, d?, f?)))
+        .collect();
+    let longest = kept
+        .iter()
+        .map(|(_, _, f)| f.segment.length())
+        .fold(0.0, f64::max);
+    // the shape constraint (§5.1.3) counts the cut's inflections, not the whole blade's
+    let bp = BladeParams {
+        max_inflections: None,
+        ..blade_params_over(longest, &params.blade)
+    };
+    let fail_blade = |e: elastica::blade::BladeError| SegError::Rationalize {
+        piece: piece.id,
+        plane: kept.first().map_or(0, |(k, _, _)| piece.parts[*k].plane),
+        message: e.to_string(),
+    };
+    // one place along the blade for every part (the piece is one block, cut plane after
+    // plane), the extension kept out of what the block keeps where it can be; for each
+    // place tried the block is slid across the cut to clear the blades' held ends
+    let segments: Vec<_> = kept.iter().map(|(_, _, f)| f.segment).collect();
+    let slid = |blades: &[Blade]| slide_block(facade, &piece.block, blades, bp.length);
+    let sections_in = |block: &Block| -> Vec<Section> {
+        kept.iter()
+            .map(|(_, d, _)| block_section(facade, block, d))
+            .collect()
+    };
+    let (placed, _) = place_all_by(&segments, &bp, 1e-6 * bp.length, &|blades| {
+        sections_in(&slid(blades))
+    })
+    .map_err(fail_blade)?;
+    let blades: Vec<Blade> = placed.iter().map(|(b, _)| b.clone()).collect();
+    let block = slid(&blades);
+    let parts = kept
+        .into_iter()
+        .zip(placed)
+        .map(|((k, design, fit), (blade, clearance))| PosedPart {
             part: k,
+            pose: blade_pose(&facade.frame, piece.parts[k].offset, &blade),
             design,
             fit,
             blade,
-            pose,
-        });
-    }
+            clearance,
+        })
+        .collect();
     Ok(PosedPiece {
         id: piece.id,
+        block,
         rotation: frame_quaternion(&facade.frame.normal, &facade.frame.v),
         parts,
     })
@@ -147,6 +191,17 @@ pub fn pose_pieces(
         })
         .collect();
     posed.into_iter().collect()
+}
+
+/// Every piece of `seg` given the block it was posed in (`posed[i].block`: slid across
+/// the cut where that clears the holders), so that drawings, robot files and reports
+/// agree on where each block is.
+pub fn adopt_blocks(seg: &mut crate::Segmentation, posed: &[PosedPiece]) {
+    for q in posed {
+        if let Some(p) = seg.pieces.iter_mut().find(|p| p.id == q.id) {
+            p.block = q.block.clone();
+        }
+    }
 }
 
 /// A length-keeping fit over tolerance may sit in a poor local minimum that neither a

@@ -37,7 +37,12 @@ pub struct SegmentationCounts {
     pub parts: usize,
     /// Pieces breaking each constraint.
     pub failing: ConstraintCounts,
-    /// Every piece meets every constraint.
+    /// Pieces whose blade, outside a part, runs into what the block keeps (issue 37).
+    pub gouges: usize,
+    /// Pieces where a held end of the blade comes within 1 % of the blade's length of the
+    /// block (or inside it) on some part: the holder collides with the block.
+    pub collisions: usize,
+    /// Every piece meets every constraint, with no gouge and no holder collision.
     pub all_ok: bool,
     /// Blade poses over all pieces (rationalized runs).
     pub poses: usize,
@@ -115,6 +120,16 @@ pub struct BladeFit {
     pub inflections: usize,
     /// Inflections of the whole blade, its extension outside the block included.
     pub blade_inflections: usize,
+    /// Where the part sits along the blade: the blade's length before it.
+    pub lead_in: f64,
+    /// How deep the blade outside the part runs into what the block keeps (0: clean).
+    pub gouge_depth: f64,
+    /// How much of the blade outside the part lies in what the block keeps.
+    pub gouge_length: f64,
+    /// The smaller distance of the blade's held ends from the block (negative: inside).
+    pub holder_clearance: f64,
+    /// Both held ends at least 1 % of the blade's length from the block.
+    pub holders_clear: bool,
 }
 
 /// One piece.
@@ -137,6 +152,13 @@ pub struct PieceReport {
     pub verdicts: Verdicts,
     /// Largest fit distance over the rationalized parts (rationalized runs).
     pub max_blade_fit: Option<f64>,
+    /// Deepest the blades outside the parts run into what the block keeps (rationalized
+    /// runs; 0 where clean).
+    pub max_gouge_depth: Option<f64>,
+    /// Smallest distance of a held blade end from the block (rationalized runs).
+    pub min_holder_clearance: Option<f64>,
+    /// Every held end of the piece's blades clear of its block (rationalized runs).
+    pub holders_clear: Option<bool>,
 }
 
 /// The pieces of `seg` as reported, with the blade fits of `posed` (empty when the run
@@ -170,7 +192,15 @@ pub fn summarize(
             shape: count(&|v| !v.shape),
             blade_strain: count(&|v| !v.blade_strain),
         },
-        all_ok: pieces.iter().all(|p| p.verdicts.all()),
+        gouges: pieces
+            .iter()
+            .filter(|p| p.max_gouge_depth.is_some_and(|d| d > 0.0))
+            .count(),
+        collisions: pieces
+            .iter()
+            .filter(|p| p.holders_clear == Some(false))
+            .count(),
+        all_ok: pieces.iter().all(|p| p.verdicts.all() && p.is_clear()),
         poses,
         unposed: if rationalized { parts - poses } else { 0 },
     };
@@ -221,6 +251,11 @@ fn piece_report(
                     max_abs_curvature: x.blade.max_abs_curvature,
                     inflections: x.fit.segment.inflections().map_or(usize::MAX, |v| v.len()),
                     blade_inflections: x.blade.inflections,
+                    lead_in: x.blade.lead_in,
+                    gouge_depth: x.clearance.gouge_depth,
+                    gouge_length: x.clearance.gouge_length,
+                    holder_clearance: x.clearance.holder_clearance,
+                    holders_clear: x.clearance.holders_clear,
                 });
             PieceSection {
                 plane: part.plane,
@@ -237,11 +272,22 @@ fn piece_report(
         })
         .collect();
     let verdicts = judged(p, posed, c);
-    let max_blade_fit = posed.map(|_| {
+    let fold = |f: &dyn Fn(&BladeFit) -> f64, start: f64, pick: fn(f64, f64) -> f64| {
+        posed.map(|_| {
+            sections
+                .iter()
+                .filter_map(|s| s.blade_fit.as_ref().map(f))
+                .fold(start, pick)
+        })
+    };
+    let max_blade_fit = fold(&|f| f.max, 0.0, f64::max);
+    let max_gouge_depth = fold(&|f| f.gouge_depth, 0.0, f64::max);
+    let min_holder_clearance =
+        fold(&|f| f.holder_clearance, f64::INFINITY, f64::min).filter(|c| c.is_finite());
+    let holders_clear = posed.map(|_| {
         sections
             .iter()
-            .filter_map(|s| s.blade_fit.as_ref().map(|f| f.max))
-            .fold(0.0, f64::max)
+            .all(|s| s.blade_fit.as_ref().is_none_or(|f| f.holders_clear))
     });
     PieceReport {
         id: p.id,
@@ -257,5 +303,16 @@ fn piece_report(
         sections,
         verdicts,
         max_blade_fit,
+        max_gouge_depth,
+        min_holder_clearance,
+        holders_clear,
+    }
+}
+
+impl PieceReport {
+    /// No blade of the piece gouges what its block keeps, and every held end clears the
+    /// block (true for a run that did not rationalize: nothing was posed).
+    pub fn is_clear(&self) -> bool {
+        self.max_gouge_depth.is_none_or(|d| d == 0.0) && self.holders_clear != Some(false)
     }
 }

@@ -342,8 +342,14 @@ fn block_section(
 /// The blade's parameters for `segment`: the limits' length (or the segment's own when
 /// it is longer: its block is flagged), half the extension before the piece.
 pub fn blade_params(segment: &Segment, limits: &BladeLimits) -> BladeParams {
+    blade_params_over(segment.length(), limits)
+}
+
+/// [`blade_params`] for sections up to `longest` long: the limits' length, or `longest`
+/// when that is longer.
+pub fn blade_params_over(longest: f64, limits: &BladeLimits) -> BladeParams {
     BladeParams {
-        length: limits.length.max(segment.length()),
+        length: limits.length.max(longest),
         lead_in_share: 0.5,
         max_curvature: Some(limits.max_curvature),
         max_inflections: Some(limits.max_inflections as usize),

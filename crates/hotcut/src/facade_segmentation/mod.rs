@@ -319,8 +319,14 @@ impl Task for FacadeSegmentation {
         let across = cols.max(blades);
         let pieces = 4.0 * rows * across;
         let parts = 4.0 * across * n;
+        // each part's blade against its block: up to five places along the blade, each
+        // sampled at elastica::clearance::SAMPLES points
+        let clearance = 5.0 * elastica::clearance::SAMPLES as f64 * 20.0;
         Estimate::new(
-            n * (2048.0 * 40.0 + 200.0 * points) + pieces * 2e3 + parts * samples * 48.0 + 1e7,
+            n * (2048.0 * 40.0 + 200.0 * points)
+                + pieces * 2e3
+                + parts * (samples * 48.0 + clearance)
+                + 1e7,
             n * (cost + 1e3 * points + 2048.0 * 30.0) + parts * samples * 400.0,
             if blades > cols {
                 "/blade/length"
@@ -360,7 +366,7 @@ impl Task for FacadeSegmentation {
                 q.verdicts
             }
         };
-        let (segmentation, refinement) = facade_seg::refine::refine_judged(
+        let (mut segmentation, refinement) = facade_seg::refine::refine_judged(
             &facade,
             &params.constraints,
             &first,
@@ -376,6 +382,11 @@ impl Task for FacadeSegmentation {
         } else {
             Vec::new()
         };
+        facade_seg::rationalize::adopt_blocks(&mut segmentation, &posed);
+        let strict = job.rapid && job.cell.as_ref().is_some_and(|c| c.strict);
+        if let (true, Some(m)) = (strict, worst_clearance(&posed)) {
+            return Err(job.fail(format!("strict: no robot program for a blade that {m}")));
+        }
         let mut run = SegmentationRun {
             facade,
             segmentation,
@@ -478,12 +489,21 @@ impl Task for FacadeSegmentation {
             ));
         }
         let f = &c.failing;
+        let broken = f.dimension + f.approximation + f.shape + f.blade_strain;
         if c.all_ok {
             out.push_str("\n  every piece meets every constraint");
-        } else {
+        } else if broken > 0 {
             out.push_str(&format!(
                 "\n  warning: pieces breaking a constraint — dimension {}, approximation {}, shape {}, blade strain {}",
                 f.dimension, f.approximation, f.shape, f.blade_strain
+            ));
+        }
+        if c.gouges + c.collisions > 0 {
+            out.push_str(&format!(
+                "\n  warning: blades outside their parts — {} piece(s) gouge what the block keeps, {} hold the blade within 1 % of its length of the block (pieces {}): trim those blocks across the cut to their pieces, or change blade.length; see report.json pieces[].sections[].blade_fit",
+                c.gouges,
+                c.collisions,
+                clearance_ids(r)
             ));
         }
         let rf = &r.refinement;
@@ -505,6 +525,22 @@ impl Task for FacadeSegmentation {
             out.push_str(&cell.summary());
         }
         out
+    }
+}
+
+/// The ids of the pieces whose blades gouge or whose holders touch their blocks (the
+/// first 12).
+fn clearance_ids(r: &SegmentationReport) -> String {
+    let ids: Vec<String> = r
+        .pieces
+        .iter()
+        .filter(|p| !p.is_clear())
+        .map(|p| p.id.to_string())
+        .collect();
+    if ids.len() > 12 {
+        format!("{}, … {} in all", ids[..12].join(", "), ids.len())
+    } else {
+        ids.join(", ")
     }
 }
 
@@ -542,6 +578,28 @@ impl SegAlgorithmSpec {
             }
         }
     }
+}
+
+/// For `strict`: the worst part whose blade outside it enters what its block keeps, or
+/// whose held end touches its block (the deepest gouge, then the smallest clearance).
+fn worst_clearance(posed: &[PosedPiece]) -> Option<String> {
+    posed
+        .iter()
+        .flat_map(|p| p.parts.iter().map(move |x| (p.id, x)))
+        .filter(|(_, x)| !x.clearance.is_clean())
+        .max_by(|a, b| {
+            let (g, h) = (&a.1.clearance, &b.1.clearance);
+            g.gouge_depth
+                .total_cmp(&h.gouge_depth)
+                .then(h.holder_clearance.total_cmp(&g.holder_clearance))
+        })
+        .map(|(id, x)| {
+            let c = &x.clearance;
+            format!(
+                "runs {:.4e} deep into what block {id} keeps (holder clearance {:.4e}) at the piece's section {} (report.json's index)",
+                c.gouge_depth, c.holder_clearance, x.part
+            )
+        })
 }
 
 /// Runs the job's segmentation algorithm on the facade.

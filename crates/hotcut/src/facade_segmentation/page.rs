@@ -96,6 +96,7 @@ pub fn body(r: &SegmentationReport, job: &Context) -> Body {
             ok: f.blade_strain == 0,
         },
     ];
+    constraints.extend(clearance(r, job));
     let mut tables = vec![pieces(r, job)];
     if let Some(cell) = &r.cell {
         constraints.push(cell.constraint());
@@ -116,6 +117,44 @@ pub fn body(r: &SegmentationReport, job: &Context) -> Body {
     }
 }
 
+/// The blades outside their parts against the blocks (rationalized runs): gouges and
+/// holder collisions.
+fn clearance(r: &SegmentationReport, job: &Context) -> Option<Constraint> {
+    let (c, s) = (&r.counts, &r.settings);
+    if !s.rationalized {
+        return None;
+    }
+    let deepest = r
+        .pieces
+        .iter()
+        .filter_map(|p| p.max_gouge_depth)
+        .fold(0.0, f64::max);
+    let nearest = r
+        .pieces
+        .iter()
+        .filter_map(|p| p.min_holder_clearance)
+        .fold(f64::INFINITY, f64::min);
+    Some(Constraint {
+        name: "clearance: the blade outside its part".into(),
+        limit: format!(
+            "no gouge below the design; held ends ≥ {} from the block",
+            len(elastica::clearance::HOLDER_MARGIN * s.blade_length, job)
+        ),
+        measured: format!(
+            "{} piece(s) gouge (deepest {}), {} with a holder on its block (nearest end {})",
+            c.gouges,
+            len(deepest, job),
+            c.collisions,
+            if nearest.is_finite() {
+                len(nearest, job)
+            } else {
+                "—".into()
+            }
+        ),
+        ok: c.gouges == 0 && c.collisions == 0,
+    })
+}
+
 /// Can it be cut: every piece meets every constraint, and the robots reach every move.
 fn verdict(r: &SegmentationReport) -> Verdict {
     let c = &r.counts;
@@ -129,8 +168,8 @@ fn verdict(r: &SegmentationReport) -> Verdict {
         ),
         || {
             format!(
-                "Not cuttable as asked: pieces break a constraint (dimension {}, approximation {}, shape {}, blade strain {}) of {} piece(s).",
-                f.dimension, f.approximation, f.shape, f.blade_strain, c.pieces
+                "Not cuttable as asked: pieces break a constraint (dimension {}, approximation {}, shape {}, blade strain {}; gouge {}, holder collision {}) of {} piece(s).",
+                f.dimension, f.approximation, f.shape, f.blade_strain, c.gouges, c.collisions, c.pieces
             )
         },
     )
@@ -164,6 +203,12 @@ fn pieces(r: &SegmentationReport, job: &Context) -> Table {
             if !v.blade_strain {
                 why.push("blade strain");
             }
+            if p.max_gouge_depth.is_some_and(|d| d > 0.0) {
+                why.push("gouge");
+            }
+            if p.holders_clear == Some(false) {
+                why.push("holder collision");
+            }
             let longest = p.sections.iter().map(|x| x.length).fold(0.0, f64::max);
             let kappa = p
                 .sections
@@ -184,6 +229,8 @@ fn pieces(r: &SegmentationReport, job: &Context) -> Table {
                     infl.to_string(),
                     num(kappa),
                     p.max_blade_fit.map_or("—".into(), num),
+                    p.max_gouge_depth.map_or("—".into(), num),
+                    p.min_holder_clearance.map_or("—".into(), num),
                 ],
                 why,
             )
@@ -202,6 +249,8 @@ fn pieces(r: &SegmentationReport, job: &Context) -> Table {
             "most inflections".into(),
             format!("blade max |κ| (/{u})"),
             format!("blade fit max ({u})"),
+            format!("gouge ({u})"),
+            format!("holder clearance ({u})"),
         ],
         rows,
     }
