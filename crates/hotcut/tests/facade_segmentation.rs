@@ -154,3 +154,138 @@ fn facade_segmentation_jobs_are_checked() {
         &["/outputs/5/RobotTargets/per_block", "leave per_block out"],
     );
 }
+
+/// A meandering wavy facade whose bands are wider than their parts: some pieces' blades,
+/// 800 mm long in 600 mm blocks, keep a held end inside the block (issue 37).
+const MEANDER: &str = r#"Job(
+    name: "m",
+    surface: HeightField(z: "40*sin((y + 120*sin(x/300))/90) + 20*cos(x/300)", x: (0, 1200), y: (0, 2400)),
+    block: Block(size: (600, 600, 400)),
+    blade: Blade(length: 800, max_curvature: 0.011),
+    cutting: Cutting(sections: 8),
+    task: FacadeSegmentation(algorithm: Trace(), samples: 32),
+    outputs: [Report, RobotTargets()],
+)
+"#;
+
+/// The signed distance from `(u, v)` to the rectangle `[0, w] × [0, h]` (negative inside).
+fn to_rect(u: f64, v: f64, w: f64, h: f64) -> f64 {
+    let (du, dv) = ((-u).max(u - w), (-v).max(v - h));
+    if du <= 0.0 && dv <= 0.0 {
+        du.max(dv)
+    } else {
+        du.max(0.0).hypot(dv.max(0.0))
+    }
+}
+
+#[test]
+fn holders_on_a_block_are_reported_as_the_targets_place_them_and_strict_refuses() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "m.ron", MEANDER);
+    let o = hotcut(&["run", "m.ron", "--out", "o"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("hold the blade within 1 %"), "{stdout}");
+    let read = |f: &str| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("o/m").join(f)).unwrap())
+            .unwrap()
+    };
+    let (report, targets) = (read("report.json"), read("targets.json"));
+    let counts = &report["counts"];
+    assert!(counts["collisions"].as_u64().unwrap() > 0, "{counts}");
+    assert_eq!(counts["all_ok"], false);
+    let blade = report["settings"]["blade_length"].as_f64().unwrap();
+    let v3 =
+        |v: &serde_json::Value| -> [f64; 3] { std::array::from_fn(|i| v[i].as_f64().unwrap()) };
+    let (mut checked, mut colliding) = (0, 0);
+    for (p, b) in report["pieces"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(targets["blocks"].as_array().unwrap())
+    {
+        assert_eq!(p["id"], b["block"]);
+        // the block's frame from targets.json: the ends and the part in block coordinates
+        let (o, size) = (v3(&b["origin"]), v3(&p["block"]["size"]));
+        let r: [f64; 4] = std::array::from_fn(|i| b["rotation"][i].as_f64().unwrap());
+        let (w, q) = (r[0], [r[1], r[2], r[3]]);
+        let local = |x: [f64; 3]| -> [f64; 3] {
+            // the inverse rotation of (x − o) by the unit quaternion (w, q)
+            let d = [x[0] - o[0], x[1] - o[1], x[2] - o[2]];
+            let (qx, qy, qz) = (-q[0], -q[1], -q[2]);
+            let t = [
+                2.0 * (qy * d[2] - qz * d[1]),
+                2.0 * (qz * d[0] - qx * d[2]),
+                2.0 * (qx * d[1] - qy * d[0]),
+            ];
+            [
+                d[0] + w * t[0] + (qy * t[2] - qz * t[1]),
+                d[1] + w * t[1] + (qz * t[0] - qx * t[2]),
+                d[2] + w * t[2] + (qx * t[1] - qy * t[0]),
+            ]
+        };
+        let posed: Vec<&serde_json::Value> = p["sections"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|s| s["blade_fit"].is_object())
+            .collect();
+        let poses = b["poses"].as_array().unwrap();
+        assert_eq!(posed.len(), poses.len());
+        for (s, pose) in posed.iter().zip(poses) {
+            // the block holds its piece's part
+            for x in [v3(&s["start"]), v3(&s["end"])] {
+                let l = local(x);
+                for k in 0..3 {
+                    let tol = 1e-6 * blade;
+                    assert!(
+                        l[k] > -tol && l[k] < size[k] + tol,
+                        "piece {}: {l:?}",
+                        p["id"]
+                    );
+                }
+            }
+            let measured = pose["ends"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|e| {
+                    let l = local(v3(&e["position"]));
+                    to_rect(l[1], l[2], size[1], size[2])
+                })
+                .fold(f64::INFINITY, f64::min);
+            let f = &s["blade_fit"];
+            let reported = f["holder_clearance"].as_f64().unwrap();
+            assert!(
+                (measured - reported).abs() < 1e-6 * blade,
+                "piece {}: {measured} vs {reported}",
+                p["id"]
+            );
+            assert_eq!(f["holders_clear"].as_bool(), Some(measured > 0.01 * blade));
+            checked += 1;
+            colliding += usize::from(measured <= 0.01 * blade);
+        }
+    }
+    assert!(checked > 20 && colliding > 0, "{checked} {colliding}");
+    // strict: no robot program, and the run fails naming the block
+    let strict = MEANDER
+        .replace(
+            "outputs: [Report, RobotTargets()]",
+            "outputs: [Report, Rapid]",
+        )
+        .replace("    task:", "    cell: Cell(strict: true),\n    task:");
+    write(dir.path(), "s.ron", &strict);
+    let o = hotcut(&["run", "s.ron", "--out", "s"], dir.path());
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(
+        e.contains("strict: no robot program") && e.contains("holder clearance"),
+        "{e}"
+    );
+    let wrote_mod = std::fs::read_dir(dir.path().join("s"))
+        .into_iter()
+        .flatten()
+        .flatten()
+        .any(|f| f.path().to_string_lossy().contains(".mod"));
+    assert!(!wrote_mod);
+}
