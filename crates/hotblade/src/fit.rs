@@ -245,8 +245,7 @@ fn pose_section(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), q| {
             (lo.min(q[0]), hi.max(q[0]))
         });
-    let covered = (range.0.max(covered.0), range.1.min(covered.1));
-    let (blade, clearance) = match block_section(ctx, plane_ref, covered, range) {
+    let (blade, clearance) = match block_section(ctx, plane, covered, range) {
         Some(section) => {
             let bp = blade_params(&fit.segment, &ctx.params.blade);
             let tolerance = 1e-6 * bp.length;
@@ -317,24 +316,46 @@ fn design_tangents(
     (t0, t1)
 }
 
-/// The block's section on `plane` in the plane's coordinates — across the cut `covered`
-/// (where the surface covers the part; what the check seeks kept material in) and `range`
-/// (the whole part, which the held ends must keep out of), by the grid's height — when
-/// the plane is one of the grid's parallel planes
-/// (its axes the grid's); `None` on planes that follow a curve, whose section of the block
-/// is no rectangle (not checked). The block keeps what lies below the surface.
+/// The block's section on target plane `index` in the plane's coordinates: up, the grid's
+/// height; across, where the plane crosses the block — the part's column (grid `u` in
+/// `range`) within the row(s) the plane cuts (grid `d`) — which the held ends must keep
+/// out of, and of that, where the design covers it (`covered`, plane `u`), where kept
+/// material is sought. For the grid's parallel planes this is the block's rectangle; a
+/// plane that follows a curve stands vertical, as the grid's `v` does, so it cuts the
+/// block in a rectangle too. `None` when the plane is not vertical to the grid, or misses
+/// the block. The block keeps what lies below the surface.
 fn block_section(
     ctx: &Context<'_>,
-    plane: &crate::grid::Plane,
+    index: usize,
     covered: (f64, f64),
     range: (f64, f64),
 ) -> Option<elastica::clearance::Section> {
+    let plane = &ctx.planes[index];
     let (f, g) = (&plane.frame, &ctx.grid.frame);
-    let same = (f.u - g.u).norm() <= 1e-12 && (f.v - g.v).norm() <= 1e-12;
+    if (f.v - g.v).norm() > 1e-12 {
+        return None;
+    }
+    // grid u and d of the plane's point (u_p, v) are c + a·u_p (the plane's v is the
+    // grid's): the u_p where each lies in its range
+    let o = f.normal * plane.offset;
+    let within = |axis: &nalgebra::Vector3<f64>, (lo, hi): (f64, f64)| -> Option<(f64, f64)> {
+        let (a, c) = (axis.dot(&f.u), axis.dot(&o));
+        if a.abs() > 1e-12 {
+            let (x, y) = ((lo - c) / a, (hi - c) / a);
+            Some((x.min(y), x.max(y)))
+        } else {
+            // the plane runs along this axis: all of it, or none
+            (c >= lo && c <= hi).then_some((f64::NEG_INFINITY, f64::INFINITY))
+        }
+    };
+    let (u_lo, u_hi) = within(&g.u, range)?;
+    let (d_lo, d_hi) = within(&g.normal, *ctx.plane_rows.get(index)?)?;
+    let (u0, u1) = (u_lo.max(d_lo), u_hi.min(d_hi));
     let v = (ctx.grid.origin[2], ctx.grid.origin[2] + ctx.grid.size[2]);
-    same.then_some(elastica::clearance::Section {
-        rect: [[covered.0, v.0], [covered.1, v.1]],
-        block: [[range.0, v.0], [range.1, v.1]],
+    let (lo, hi) = (covered.0.max(u0), covered.1.min(u1));
+    (u1.is_finite() && u0.is_finite() && hi > lo).then_some(elastica::clearance::Section {
+        rect: [[lo, v.0], [hi, v.1]],
+        block: [[u0, v.0], [u1, v.1]],
         keeps_below: true,
     })
 }

@@ -33,6 +33,8 @@ pub(crate) struct Context<'a> {
     pub params: &'a Params,
     pub grid: &'a Grid,
     pub planes: &'a [Plane],
+    /// Per target plane, the grid `d` range of the row(s) it cuts.
+    pub plane_rows: &'a [(f64, f64)],
     pub sections: &'a [Vec<Section>],
     pub normals: &'a SurfaceNormals<'a>,
 }
@@ -49,6 +51,9 @@ struct Layout {
     targets: usize,
     /// Per row, its target planes in cutting order.
     row_targets: Vec<Vec<usize>>,
+    /// Per target plane, the grid `d` range of the row(s) it cuts (both rows' at a
+    /// shared face).
+    plane_rows: Vec<(f64, f64)>,
     /// Per target plane, the deviation planes towards the next target of its row, with
     /// their share `t` of the way.
     between: Vec<Vec<(usize, f64)>>,
@@ -93,6 +98,7 @@ pub fn rationalize(
         params,
         grid: &layout.grid,
         planes: &layout.planes,
+        plane_rows: &layout.plane_rows,
         sections: &sections,
         normals: &normals,
     };
@@ -199,6 +205,13 @@ fn layout(surface: &Surface, params: &Params) -> Result<Layout, HotBladeError> {
         row_targets.push(ids);
     }
     let targets = positions.len();
+    let mut plane_rows = vec![(f64::INFINITY, f64::NEG_INFINITY); targets];
+    for (r, ids) in row_targets.iter().enumerate() {
+        let (lo, hi) = grid.row_range(r);
+        for &id in ids {
+            plane_rows[id] = (plane_rows[id].0.min(lo), plane_rows[id].1.max(hi));
+        }
+    }
     let mut between: Vec<Vec<(usize, f64)>> = vec![Vec::new(); targets];
     for ids in &row_targets {
         for w in ids.windows(2) {
@@ -216,6 +229,7 @@ fn layout(surface: &Surface, params: &Params) -> Result<Layout, HotBladeError> {
         planes: positions.iter().map(|&a| family.at(a)).collect(),
         targets,
         row_targets,
+        plane_rows,
         between,
     })
 }
