@@ -65,9 +65,9 @@ struct Cell {
     /// With a carrier: the block's frame in its flange's frame, from the report.
     grip: Option<Isometry3<f64>>,
     /// The report's deepest gouge of a blade outside its piece into what a block keeps,
-    /// and how many planes it checked (issue 37; `Design` and `HotBlade` on parallel
-    /// planes).
-    gouge: (f64, usize),
+    /// how many (plane, block) rows it checked, and the nearest a held end comes to a
+    /// block there (issue 37), in the job's units.
+    gouge: (f64, usize, f64),
     /// What the blocks keep, rebuilt from the job's surface (`HotBlade`,
     /// `FacadeSegmentation`).
     kept: Option<kept::Kept>,
@@ -128,7 +128,7 @@ fn run(path: &Path) -> Cell {
 /// The report's gouge figure: the deepest depth and the number of (plane, block) rows, over
 /// `cuts[].planes.clearance` (Design), `blocks[].clearance` (HotBlade) or
 /// `pieces[].sections[].blade_fit` (FacadeSegmentation).
-fn gouge_figure(report: &serde_json::Value) -> (f64, usize) {
+fn gouge_figure(report: &serde_json::Value) -> (f64, usize, f64) {
     let rows: Vec<&serde_json::Value> = report["cuts"]
         .as_array()
         .into_iter()
@@ -155,7 +155,11 @@ fn gouge_figure(report: &serde_json::Value) -> (f64, usize) {
         .iter()
         .map(|r| r["gouge_depth"].as_f64().unwrap())
         .fold(0.0, f64::max);
-    (deepest, rows.len())
+    let nearest = rows
+        .iter()
+        .map(|r| r["holder_clearance"].as_f64().unwrap())
+        .fold(f64::INFINITY, f64::min);
+    (deepest, rows.len(), nearest)
 }
 
 /// What the check measured.
@@ -176,6 +180,11 @@ struct Replay {
     /// Heated targets whose blade, rebuilt from its ends, misses the design altogether:
     /// it took the other equilibrium of a nearly taut blade (not checked).
     other_equilibrium: usize,
+    /// Of those, the targets where every blade found runs below the design.
+    ambiguous_gouging: usize,
+    /// The nearest a held end (a TCP) comes to the block at the fixture at a heated
+    /// target, mm (negative: inside it).
+    nearest_holder: f64,
 }
 
 /// Position and angle precision of a printed robtarget against forward kinematics: 3
@@ -357,8 +366,9 @@ fn check_heated(
             .ok_or(format!("no size of block {block}"))?;
         let to_block = ma.wobj.inverse();
         let normal = to_block.rotation * (ma.pose.rotation * nalgebra::Vector3::z());
-        // the blade the ends allow that runs through the cut: the shortest turning first
-        let mut best: Option<(f64, f64)> = None;
+        // the blades the ends allow (a turning off by whole turns too): the one through
+        // the cut is the one the program means
+        let mut found: Vec<(f64, f64)> = Vec::new();
         for turns in [0.0, -1.0, 1.0] {
             let Ok(points) = robot::blade_turned([&ma.pose, &mb.pose], blade, 128, turns) else {
                 continue;
@@ -368,17 +378,16 @@ fn check_heated(
                 .map(|p| (to_block * nalgebra::Point3::from(*p)).coords)
                 .collect();
             if let Some(c) = kept.below(block, size, &normal, &local)? {
-                if best.is_none_or(|b| c.1 < b.1) {
-                    best = Some(c);
+                found.push(c);
+                if c.1 <= kept.consistency {
+                    break;
                 }
             }
-            if best.is_some_and(|b| b.1 <= kept.consistency) {
-                break;
-            }
         }
-        let Some((deepest, nearest)) = best else {
+        let Some(&(deepest, nearest)) = found.iter().min_by(|x, y| x.1.total_cmp(&y.1)) else {
             continue;
         };
+        let shallowest = found.iter().map(|c| c.0).fold(f64::INFINITY, f64::min);
         if deepest > kept.tolerance && (nearest <= kept.consistency || !kept.is_facade()) {
             return Err(format!(
                 "{} (\\ID {:?}): the heated blade runs {deepest:.1} mm below the design inside block {block} (a gouge)",
@@ -386,23 +395,59 @@ fn check_heated(
             ));
         }
         if nearest > kept.consistency {
-            // a facade's blade may have other equilibria with the same ends (a longer
-            // blade with waves beyond its part): one that misses the cut is not the one
-            // the program means, and says nothing of it; a hot blade's always meets it
-            if kept.is_facade() {
-                r.other_equilibrium += 1;
-                continue;
+            if !kept.is_facade() {
+                return Err(format!(
+                    "{} (\\ID {:?}): the heated blade in block {block} misses the design by {nearest:.2} mm",
+                    ma.target, ma.id
+                ));
             }
-            return Err(format!(
-                "{} (\\ID {:?}): the heated blade in block {block} misses the design by {nearest:.2} mm",
-                ma.target, ma.id
-            ));
+            // a facade's blade, longer than its part and waving beyond it, may have other
+            // equilibria with the same held ends: one that misses the part is not the one
+            // the program means. Where every one found runs below the design, the blade
+            // would gouge if it took one of them: counted apart (a nearly taut blade's
+            // other equilibrium; a program lowered on purpose lands here too)
+            if shallowest > kept.tolerance {
+                r.ambiguous_gouging += 1;
+            }
+            r.other_equilibrium += 1;
+            continue;
         }
         r.heated_targets += 1;
         r.deepest_below = r.deepest_below.max(deepest);
         r.farthest_touch = r.farthest_touch.max(nearest);
     }
     Ok(())
+}
+
+/// The signed distance (mm; negative inside) of `p` from the box `[0, size]`.
+fn to_box(p: &nalgebra::Vector3<f64>, size: &[f64; 3]) -> f64 {
+    let d: Vec<f64> = (0..3).map(|i| (-p[i]).max(p[i] - size[i])).collect();
+    if d.iter().all(|v| *v <= 0.0) {
+        d.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+    } else {
+        d.iter().map(|v| v.max(0.0).powi(2)).sum::<f64>().sqrt()
+    }
+}
+
+/// The nearest either held end comes to the block at the fixture over the heated targets
+/// (where the holders must stay off the block while the blade cuts), mm.
+fn nearest_holder(a: &reader::Task, b: &reader::Task) -> Result<f64, String> {
+    let mut nearest = f64::INFINITY;
+    for (ma, mb) in a.moves.iter().zip(&b.moves) {
+        let (Some(true), Some(block)) = (ma.heat, ma.block) else {
+            continue;
+        };
+        let size = a
+            .blocks
+            .get(&block)
+            .ok_or(format!("no size of block {block}"))?;
+        let to_block = ma.wobj.inverse();
+        for m in [ma, mb] {
+            let l = to_block * nalgebra::Point3::from(m.pose.translation.vector);
+            nearest = nearest.min(to_box(&l.coords, size));
+        }
+    }
+    Ok(nearest)
 }
 
 /// The tasks' MultiMove rules: the same synchronized segments, increasing `\ID`s, every
@@ -493,6 +538,12 @@ fn carried(cell: &Cell, tasks: &mut [reader::Task]) -> Result<Vec<Isometry3<f64>
 
 /// What is wrong with a cell's program.
 fn check(cell: &Cell) -> Result<Replay, String> {
+    check_with(cell, true)
+}
+
+/// [`check`], the robots' joints left out with `joints` false (a target moved on purpose
+/// no longer matches its stated joints: the blade's checks are then seen alone).
+fn check_with(cell: &Cell, joints: bool) -> Result<Replay, String> {
     let mut tasks = cell
         .modules
         .iter()
@@ -531,8 +582,9 @@ fn check(cell: &Cell) -> Result<Replay, String> {
     if let Some(kept) = &cell.kept {
         check_heated(a, b, cell.blade, kept, &mut r)?;
     }
+    r.nearest_holder = nearest_holder(a, b)?;
     let world = vec![Isometry3::identity(); parents.len()];
-    for (k, t) in tasks.iter().enumerate() {
+    for (k, t) in tasks.iter().enumerate().filter(|_| joints) {
         let frames = if k < 2 { &parents } else { &world };
         check_joints(&t.moves, frames, &cell.robots[k], &mut r)?;
     }
@@ -547,7 +599,7 @@ fn replay_all(prefix: &str) {
         let r = check(&cell).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert!(r.moves > 0 && r.cuts > 0, "{}: {r:?}", path.display());
         // every shipped job that writes robot programs is clean: its report says 0
-        let (deepest, rows) = cell.gouge;
+        let (deepest, rows, holder) = cell.gouge;
         assert_eq!(deepest, 0.0, "{}: a gouge in the report", path.display());
         // and the replay measured that on the blades the programs hold
         if cell.kept.is_some() {
@@ -557,17 +609,29 @@ fn replay_all(prefix: &str) {
                 path.display()
             );
         }
+        // the held ends: clear of the block at every heated target exactly when the report
+        // says so (1 % of the blade; in 3D a plane's own faces along the cut count too, so
+        // the replay's figure is the report's or nearer)
+        let margin = 0.01 * cell.blade;
+        assert_eq!(
+            holder > margin,
+            r.nearest_holder > margin,
+            "{}: holders: report {holder}, replay {}",
+            path.display(),
+            r.nearest_holder
+        );
         let replayed = if cell.kept.is_some() {
             format!(
-                "; replayed: {} heated targets ({} more rebuilt on the other equilibrium), deepest below the design {:.2} mm, farthest from it {:.2} mm",
-                r.heated_targets, r.other_equilibrium, r.deepest_below, r.farthest_touch
+                "; replayed: {} heated targets ({} more rebuilt on another equilibrium, {} of them all below the design), deepest below the design {:.2} mm, farthest from it {:.2} mm",
+                r.heated_targets, r.other_equilibrium, r.ambiguous_gouging, r.deepest_below, r.farthest_touch
             )
         } else {
             String::new()
         };
         println!(
-            "{}: gouge 0 on {rows} (plane, block) rows{replayed}",
-            path.file_name().unwrap().to_string_lossy()
+            "{}: gouge 0 on {rows} (plane, block) rows{replayed}; nearest holder: report {holder:.3}, replay {:.3} mm",
+            path.file_name().unwrap().to_string_lossy(),
+            r.nearest_holder
         );
     }
 }
@@ -700,6 +764,34 @@ fn the_check_fails_on_programs_made_unsafe_on_purpose() {
         1,
     );
     assert!(check(&with(r1, hot)).unwrap_err().contains("heat outputs"));
+}
+
+#[test]
+fn a_facade_program_lowered_on_purpose_is_caught() {
+    let cell = run(&Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs/seg-mesh-trace.ron"));
+    let good = check(&cell).unwrap();
+    assert_eq!(
+        (good.other_equilibrium, good.ambiguous_gouging),
+        (0, 0),
+        "{good:?}"
+    );
+    let (r1, r2) = (cell.modules[0].clone(), cell.modules[1].clone());
+    // a cutting target of block 1 lowered by 10 mm in both tasks: no blade these ends
+    // allow meets its part, and every one runs below the design
+    let lowered = Cell {
+        modules: vec![
+            shifted(&r1, "pB1_C3", [0.0, 0.0, -10.0]),
+            shifted(&r2, "pB1_C3", [0.0, 0.0, -10.0]),
+        ],
+        ..cell.clone()
+    };
+    match check_with(&lowered, false) {
+        Ok(r) => assert_eq!(r.ambiguous_gouging, 1, "{r:?}"),
+        Err(e) => assert!(
+            e.contains("pB1_C3") && e.contains("below the design"),
+            "{e}"
+        ),
+    }
 }
 
 #[test]

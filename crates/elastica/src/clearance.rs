@@ -286,8 +286,8 @@ pub fn place_all(
 /// clearances, and the share of the extension before the piece that was chosen.
 ///
 /// # Errors
-/// A blade cannot be extended or evaluated; `blocks` returns other than one section per
-/// plane.
+/// The blade cannot be extended or evaluated at `params`' own share (other places that
+/// fail are passed over); `blocks` returns other than one section per plane.
 pub fn place_all_by(
     sections: &[Segment],
     params: &BladeParams,
@@ -339,7 +339,10 @@ pub fn place_all_by(
         if best_score.0 == 0 && best_score.1 == 0 {
             break;
         }
-        let all = at(share)?;
+        // a place the blade cannot be extended to (or evaluated at) is not a candidate
+        let Ok(all) = at(share) else {
+            continue;
+        };
         let s = score(&all);
         if (s.0, s.1)
             .cmp(&(best_score.0, best_score.1))

@@ -11,7 +11,7 @@ use crate::Facade;
 
 /// Places tried across the room the piece leaves in its block (besides those that put a
 /// held end just clear of a face).
-const SLIDES: usize = 128;
+pub const SLIDES: usize = 128;
 
 /// The block's `[min, max]` across the cut and up, in plane coordinates.
 fn extent(facade: &Facade, block: &Block) -> [[f64; 2]; 2] {
@@ -43,11 +43,17 @@ pub fn block_section(facade: &Facade, block: &Block, design: &Clipped) -> Sectio
 
 /// `block` slid across the cut so that the held ends of `blades` (in plane coordinates)
 /// clear it best: unchanged when every end already clears it by [`HOLDER_MARGIN`] of the
-/// blade's `length`; else the place, within the room the piece leaves (the block still
-/// holds it), that maximizes the smallest distance of an end from the block — tried at
-/// [`SLIDES`] + 1 equal steps and where an end sits just clear of a face — the nearest
-/// to where it was among equals.
-pub fn slide_block(facade: &Facade, block: &Block, blades: &[Blade], length: f64) -> Block {
+/// blade's `length`; else the place that maximizes the smallest distance of an end from
+/// the block among those where the block still holds the piece (`piece`: its extent
+/// across the cut, plane `u`) — tried at [`SLIDES`] + 1 equal steps and where an end
+/// sits just clear of a face — the nearest to where it was among equals.
+pub fn slide_block(
+    facade: &Facade,
+    block: &Block,
+    piece: (f64, f64),
+    blades: &[Blade],
+    length: f64,
+) -> Block {
     let [[u0, v0], [u1, v1]] = extent(facade, block);
     let margin = HOLDER_MARGIN * length;
     let ends: Vec<[f64; 2]> = blades
@@ -61,17 +67,19 @@ pub fn slide_block(facade: &Facade, block: &Block, blades: &[Blade], length: f64
             .map(|&p| to_rect(p, r))
             .fold(f64::INFINITY, f64::min)
     };
-    let room = 0.5 * (block.size[1] - block.used[1]).max(0.0);
-    if ends.is_empty() || worst(0.0) > margin || room == 0.0 {
+    // the shifts that keep the piece inside: the block's min face at most at the piece's
+    // start, its max face at least at the piece's end
+    let (lo, hi) = (piece.1 - u1, piece.0 - u0);
+    if ends.is_empty() || worst(0.0) > margin || !(hi > lo) {
         return block.clone();
     }
-    let steps = (0..=SLIDES).map(|i| -room + 2.0 * room * i as f64 / SLIDES as f64);
+    let steps = (0..=SLIDES).map(|i| lo + (hi - lo) * i as f64 / SLIDES as f64);
     let faces = ends.iter().flat_map(|p| {
         // the block's min face just past an end, or its max face just before one
         [p[0] + 2.0 * margin - u0, p[0] - 2.0 * margin - u1]
     });
     let best = steps
-        .chain(faces.filter(|s| s.abs() <= room))
+        .chain(faces.filter(|s| *s >= lo && *s <= hi))
         .map(|s| (worst(s), s))
         .fold((worst(0.0), 0.0f64), |best, c| {
             let better = c.0 > best.0 + 1e-9 * length
@@ -146,7 +154,13 @@ mod tests {
         let f = facade();
         // a 300 wide part centred in a 600 wide block, blade 800: ends 100 out
         let b = block(0.0, 600.0, 300.0);
-        let moved = slide_block(&f, &b, &[blade(150.0, 450.0, 800.0, 0.5)], 800.0);
+        let moved = slide_block(
+            &f,
+            &b,
+            (150.0, 450.0),
+            &[blade(150.0, 450.0, 800.0, 0.5)],
+            800.0,
+        );
         assert_eq!(moved, b);
     }
 
@@ -157,12 +171,27 @@ mod tests {
         // the part: the held end at 125 lies in the block, the other at 925 far out
         let b = block(0.0, 600.0, 300.0);
         let blades = [blade(150.0, 450.0, 800.0, 0.05)];
-        let moved = slide_block(&f, &b, &blades, 800.0);
+        let moved = slide_block(&f, &b, (150.0, 450.0), &blades, 800.0);
         let u = moved.origin[1];
         // the block now starts past that end by the margin, and still holds the part
         assert!(u > 125.0 + HOLDER_MARGIN * 800.0, "{u}");
         assert!(u <= 150.0 && u + 600.0 >= 450.0, "{u}");
         assert_eq!((moved.origin[0], moved.origin[2]), (0.0, -400.0));
+    }
+
+    #[test]
+    fn a_block_off_centre_slides_only_as_far_as_it_still_holds_its_piece() {
+        let f = facade();
+        // the part [150, 450] at the block's min face already: sliding on towards the end
+        // at 125 would leave the part
+        let b = block(150.0, 600.0, 300.0);
+        let blades = [blade(150.0, 450.0, 800.0, 0.05)];
+        let moved = slide_block(&f, &b, (150.0, 450.0), &blades, 800.0);
+        let u = moved.origin[1];
+        assert!(u <= 150.0 && u + 600.0 >= 450.0, "{u}");
+        // and sliding twice is sliding once
+        let again = slide_block(&f, &moved, (150.0, 450.0), &blades, 800.0);
+        assert_eq!(again, moved);
     }
 
     #[test]
@@ -172,7 +201,7 @@ mod tests {
         // inside the block wherever it stands; the best keeps them equally deep
         let b = block(-20.0, 600.0, 560.0);
         let blades = [blade(0.0, 560.0, 580.0, 0.5)];
-        let moved = slide_block(&f, &b, &blades, 580.0);
+        let moved = slide_block(&f, &b, (0.0, 560.0), &blades, 580.0);
         let u = moved.origin[1];
         assert!(u <= 0.0 && u + 600.0 >= 560.0);
         assert!((u + 20.0).abs() < 600.0 / SLIDES as f64, "{u}");

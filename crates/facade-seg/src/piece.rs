@@ -22,7 +22,8 @@ pub struct PiecePart {
 
 /// A block placed to hold a piece: axis-aligned in the facade's frame (cutting direction,
 /// `u`, `v`), `origin` its min corner in world coordinates. Along the cut it is its row's
-/// slab; across the cut it is centred on the piece; up, its base is at the piece's lowest
+/// slab; across the cut it is centred on the piece (rationalizing may slide it, still
+/// holding the piece, to clear the blade's holders); up, its top is at the piece's highest
 /// point.
 #[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Block {

@@ -138,7 +138,14 @@ pub fn pose_piece(
     // plane), the extension kept out of what the block keeps where it can be; for each
     // place tried the block is slid across the cut to clear the blades' held ends
     let segments: Vec<_> = kept.iter().map(|(_, _, f)| f.segment).collect();
-    let slid = |blades: &[Blade]| slide_block(facade, &piece.block, blades, bp.length);
+    // the piece's extent across the cut (plane u), which the block must keep holding
+    let extent = kept
+        .iter()
+        .flat_map(|(_, d, _)| d.points.iter().map(|q| q[0]))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), u| {
+            (lo.min(u), hi.max(u))
+        });
+    let slid = |blades: &[Blade]| slide_block(facade, &piece.block, extent, blades, bp.length);
     let sections_in = |block: &Block| -> Vec<Section> {
         kept.iter()
             .map(|(_, d, _)| block_section(facade, block, d))

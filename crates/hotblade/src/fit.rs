@@ -318,12 +318,13 @@ fn design_tangents(
 
 /// The block's section on target plane `index` in the plane's coordinates: up, the grid's
 /// height; across, where the plane crosses the block — the part's column (grid `u` in
-/// `range`) within the row(s) the plane cuts (grid `d`) — which the held ends must keep
+/// `range`) within the row(s) the plane is a target of (grid `d`) — which the held ends must keep
 /// out of, and of that, where the design covers it (`covered`, plane `u`), where kept
 /// material is sought. For the grid's parallel planes this is the block's rectangle; a
 /// plane that follows a curve stands vertical, as the grid's `v` does, so it cuts the
 /// block in a rectangle too. `None` when the plane is not vertical to the grid, or misses
-/// the block. The block keeps what lies below the surface.
+/// the block (a curve's end plane can leave its row's block within the column: its section
+/// is then not checked). The block keeps what lies below the surface.
 fn block_section(
     ctx: &Context<'_>,
     index: usize,

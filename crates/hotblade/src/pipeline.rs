@@ -33,7 +33,7 @@ pub(crate) struct Context<'a> {
     pub params: &'a Params,
     pub grid: &'a Grid,
     pub planes: &'a [Plane],
-    /// Per target plane, the grid `d` range of the row(s) it cuts.
+    /// Per target plane, the grid `d` range of the row(s) it is a target of.
     pub plane_rows: &'a [(f64, f64)],
     pub sections: &'a [Vec<Section>],
     pub normals: &'a SurfaceNormals<'a>,
@@ -51,8 +51,8 @@ struct Layout {
     targets: usize,
     /// Per row, its target planes in cutting order.
     row_targets: Vec<Vec<usize>>,
-    /// Per target plane, the grid `d` range of the row(s) it cuts (both rows' at a
-    /// shared face).
+    /// Per target plane, the grid `d` range of the row(s) it is a target of (both rows'
+    /// at a shared face).
     plane_rows: Vec<(f64, f64)>,
     /// Per target plane, the deviation planes towards the next target of its row, with
     /// their share `t` of the way.

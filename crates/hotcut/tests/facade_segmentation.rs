@@ -261,7 +261,10 @@ fn holders_on_a_block_are_reported_as_the_targets_place_them_and_strict_refuses(
                 "piece {}: {measured} vs {reported}",
                 p["id"]
             );
-            assert_eq!(f["holders_clear"].as_bool(), Some(measured > 0.01 * blade));
+            // (printed to a few decimals: judged away from the margin itself)
+            if (measured - 0.01 * blade).abs() > 1e-6 * blade {
+                assert_eq!(f["holders_clear"].as_bool(), Some(measured > 0.01 * blade));
+            }
             checked += 1;
             colliding += usize::from(measured <= 0.01 * blade);
         }
