@@ -24,7 +24,9 @@
 //! shooting amplifies its errors like `e^{√λ L}`, the result is polished about the
 //! pendulum's top (`taut`), with `1 − k` kept to full precision
 //! (`ElasticaParams::one_minus_k`); near a buckling load, in `(q, s₀, ℓ)` with wide
-//! differences. A curve whose slack is below [`crate::bvp::STRAIGHT_SLACK`] and whose
+//! differences, and where Newton stalls there with the end short of the chord by a
+//! buckled mode's slack, `λ₁` is followed alone towards tension to where the end meets
+//! the chord (`pendulum::along_tension`) and Newton restarted. A curve whose slack is below [`crate::bvp::STRAIGHT_SLACK`] and whose
 //! tangents lie within [`crate::bvp::STRAIGHT_ANGLE`] of its chord is a line.
 //!
 //! Known limit (issue 22 in progress). Measured on random Béziers with a unit chord:
@@ -44,7 +46,9 @@ use crate::error::{DesignError, Result};
 
 mod pendulum;
 mod taut;
-use pendulum::{closed_form_starts, discrete_pendulum, newton_pendulum, pendulum_of, shoot_from};
+use pendulum::{
+    along_tension, closed_form_starts, discrete_pendulum, newton_pendulum, pendulum_of, shoot_from,
+};
 
 /// The data an elastica must meet.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -368,6 +372,15 @@ fn solve_unit(d: &EndData) -> Result<Solution> {
                 ) = (done, seg)
                 {
                     done = keep(newton(d, p.family, [p.k, p.s0, p.l], WIDE_STEP));
+                }
+                // stalled near a buckling load, the end short of the chord by a buckled
+                // mode's slack: λ₁ followed towards tension to where it meets it
+                if !done {
+                    let start = pendulum_of(&seg).and_then(|u| along_tension(d, u));
+                    if let Some((seg, _, it)) = start.and_then(|u| newton_pendulum(d, u, TOLERANCE))
+                    {
+                        done = keep(standard(d, &seg).map(|(s, r)| (s, r, it)));
+                    }
                 }
             }
         }

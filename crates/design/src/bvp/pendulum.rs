@@ -293,6 +293,76 @@ fn pendulum_residuals(d: &EndData, u: [f64; 3]) -> Option<(Segment, [f64; 3])> {
     r.iter().all(|v| v.is_finite()).then_some((seg, r))
 }
 
+/// `(κ₀, λ₂)` from `u` meeting the end's height and the turning with `λ₁` held at
+/// `lambda1` (Newton on two unknowns, at most 50 steps), and the end's remaining
+/// residual along the chord; `None` where it does not converge.
+fn across_at(d: &EndData, u: [f64; 3], lambda1: f64) -> Option<([f64; 3], f64)> {
+    let mut u = [u[0], lambda1, u[2]];
+    let two = |u: [f64; 3]| pendulum_residuals(d, u).map(|(_, r)| r);
+    let mut r = two(u)?;
+    for _ in 0..50 {
+        if r[1].abs().max(r[2].abs()) <= 1e-15 {
+            break;
+        }
+        let h = [1e-7 * u[0].abs().max(1.0), 1e-7 * u[2].abs().max(1.0)];
+        let a = two([u[0] + h[0], u[1], u[2]])?;
+        let b = two([u[0], u[1], u[2] + h[1]])?;
+        let j = nalgebra::Matrix2::new(
+            (a[1] - r[1]) / h[0],
+            (b[1] - r[1]) / h[1],
+            (a[2] - r[2]) / h[0],
+            (b[2] - r[2]) / h[1],
+        );
+        let step = j.lu().solve(&nalgebra::Vector2::new(r[1], r[2]))?;
+        let next = [u[0] - step[0], u[1], u[2] - step[1]];
+        let rn = two(next)?;
+        if rn[1].abs().max(rn[2].abs()) >= r[1].abs().max(r[2].abs()) {
+            break;
+        }
+        (u, r) = (next, rn);
+    }
+    (r[1].abs().max(r[2].abs()) <= 1e-12).then_some((u, r[0]))
+}
+
+/// Pendulum data for `d` found by following `λ₁` alone, from `u` (a Newton that stalled
+/// near a buckling load: the end short of the chord by the slack a buckled mode takes)
+/// towards tension, each `λ₁` meeting the end's height and the turning
+/// ([`across_at`]), to where the end meets the chord: the first sign change of that
+/// residual over `λ₁ = u₁ − 10ʲ` (j = −3 … 8), then bisection (at most 100 halvings).
+/// `None` when it does not change sign.
+pub(super) fn along_tension(d: &EndData, u: [f64; 3]) -> Option<[f64; 3]> {
+    let (mut lo, mut r_lo) = across_at(d, u, u[1])?;
+    let mut hi = None;
+    for j in -3..=8 {
+        let l1 = u[1] - 10f64.powi(j);
+        let Some((v, r)) = across_at(d, lo, l1) else {
+            continue;
+        };
+        if r.signum() != r_lo.signum() {
+            hi = Some((v, r));
+            break;
+        }
+        (lo, r_lo) = (v, r);
+    }
+    let (mut hi, _) = hi?;
+    for _ in 0..100 {
+        let mid = 0.5 * (lo[1] + hi[1]);
+        if !(mid > hi[1].min(lo[1]) && mid < hi[1].max(lo[1])) {
+            break;
+        }
+        let (v, r) = across_at(d, lo, mid)?;
+        if r == 0.0 {
+            return Some(v);
+        }
+        if r.signum() == r_lo.signum() {
+            (lo, r_lo) = (v, r);
+        } else {
+            hi = v;
+        }
+    }
+    Some(lo)
+}
+
 /// Levenberg–Marquardt iterations at most on the pendulum data.
 const MAX_PENDULUM: usize = 100;
 
