@@ -148,7 +148,7 @@ pub fn write_gltf(
     let mut nodes: Vec<Value> = Vec::new();
     let mut children: Vec<usize> = Vec::new();
     let mut push_view = |bytes: &[u8], target: u32, buffer: &mut Vec<u8>| -> usize {
-        while buffer.len() % 4 != 0 {
+        while !buffer.len().is_multiple_of(4) {
             buffer.push(0);
         }
         let offset = buffer.len();

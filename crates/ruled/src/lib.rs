@@ -372,7 +372,7 @@ fn cut_direction(
         .iter()
         .enumerate()
         .map(|(i, v)| {
-            let is_a = (i / params.controls) % 2 == 0;
+            let is_a = (i / params.controls).is_multiple_of(2);
             if is_a {
                 z_top + scale * v
             } else {
