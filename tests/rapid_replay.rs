@@ -345,6 +345,27 @@ fn check_blade(
     Ok(())
 }
 
+/// The heated targets of the two blade tasks: both moves, the block at the fixture and
+/// its size.
+#[allow(clippy::type_complexity)]
+fn heated<'a>(
+    a: &'a reader::Task,
+    b: &'a reader::Task,
+) -> Result<Vec<(&'a reader::Move, &'a reader::Move, usize, &'a [f64; 3])>, String> {
+    let mut out = Vec::new();
+    for (ma, mb) in a.moves.iter().zip(&b.moves) {
+        let (Some(true), Some(block)) = (ma.heat, ma.block) else {
+            continue;
+        };
+        let size = a
+            .blocks
+            .get(&block)
+            .ok_or(format!("no size of block {block}"))?;
+        out.push((ma, mb, block, size));
+    }
+    Ok(out)
+}
+
 /// At every heated target, the blade rebuilt from its ends against what the block keeps
 /// (issue 37): where the rebuilt blade touches the design (the cut: which shows the
 /// surface, the block's placement and the blade were rebuilt right), no point of it inside
@@ -356,14 +377,7 @@ fn check_heated(
     kept: &kept::Kept,
     r: &mut Replay,
 ) -> Result<(), String> {
-    for (ma, mb) in a.moves.iter().zip(&b.moves) {
-        let (Some(true), Some(block)) = (ma.heat, ma.block) else {
-            continue;
-        };
-        let size = a
-            .blocks
-            .get(&block)
-            .ok_or(format!("no size of block {block}"))?;
+    for (ma, mb, block, size) in heated(a, b)? {
         let to_block = ma.wobj.inverse();
         let normal = to_block.rotation * (ma.pose.rotation * nalgebra::Vector3::z());
         // the blades the ends allow (a turning off by whole turns too): the one through
@@ -433,14 +447,7 @@ fn to_box(p: &nalgebra::Vector3<f64>, size: &[f64; 3]) -> f64 {
 /// (where the holders must stay off the block while the blade cuts), mm.
 fn nearest_holder(a: &reader::Task, b: &reader::Task) -> Result<f64, String> {
     let mut nearest = f64::INFINITY;
-    for (ma, mb) in a.moves.iter().zip(&b.moves) {
-        let (Some(true), Some(block)) = (ma.heat, ma.block) else {
-            continue;
-        };
-        let size = a
-            .blocks
-            .get(&block)
-            .ok_or(format!("no size of block {block}"))?;
+    for (ma, mb, _, size) in heated(a, b)? {
         let to_block = ma.wobj.inverse();
         for m in [ma, mb] {
             let l = to_block * nalgebra::Point3::from(m.pose.translation.vector);
