@@ -1,7 +1,7 @@
 //! Block segmentation wall time on two benchmark meshes (torus, octopus; the octopus is
 //! third-party data, skipped loudly when absent, see `testdata`) at a fixed
 //! iteration cap, and the exact overlap volume of two rotated blocks.
-//! `cargo bench -p blocks --bench segment`.
+//! `cargo bench -p hotcut-blocks --bench segment`.
 
 use blocks::{cuboid::overlap_volume, segment, Cuboid, Params};
 use geom::mesh::TriMesh;
@@ -12,7 +12,7 @@ fn main() {
 }
 
 fn mesh(name: &str) -> Option<TriMesh> {
-    let path = testdata::mesh(name, "cargo bench -p blocks --bench segment")?;
+    let path = testdata::mesh(name, "cargo bench -p hotcut-blocks --bench segment")?;
     Some(TriMesh::load_obj(&path).expect("benchmark mesh"))
 }
 

@@ -1,4 +1,4 @@
-//! Segments one mesh and prints the counts: `cargo run --release -p blocks --example
+//! Segments one mesh and prints the counts: `cargo run --release -p hotcut-blocks --example
 //! segment_mesh -- MESH EDGE [RESTARTS] [OPS: any of t r a] [MAX_ITERATIONS] [SPACING]`.
 
 use std::time::Instant;

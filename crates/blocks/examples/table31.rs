@@ -2,7 +2,7 @@
 //! for each model, a block edge is searched so that the initial grid is within ±10 % of
 //! the paper's "No B Init", then the full algorithm runs with `RESTARTS` restarts.
 //!
-//! `cargo run --release -p blocks --example table31 -- [RESTARTS] [ablation] [surface] [spacing=F] [edge=F] [MODEL…]`
+//! `cargo run --release -p hotcut-blocks --example table31 -- [RESTARTS] [ablation] [surface] [spacing=F] [edge=F] [MODEL…]`
 //!
 //! `surface` switches to `Coverage::Surface`, `spacing=F` sets the sample spacing, `edge=F`
 //! fixes the block edge instead of searching it; with

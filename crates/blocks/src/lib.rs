@@ -50,15 +50,17 @@ use std::time::Instant;
 use geom::mesh::TriMesh;
 use nalgebra::{UnitQuaternion, Vector3};
 use rayon::prelude::*;
-use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
 
 pub use cuboid::Cuboid;
 pub use error::{BlockError, Result};
 pub use samples::{Coverage, SampleCounts};
 
 /// One of the operations of §3.3 (the ablation of Table 3.2 picks a subset).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize, schemars::JsonSchema)
+)]
 pub enum Operation {
     /// Pure translation (§3.3.2).
     Translate,
@@ -69,8 +71,12 @@ pub enum Operation {
 }
 
 /// Parameters of a block segmentation.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, default)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize, schemars::JsonSchema)
+)]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields, default))]
 pub struct Params {
     /// Block edge lengths (model units).
     pub block_size: [f64; 3],
@@ -119,7 +125,11 @@ impl Default for Params {
 
 /// A block in the result: centre, rotation `[w, x, y, z]` (a unit quaternion taking block
 /// axes to model axes) and edge lengths, in the mesh's coordinates.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize, schemars::JsonSchema)
+)]
 pub struct Placement {
     /// Centre.
     pub center: [f64; 3],
@@ -162,7 +172,8 @@ impl Placement {
 }
 
 /// Which step of the loop an iteration was.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub enum Phase {
     /// The initial grid.
     Init,
@@ -173,7 +184,8 @@ pub enum Phase {
 }
 
 /// Block count and objective after one iteration (fig. 3.6).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct IterationRecord {
     /// Iteration number (0: the initial state).
     pub iteration: usize,
@@ -186,7 +198,8 @@ pub struct IterationRecord {
 }
 
 /// Accepted operations of a run.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Acceptance {
     /// Translations performed.
     pub translations: usize,
@@ -199,7 +212,8 @@ pub struct Acceptance {
 }
 
 /// Why a run stopped.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub enum StopReason {
     /// Two alignment passes in a row removed nothing (or, without alignment, a cycle
     /// of moves improved nothing).
@@ -211,7 +225,8 @@ pub enum StopReason {
 }
 
 /// One restart's outcome.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct RestartSummary {
     /// Its seed.
     pub seed: u64,
@@ -226,7 +241,8 @@ pub struct RestartSummary {
 }
 
 /// A finished block segmentation.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Segmentation {
     /// The blocks, in the mesh's coordinates.
     pub blocks: Vec<Placement>,
@@ -261,7 +277,8 @@ pub struct Segmentation {
 }
 
 /// How the model was sampled.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct SamplingInfo {
     /// Samples by kind.
     pub counts: SampleCounts,

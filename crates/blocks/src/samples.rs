@@ -21,16 +21,10 @@ use crate::error::{BlockError, Result};
 use crate::obb::BoxFit;
 
 /// What the blocks must cover.
-#[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Default,
-    serde::Serialize,
-    serde::Deserialize,
-    schemars::JsonSchema,
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize, schemars::JsonSchema)
 )]
 pub enum Coverage {
     /// The model's volume lies in the union of blocks.
@@ -55,7 +49,8 @@ pub struct Samples {
 }
 
 /// Sample counts by kind.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, schemars::JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct SampleCounts {
     /// Mesh vertices.
     pub vertices: usize,

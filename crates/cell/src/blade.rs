@@ -8,7 +8,6 @@
 //! convention of [`elastica::sweep`].
 
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
-use serde::Serialize;
 
 use elastica::discrete::{discrete_elastica, DiscreteParams};
 
@@ -34,7 +33,8 @@ pub struct PlanarPose {
 pub const SHAPE_SEGMENTS: usize = 48;
 
 /// A blade's shape rebuilt from its ends.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct BladeShape {
     /// Points along the blade, first end to second.
     pub points: Vec<[f64; 3]>,

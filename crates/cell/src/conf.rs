@@ -2,14 +2,12 @@
 //! turns of axes 1, 4 and 6, and `cfx`, which of the eight arm configurations the robot is
 //! in. Definitions and sources: `docs/robot-cell.md` §3.
 
-use schemars::JsonSchema;
-use serde::Serialize;
-
 use crate::kinematics::Joints;
 use crate::model::RobotModel;
 
 /// `[cf1, cf4, cf6, cfx]` of a robtarget.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Conf {
     /// Quarter turn of axis 1.
     pub cf1: i32,

@@ -21,8 +21,6 @@
 //! distance between them never exceeds the longer of the move's two poses.
 
 use nalgebra::{Isometry3, Vector3};
-use schemars::JsonSchema;
-use serde::Serialize;
 
 use crate::blade::{self, BladePose};
 use crate::error::{CellError, Result};
@@ -63,7 +61,8 @@ pub struct BlockCut {
 }
 
 /// What a move of the program does.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub enum Phase {
     /// To above the fixture, before anything else (from where the operator left the
     /// robots; no block stands there yet).
@@ -96,7 +95,8 @@ pub struct Step {
 }
 
 /// One robot's summary for one block.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct RobotCheck {
     /// Moves of the block with no joint solution within the limits.
     pub out_of_reach: usize,
@@ -112,7 +112,8 @@ pub struct RobotCheck {
 }
 
 /// One block's summary.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct BlockCheck {
     /// The block.
     pub block: usize,

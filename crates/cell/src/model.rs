@@ -2,17 +2,15 @@
 //! limits, with the built-in ABB robots of the hot-blade cells. The sources of every
 //! number are in `docs/robot-cell.md`.
 
-use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
-
 use crate::error::{CellError, Result};
 
 /// OPW parameters of a 6-axis arm with an ortho-parallel base and a spherical wrist,
 /// millimetres and radians. The paper's zero has the arm straight up; `offsets` bring it
 /// to the maker's zero (ABB: `[0, 0, −π/2, 0, 0, 0]`), `signs` flip axes that turn the
 /// other way.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Opw {
     /// Axis 1 to axis 2 along the arm, mm.
     pub a1: f64,
@@ -35,7 +33,8 @@ pub struct Opw {
 }
 
 /// A robot: its kinematics and its joint limits.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct RobotModel {
     /// Model name, e.g. `IRB 1600-6/1.45`.
     pub name: String,

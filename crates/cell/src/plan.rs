@@ -7,8 +7,6 @@
 //! change of the arm configuration, a joint jump (a flip through a singularity).
 
 use nalgebra::Isometry3;
-use schemars::JsonSchema;
-use serde::Serialize;
 
 use crate::conf::{conf, Conf};
 use crate::error::{CellError, Result};
@@ -36,7 +34,8 @@ pub const PIECE_MM: f64 = 25.0;
 pub const PIECE_RAD: f64 = 2.5 * std::f64::consts::PI / 180.0;
 
 /// The solution at one pose.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct PoseSolution {
     /// How many arm configurations reach the pose within the limits (whole turns of a
     /// joint not counted apart: [`crate::kinematics::configurations`]).
@@ -50,7 +49,8 @@ pub struct PoseSolution {
 }
 
 /// What is wrong with a sweep.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub enum SweepFlag {
     /// No solution within the joint limits at this pose (index).
     OutOfReach(usize),
@@ -68,7 +68,8 @@ pub enum SweepFlag {
 }
 
 /// One robot's sweep.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Sweep {
     /// Per pose.
     pub poses: Vec<PoseSolution>,

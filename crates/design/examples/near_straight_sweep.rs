@@ -4,7 +4,7 @@
 //! S-shaped; counts those whose elastica misses the end data by more than 10⁻⁹ (end points
 //! relative to the length, tangents in radians, length relative) or is not found.
 //!
-//! `cargo run --release -p design --example near_straight_sweep -- [count] [min_leg]`
+//! `cargo run --release -p hotcut-design --example near_straight_sweep -- [count] [min_leg]`
 //! (defaults 10 000 and 0.15). A fixed-seed generator: the same pieces every run.
 
 use design::bezier::Bezier;

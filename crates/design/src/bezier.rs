@@ -3,12 +3,11 @@
 //! speed of a regular cubic), the end data an elastica must share with the curve, and the
 //! angles of the control polygon ("Designing for Robotic Hot-Blade Cutting" fig. 12).
 
-use serde::{Deserialize, Serialize};
-
 use crate::error::{DesignError, Result};
 
 /// A planar cubic Bézier curve by its four control points.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Bezier {
     /// Control points b₀, b₁, b₂, b₃.
     pub p: [[f64; 2]; 4],

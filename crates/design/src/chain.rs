@@ -5,14 +5,13 @@
 //! ([`crate::proxy`]); because the elastica keep their Bézier's end points and end
 //! tangents, they join G¹ as well.
 
-use serde::Serialize;
-
 use crate::bezier::{wrap, Bezier};
 use crate::error::{DesignError, Result};
 use crate::proxy::{proxy, Proxy};
 
 /// Where a chain breaks the G¹ construction between pieces `face` and `face + 1`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct G1Break {
     /// The face: between piece `face` and piece `face + 1`.
     pub face: usize,

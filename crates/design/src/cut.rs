@@ -16,7 +16,6 @@ use elastica::segment::Segment;
 use elastica::sweep::{blade_pose, BladePose};
 use geom::slice::PlaneFrame;
 use rayon::prelude::*;
-use serde::Serialize;
 
 use crate::bezier::{wrap, Bezier};
 use crate::chain::g1_breaks;
@@ -30,7 +29,8 @@ pub const FACE_TOLERANCE: f64 = 1e-6;
 
 /// A design curve at one station: in plane coordinates (across, height) of the cutting
 /// plane.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum DesignCurve {
     /// One cubic Bézier per block, joined G¹ on the faces (fig. 14).
     Bezier(Vec<Bezier>),
@@ -39,7 +39,8 @@ pub enum DesignCurve {
 }
 
 /// Which construction a curve follows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum Form {
     /// G¹ Béziers.
     Bezier,
@@ -188,7 +189,8 @@ impl DesignCurve {
 }
 
 /// A design curve at an offset along the cut.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Station {
     /// Offset of its plane along the cut (the frame's normal).
     pub offset: f64,
@@ -221,7 +223,8 @@ pub struct CutParams {
 }
 
 /// One piece of a curve and its elastica.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct PieceResult {
     /// The design piece.
     pub design: Bezier,
@@ -239,7 +242,8 @@ pub struct PieceResult {
 }
 
 /// Where two neighbouring pieces' elastica meet on a face.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Joint {
     /// The face (1 … n − 1).
     pub face: usize,
@@ -252,7 +256,8 @@ pub struct Joint {
 }
 
 /// A curve on one plane and the elastica of its pieces.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct CurveResult {
     /// Offset along the cut.
     pub offset: f64,
@@ -285,7 +290,8 @@ impl CurveResult {
 }
 
 /// A designed cut and its elastica.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct CutResult {
     /// The construction.
     pub form: Form,

@@ -12,7 +12,6 @@
 
 use geom::slice::PlaneFrame;
 use nalgebra::Vector3;
-use serde::Serialize;
 
 /// A cutting plane's offset, design curve and elastica (polylines in plane coordinates).
 pub type PlaneCurves = (f64, Vec<[f64; 2]>, Vec<[f64; 2]>);
@@ -82,7 +81,8 @@ impl CutSurface {
 }
 
 /// The top of a block cut by several cuts.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Envelope {
     /// Indices of the cuts kept, in priority order (the primary first).
     pub order: Vec<usize>,

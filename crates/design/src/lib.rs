@@ -50,7 +50,9 @@ pub mod envelope;
 pub mod error;
 /// Lofting design curves along the cut.
 pub mod loft;
-/// The numerical spline approach: least bending energy within ε of the input.
+/// The numerical spline approach: least bending energy within ε of the input
+/// (feature `numerical`, which brings in clarabel).
+#[cfg(feature = "numerical")]
 pub mod numerical;
 /// How close a Bézier is to its elastica.
 pub mod proxy;

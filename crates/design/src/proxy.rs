@@ -6,7 +6,6 @@
 //! the deviation before any elastica is solved.
 
 use nalgebra::{Matrix3, Vector3};
-use serde::Serialize;
 
 use crate::bezier::Bezier;
 use crate::bvp::{solve, EndData};
@@ -17,7 +16,8 @@ use elastica::segment::Segment;
 pub const SAMPLES: usize = 200;
 
 /// A Bézier against its elastica.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Proxy {
     /// The elastica, t ∈ [0, 1] from b₀ to b₃.
     pub elastica: Segment,

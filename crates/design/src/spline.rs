@@ -10,13 +10,12 @@
 //! ([`BSpline::pieces`](crate::spline::BSpline::pieces), by blossoming), so that the Bézier tools — its elastica, its
 //! proxy measures — serve both constructions.
 
-use serde::Serialize;
-
 use crate::bezier::Bezier;
 use crate::error::{DesignError, Result};
 
 /// A clamped planar cubic B-spline whose interior knots are the block faces.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct BSpline {
     /// The faces `u₀ < … < uₙ` (n ≥ 1 pieces).
     pub faces: Vec<f64>,

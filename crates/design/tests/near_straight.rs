@@ -4,7 +4,7 @@
 //! meeting its end points and end tangents to 10⁻⁹ (relative to the length; the angles in
 //! radians) and its length to 10⁻⁹. Near a buckling load, where Newton on the pendulum data
 //! stalls with the end short of the chord by a buckled mode's slack, `λ₁` is followed
-//! towards tension to where it meets it (`cargo run --release -p design --example
+//! towards tension to where it meets it (`cargo run --release -p hotcut-design --example
 //! near_straight_sweep -- 10000 0.2`: all 10 000 solved within 10⁻⁹). An exactly straight
 //! piece gives a straight blade.
 

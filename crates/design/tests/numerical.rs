@@ -1,7 +1,7 @@
 //! The numerical spline approach ("Hot Blade Cuttings" §5.2, eq. 13) on the shared curves
 //! (`testdata::curves_json`): the result stays within ε of the input, lowers the bending
 //! energy, keeps what it is told to keep, and is compared with the analytic elastica fit
-//! (`cargo test -p design --test numerical -- --nocapture` prints the BENCHMARKS.md table).
+//! (`cargo test -p hotcut-design --test numerical -- --nocapture` prints the BENCHMARKS.md table).
 
 use std::time::Instant;
 

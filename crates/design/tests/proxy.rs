@@ -50,7 +50,7 @@ fn check(p: &Proxy) {
 const EQ11_ONE_PERCENT: f64 = 0.19;
 
 /// Also prints the table of BENCHMARKS.md ("Bézier proxy"):
-/// `cargo test -p design --test proxy -- --nocapture`.
+/// `cargo test -p hotcut-design --test proxy -- --nocapture`.
 #[test]
 fn every_bezier_of_the_family_has_its_elastica() {
     let mut rows: Vec<(f64, f64, Proxy)> = Vec::new();

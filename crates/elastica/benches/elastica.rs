@@ -1,7 +1,7 @@
 //! Benchmarks: one Jacobi evaluation (sn, cn, dn, am, E together) and fitting one
 //! 200-point test curve (`testdata::curves_json`) with each constraint option, and the generic
 //! 7-parameter baseline fit.
-//! Run: `cargo bench -p elastica`.
+//! Run: `cargo bench -p hotcut-elastica`.
 
 use elastica::elliptic::Elliptic;
 use elastica::fit::{fit_points, FitConstraint, FitParams};

@@ -2,7 +2,7 @@
 //! `{"id", "sn", "cn", "dn", "am", "eps", "K", "E"}` (eps = E(u|m), E = complete E(m)) with
 //! 17 significant digits, one line per input line.
 //!
-//! `cargo run --release -p elastica --example elliptic < cases.jsonl`
+//! `cargo run --release -p hotcut-elastica --example elliptic < cases.jsonl`
 
 mod common;
 

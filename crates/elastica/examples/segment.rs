@@ -3,7 +3,7 @@
 //! `{"id", "x", "y", "theta", "kappa"}` for the point S·R(φ)·f(s₀ + ℓt) + (x₀, y₀), its
 //! tangent angle and signed curvature, with 17 significant digits.
 //!
-//! `cargo run --release -p elastica --example segment < points.jsonl`
+//! `cargo run --release -p hotcut-elastica --example segment < points.jsonl`
 
 mod common;
 

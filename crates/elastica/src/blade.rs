@@ -6,7 +6,6 @@
 
 use crate::elliptic::EllipticError;
 use crate::segment::Segment;
-use serde::Serialize;
 
 /// How to extend a segment to a blade.
 #[derive(Clone, Debug)]
@@ -34,7 +33,8 @@ impl BladeParams {
 }
 
 /// One end of the blade.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct BladeEnd {
     /// Position.
     pub position: [f64; 2],
@@ -45,7 +45,8 @@ pub struct BladeEnd {
 }
 
 /// A blade shape with its robot data and checks.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Blade {
     /// The whole blade as a segment (t = 0 and t = 1 are the held ends).
     pub segment: Segment,

@@ -8,8 +8,6 @@
 //! corners on that side. The blade is sampled outside the piece; a sample inside that
 //! region gouges, as deep as its distance to the region's boundary.
 
-use serde::Serialize;
-
 use crate::blade::{extend_to_blade, Blade, BladeError, BladeParams};
 use crate::elliptic::EllipticError;
 use crate::segment::Segment;
@@ -18,7 +16,8 @@ use crate::segment::Segment;
 pub const SAMPLES: usize = 1000;
 
 /// The blade outside its piece against the block on one cutting plane.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Clearance {
     /// How deep the blade outside the piece runs into kept material (0: not at all).
     pub gouge_depth: f64,

@@ -21,7 +21,6 @@
 //! solve and the fallback must hand its multipliers to the polishing step.
 
 use nalgebra::{DMatrix, DVector};
-use serde::Serialize;
 
 /// Boundary data and resolution of a discrete elastica.
 #[derive(Clone, Debug)]
@@ -43,7 +42,8 @@ pub struct DiscreteParams {
 }
 
 /// A solved discrete elastica.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct DiscreteElastica {
     /// The n + 1 vertices.
     pub points: Vec<[f64; 2]>,

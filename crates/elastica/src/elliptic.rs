@@ -39,7 +39,6 @@
 
 use crate::carlson::carlson_rd;
 use crate::dd::{Dd, PI};
-use serde::Serialize;
 
 /// Errors of the elliptic-function layer.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -56,7 +55,8 @@ const MAX_LANDEN: usize = 12;
 const SERIES_M: f64 = 3e-9;
 
 /// Values of the Jacobi functions at one argument.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct JacobiValues {
     /// sn(u|m).
     pub sn: f64,
@@ -73,7 +73,8 @@ pub struct JacobiValues {
 }
 
 /// Partial derivatives of the Jacobi functions with respect to the parameter m at fixed u.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct JacobiDm {
     /// ∂sn/∂m.
     pub sn: f64,

@@ -9,11 +9,11 @@ use crate::elliptic::EllipticError;
 use crate::unit::{Family, UnitElastica};
 use geom::significance::{drop_noise_lobes, rounding_floor, Floor, LobeCurve};
 use nalgebra::Vector2;
-use serde::{Deserialize, Serialize};
 
 /// The standard parameters of a closed-form elastica segment.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct ElasticaParams {
     /// Inflectional or non-inflectional.
     pub family: Family,
@@ -24,7 +24,7 @@ pub struct ElasticaParams {
     /// Length on the normalized curve, signed (ℓ < 0 runs backwards).
     pub l: f64,
     /// Scale S > 0.
-    #[serde(rename = "S")]
+    #[cfg_attr(feature = "serde", serde(rename = "S"))]
     pub scale: f64,
     /// Rotation φ (radians).
     pub phi: f64,
@@ -35,7 +35,10 @@ pub struct ElasticaParams {
     /// `1 − k` to full precision, for shapes whose modulus is too close to 1 for `k` in
     /// `f64` (under strong tension 1 − k falls to 10⁻²⁰ and below); when given, it defines
     /// the modulus and `k` is its rounded value.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
     pub one_minus_k: Option<f64>,
 }
 
@@ -56,8 +59,9 @@ pub const PARAM_NAMES: [&str; 7] = ["k", "s0", "l", "S", "phi", "x0", "y0"];
 /// A planar segment a hot blade can take: a closed-form elastica, a line or a circular arc.
 /// All are parameterized by t ∈ [0, 1] at constant speed (t outside [0, 1] extends the same
 /// curve).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "type", rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(tag = "type", rename_all = "lowercase"))]
 pub enum Segment {
     /// A closed-form elastica segment.
     Elastica(ElasticaParams),
@@ -147,7 +151,8 @@ impl Segment {
 }
 
 /// Point, unit tangent, tangent angle and signed curvature of a segment at one parameter.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct SegmentPoint {
     /// Position.
     pub p: [f64; 2],

@@ -10,7 +10,6 @@
 
 use geom::slice::PlaneFrame;
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector2, Vector3};
-use serde::Serialize;
 
 use crate::blade::Blade;
 use crate::segment::{ElasticaParams, Segment};
@@ -107,7 +106,8 @@ pub fn interpolate(a: &Segment, b: &Segment, w: f64) -> Option<Segment> {
 }
 
 /// One held end of the blade in 3D.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct EndPose {
     /// Position.
     pub position: [f64; 3],
@@ -118,7 +118,8 @@ pub struct EndPose {
 }
 
 /// A blade pose: the cutting plane's normal and both held ends.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct BladePose {
     /// Unit normal of the cutting plane.
     pub plane_normal: [f64; 3],

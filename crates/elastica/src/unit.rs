@@ -11,16 +11,16 @@
 //! pass through the origin with tangent angle 0 at σ = 0 and turn left (κ > 0 there).
 
 use crate::elliptic::{Elliptic, EllipticError};
-use serde::{Deserialize, Serialize};
 
 /// The two closed-form families of non-circular elastica.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "lowercase"))]
 pub enum Family {
     /// Curvature changes sign (κ = 2k cn); k ∈ [0, 1].
     Inflectional,
     /// Curvature keeps its sign (κ = (2/k) dn); k ∈ (0, 1].
-    #[serde(rename = "noninflectional")]
+    #[cfg_attr(feature = "serde", serde(rename = "noninflectional"))]
     NonInflectional,
 }
 

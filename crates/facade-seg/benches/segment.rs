@@ -5,7 +5,7 @@
 //! is the algorithm alone (`inflection_points`, `trace`, `longest_elastica` with their
 //! default parameters), including the per-part checks of its pieces.
 //!
-//! Run: `cargo bench -p facade-seg --bench segment`.
+//! Run: `cargo bench -p hotcut-facade-seg --bench segment`.
 
 use std::sync::OnceLock;
 

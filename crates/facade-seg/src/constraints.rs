@@ -1,11 +1,11 @@
 use elastica::fit::{fit_points_with_arclength, FitConstraint, FitParams};
-use serde::Serialize;
 
 use crate::section::PreparedSection;
 use crate::SegError;
 
 /// The production constraints of §5.1 (lengths in the facade's units).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, schemars::JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Constraints {
     /// Block size: along the cut, across it (`u`), and along `v`.
     pub block: [f64; 3],
@@ -56,7 +56,8 @@ impl Constraints {
 }
 
 /// An elastica fitted to a part (end points kept, as the hot blade's pieces meet).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, schemars::JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct FitCheck {
     /// RMS distance from the part to the elastica.
     pub rms: f64,
@@ -69,7 +70,8 @@ pub struct FitCheck {
 }
 
 /// What one section part measures against the constraints.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, schemars::JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct PartCheck {
     /// Arc length of the part.
     pub length: f64,
@@ -86,7 +88,8 @@ pub struct PartCheck {
 }
 
 /// Per-constraint verdicts (true = met).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, schemars::JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Verdicts {
     /// No part longer than the blade, and the piece fits its block (§5.1.1).
     pub dimension: bool,

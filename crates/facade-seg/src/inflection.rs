@@ -10,8 +10,6 @@
 //! as the block itself stays within the limit. Blocks left owning nothing are removed.
 //! With `symmetric`, all rows share one arrangement (the moves are judged on all sections).
 
-use serde::Serialize;
-
 use crate::across::Across;
 use crate::constraints::Constraints;
 use crate::piece::{pieces_from_bands, rows_of, Segmentation};
@@ -19,7 +17,8 @@ use crate::section::Facade;
 use crate::SegError;
 
 /// Parameters of [`inflection_points`].
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct InflectionParams {
     /// All rows share one block arrangement.
     pub symmetric: bool,

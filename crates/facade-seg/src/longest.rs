@@ -11,7 +11,6 @@
 //! and the part fits the block across the facade.
 
 use rayon::prelude::*;
-use serde::Serialize;
 
 use crate::constraints::{Constraints, PartCheck};
 use crate::piece::{pieces_from_bands, rows_of, Seam, Segmentation};
@@ -19,7 +18,8 @@ use crate::section::Facade;
 use crate::SegError;
 
 /// Parameters of [`longest_elastica`].
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct LongestParams {
     /// Precision of the halving search (the last step), in facade units: the search takes
     /// ⌈log₂(blade length / precision)⌉ steps (1 mm on a 1 m blade: 10).

@@ -1,10 +1,9 @@
-use serde::Serialize;
-
 use crate::constraints::{Constraints, PartCheck, Verdicts};
 use crate::section::Facade;
 
 /// The part of one section a piece holds.
-#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct PiecePart {
     /// Plane index of the section (as numbered in the input).
     pub plane: usize,
@@ -25,7 +24,8 @@ pub struct PiecePart {
 /// slab; across the cut it is centred on the piece (rationalizing may slide it, still
 /// holding the piece, to clear the blade's holders); up, its top is at the piece's highest
 /// point.
-#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Block {
     /// Min corner (world).
     pub origin: [f64; 3],
@@ -36,7 +36,8 @@ pub struct Block {
 }
 
 /// One piece of the segmentation.
-#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Piece {
     /// 1-based id.
     pub id: usize,
@@ -53,14 +54,16 @@ pub struct Piece {
 }
 
 /// A seam between two bands: one point per section, in plane order.
-#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Seam {
     /// World points.
     pub points: Vec<[f64; 3]>,
 }
 
 /// What a segmentation algorithm returns.
-#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Segmentation {
     /// The algorithm that made it.
     pub algorithm: String,

@@ -12,7 +12,6 @@ use elastica::sweep::{blade_pose, frame_quaternion, BladePose};
 use hotblade::fit::blade_params_over;
 use hotblade::{sweep_fits, BladeLimits, Clipped, SHORTEST_PART};
 use rayon::prelude::*;
-use serde::Serialize;
 
 use crate::holders::{block_section, slide_block};
 use crate::piece::Block;
@@ -34,7 +33,8 @@ pub struct RationalizeParams {
 }
 
 /// One section part of a piece, fitted and posed.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct PosedPart {
     /// Index of the part in the piece.
     pub part: usize,
@@ -52,7 +52,8 @@ pub struct PosedPart {
 }
 
 /// A rationalized piece.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct PosedPiece {
     /// Piece id.
     pub id: usize,

@@ -24,8 +24,6 @@
 //! pieces; `max_pieces` caps them too.
 
 use elastica::fit::{fit_points_with_arclength, FitConstraint, FitParams};
-use schemars::JsonSchema;
-use serde::Serialize;
 
 use crate::constraints::Constraints;
 use crate::piece::{piece_of, Seam};
@@ -46,7 +44,8 @@ pub struct RefineParams {
 
 /// A piece refinement could not make meet every constraint, and why. The numbers are in
 /// the facade's units; `reason` holds none, so a report reads the same in any unit.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Unresolved {
     /// The piece's id (1-based, after refinement).
     pub piece: usize,
@@ -70,7 +69,8 @@ pub struct Unresolved {
 }
 
 /// Pieces and the pieces failing each constraint.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct PieceCounts {
     /// Pieces.
     pub pieces: usize,
@@ -81,7 +81,8 @@ pub struct PieceCounts {
 }
 
 /// What [`refine`] did.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct RefineReport {
     /// The algorithm's pieces, measured as refinement measures them.
     pub before: PieceCounts,

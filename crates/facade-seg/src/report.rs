@@ -4,15 +4,13 @@
 //!
 //! Entry point: [`summarize`](crate::report::summarize).
 
-use schemars::JsonSchema;
-use serde::Serialize;
-
 use crate::constraints::{Constraints, FitCheck, Verdicts};
 use crate::rationalize::PosedPiece;
 use crate::{Facade, Segmentation};
 
 /// The pieces of a segmentation as reported, and the counts over them.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Pieces {
     /// How many pieces and blocks, and how many break each constraint.
     pub counts: SegmentationCounts,
@@ -21,7 +19,8 @@ pub struct Pieces {
 }
 
 /// Counts over the segmentation.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct SegmentationCounts {
     /// Pieces.
     pub pieces: usize,
@@ -51,7 +50,8 @@ pub struct SegmentationCounts {
 }
 
 /// Pieces breaking each constraint of §5.1.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct ConstraintCounts {
     /// Dimension (blade length, block).
     pub dimension: usize,
@@ -64,7 +64,8 @@ pub struct ConstraintCounts {
 }
 
 /// The block a piece is cut from.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct PieceBlock {
     /// Block number (= piece id).
     pub number: usize,
@@ -79,7 +80,8 @@ pub struct PieceBlock {
 }
 
 /// One section part of a piece.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct PieceSection {
     /// Plane index of the section.
     pub plane: usize,
@@ -105,7 +107,8 @@ pub struct PieceSection {
 }
 
 /// The fit a piece's part is cut with.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct BladeFit {
     /// `elastica`, `arc` or `line`.
     pub kind: String,
@@ -133,7 +136,8 @@ pub struct BladeFit {
 }
 
 /// One piece.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct PieceReport {
     /// 1-based id.
     pub id: usize,

@@ -9,8 +9,6 @@ use geom::bbox::Aabb;
 use geom::slice::PlaneFrame;
 use geom::surface::Section;
 use rayon::prelude::*;
-use schemars::JsonSchema;
-use serde::Serialize;
 
 use crate::SegError;
 
@@ -41,8 +39,12 @@ pub struct Survey {
 }
 
 /// A production constraint a section or the surface breaks.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
-#[serde(tag = "constraint", rename_all = "snake_case")]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
+#[cfg_attr(
+    feature = "serde",
+    serde(tag = "constraint", rename_all = "snake_case")
+)]
 pub enum Violation {
     /// Dimension (§5.1.1): the section is longer than the blade.
     Dimension {
@@ -74,7 +76,8 @@ pub enum Violation {
 }
 
 /// A point on a section.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct SectionPoint {
     /// Arc length from the section's start.
     pub s: f64,
@@ -85,7 +88,8 @@ pub struct SectionPoint {
 }
 
 /// One section piece.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct SectionReport {
     /// Plane index, from 0.
     pub index: usize,
@@ -114,7 +118,8 @@ pub struct SectionReport {
 }
 
 /// Totals.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Summary {
     /// Planes that cut the surface.
     pub planes_with_sections: usize,

@@ -13,8 +13,6 @@
 //! surface's traces back; here traces shorter than `min_sections` sections are dropped
 //! before extension instead.
 
-use serde::Serialize;
-
 use crate::across::Across;
 use crate::constraints::Constraints;
 use crate::piece::{pieces_from_bands, rows_of, Seam, Segmentation};
@@ -22,7 +20,8 @@ use crate::section::Facade;
 use crate::SegError;
 
 /// Parameters of [`trace`].
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct TraceParams {
     /// Farthest (in `u`) a maximum may be from the trace's point on the previous section to
     /// continue it; `None`: a quarter of the block's width.

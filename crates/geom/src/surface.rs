@@ -11,6 +11,7 @@
 //! surface by bisection along its grid edge, so their section points are exact.
 
 use nalgebra::{Vector2, Vector3};
+#[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
 use crate::analysis::CurveAnalysisParams;
@@ -321,8 +322,12 @@ impl Surface {
             Self::Mesh(m) => 0.5 * m.quantum(),
             _ => 0.0,
         };
-        let per_plane: Vec<Result<Vec<Section>>> = planes
-            .par_iter()
+        // Planes are independent: in parallel with the `parallel` feature, in order without.
+        #[cfg(feature = "parallel")]
+        let planes_iter = planes.par_iter();
+        #[cfg(not(feature = "parallel"))]
+        let planes_iter = planes.iter();
+        let per_plane: Vec<Result<Vec<Section>>> = planes_iter
             .enumerate()
             .map(|(index, &(frame, offset))| {
                 let r = match self {

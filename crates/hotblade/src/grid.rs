@@ -11,15 +11,15 @@ use geom::planar::{ArcLength, PlanarCurve};
 use geom::slice::PlaneFrame;
 use geom::surface::Section;
 use nalgebra::{Vector2, Vector3};
-use serde::Serialize;
 
 use crate::result::GridInfo;
 
 /// The block grid.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Grid {
     /// Block axes.
-    #[serde(serialize_with = "crate::ser::frame")]
+    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::ser::frame"))]
     pub frame: PlaneFrame,
     /// Grid coordinates of the grid's min corner.
     pub origin: [f64; 3],
@@ -121,10 +121,11 @@ impl Grid {
 }
 
 /// A cutting plane: its frame and offset along the frame's normal.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Plane {
     /// In-plane axes and normal.
-    #[serde(serialize_with = "crate::ser::frame")]
+    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::ser::frame"))]
     pub frame: PlaneFrame,
     /// Offset along the normal.
     pub offset: f64,
@@ -254,7 +255,8 @@ fn natural_second_derivatives(x: &[f64], y: &[f64]) -> Vec<f64> {
 }
 
 /// The part of a section inside a block's `u` range, sampled equally in arc length.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Clipped {
     /// Sample points in plane coordinates.
     pub points: Vec<[f64; 2]>,

@@ -58,6 +58,7 @@ mod pipeline;
 /// The result: blocks with their fitted sections, swept surfaces and report entries.
 pub mod result;
 /// Serializers for the geometry types of `geom` and `nalgebra`, which carry no serde.
+#[cfg(feature = "serde")]
 mod ser;
 
 pub use error::HotBladeError;

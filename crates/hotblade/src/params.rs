@@ -4,10 +4,10 @@
 use elastica::fit::FitConstraint;
 use geom::surface::SectionParams;
 use nalgebra::Vector3;
-use serde::Serialize;
 
 /// Continuity of the rationalized surface across block faces.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum Continuity {
     /// Neighbouring blades share their end points.
     #[default]

@@ -117,7 +117,8 @@ pub fn rationalize(
 
 /// How big a run on `surface` is, counted before anything is allocated (every count in
 /// `f64`, so an absurd block size gives a huge number, not an overflow).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct RunSize {
     /// Blocks along the cut.
     pub rows: f64,

@@ -7,13 +7,12 @@ use elastica::fit::FitResult;
 use elastica::sweep::BladePose;
 use geom::mesh::TriMesh;
 use nalgebra::Vector3;
-use schemars::JsonSchema;
-use serde::Serialize;
 
 use crate::grid::{Clipped, Grid, Plane};
 
 /// The result of a run.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Rationalization {
     /// Every plane the run used: targets first (by row), then the deviation planes.
     pub planes: Vec<Plane>,
@@ -30,7 +29,8 @@ pub struct Rationalization {
 }
 
 /// One fitted section of a block.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct FittedSection {
     /// Index of the target plane in the run's plane list.
     pub plane: usize,
@@ -54,17 +54,19 @@ pub struct FittedSection {
 }
 
 /// A vertex of the rationalized surface mesh with its deviation from the design.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct SurfaceVertex {
     /// World position.
-    #[serde(serialize_with = "crate::ser::vec3")]
+    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::ser::vec3"))]
     pub position: Vector3<f64>,
     /// Distance to the design section in its plane.
     pub deviation: f64,
 }
 
 /// One block's result.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct BlockResult {
     /// Report entry.
     pub report: BlockReport,
@@ -111,7 +113,8 @@ impl BlockResult {
 }
 
 /// The block grid.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct GridInfo {
     /// Block axis along the cut (the cutting direction or the curve's chord).
     pub axis_d: [f64; 3],
@@ -130,7 +133,8 @@ pub struct GridInfo {
 }
 
 /// Min, max and average of a quantity.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Stats {
     /// Smallest value.
     pub min: f64,
@@ -166,7 +170,8 @@ impl Stats {
 }
 
 /// Which production constraints a block breaks (true = broken).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Flags {
     /// A fit's RMS or largest distance exceeds the tolerance (thesis §5.1.2).
     pub approximation: bool,
@@ -203,7 +208,8 @@ impl Flags {
 }
 
 /// One block.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct BlockReport {
     /// Block number (the `block` of `targets.json` and the RAPID work object).
     pub block: usize,
@@ -261,7 +267,8 @@ pub struct BlockReport {
 }
 
 /// The blade outside one section against its block (issue 37).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct SectionClearance {
     /// The section (index among the block's targets).
     pub section: usize,
@@ -276,7 +283,8 @@ pub struct SectionClearance {
 }
 
 /// A column halving.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct SplitInfo {
     /// Column of the grid.
     pub column: usize,
@@ -289,7 +297,8 @@ pub struct SplitInfo {
 }
 
 /// Totals.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct HotBladeSummary {
     /// Blocks with surface.
     pub blocks: usize,
@@ -320,7 +329,8 @@ pub struct HotBladeSummary {
 }
 
 /// Blocks breaking each constraint.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct FlagCounts {
     /// Approximation tolerance.
     pub approximation: usize,

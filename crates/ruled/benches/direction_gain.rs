@@ -5,7 +5,7 @@
 //! convex hull is at least 60 %. Prints the table of BENCHMARKS.md; exits non-zero when a
 //! check fails.
 //!
-//! `cargo bench -p ruled --bench direction_gain` (72 default pre-cuts: about 11 minutes
+//! `cargo bench -p hotcut-ruled --bench direction_gain` (72 default pre-cuts: about 11 minutes
 //! on the 2-core VM).
 
 use geom::{expr::Expr, heightfield::HeightField, surface::Surface};

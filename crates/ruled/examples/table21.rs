@@ -2,7 +2,7 @@
 //! two directions): volumes normalised by the block, and how much more our cuts remove
 //! than the convex hull and the bounding box.
 //!
-//! `cargo run --release -p ruled --example table21`
+//! `cargo run --release -p hotcut-ruled --example table21`
 
 use std::time::Instant;
 

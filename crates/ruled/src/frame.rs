@@ -2,13 +2,12 @@
 //! the block (the wire spans it), `z` up; and the block's footprint in `(u, w)`.
 
 use nalgebra::{Vector2, Vector3};
-use schemars::JsonSchema;
-use serde::Serialize;
 
 use crate::error::{PreCutError, Result};
 
 /// The block: an axis-aligned box.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Block {
     /// Minimum corner.
     pub min: [f64; 3],

@@ -39,9 +39,6 @@ pub mod unit;
 pub mod volume;
 pub mod wire;
 
-use schemars::JsonSchema;
-use serde::Serialize;
-
 pub use error::{PreCutError, Result};
 pub use frame::{Block, CutFrame};
 pub use height::Height;
@@ -52,7 +49,8 @@ use legs::Legs;
 use solve::{Point, SolveOptions};
 
 /// Parameters of [`pre_cut`].
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Params {
     /// Cuts (legs of the moving polygon) per direction (≥ 1).
     pub legs: usize,
@@ -100,7 +98,8 @@ impl Default for Params {
 }
 
 /// The cut polygon in one section plane.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct SectionPolygon {
     /// Plane offset `u` along the cutting direction.
     pub offset: f64,
@@ -111,7 +110,8 @@ pub struct SectionPolygon {
 }
 
 /// One leg's line in a section: `z = a + m·s`, `s = (w − w_mid)/w_half`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct LegLine {
     /// Height at the block's middle `w`.
     pub a: f64,
@@ -121,7 +121,8 @@ pub struct LegLine {
 
 /// One leg's coefficient functions along the cut as B-spline control values:
 /// `a(u) = Σ B_c(u)·a[c]`, `m(u) = Σ B_c(u)·m[c]` on the direction's knots.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct LegSpline {
     /// Control values of `a` (model units).
     pub a: Vec<f64>,
@@ -130,7 +131,8 @@ pub struct LegSpline {
 }
 
 /// The cuts of one direction.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct DirectionCut {
     /// Unit cutting direction `[dx, dy, 0]`.
     pub direction: [f64; 3],
@@ -201,7 +203,8 @@ impl DirectionCut {
 }
 
 /// The result of [`pre_cut`].
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct PreCut {
     /// Per direction.
     pub directions: Vec<DirectionCut>,

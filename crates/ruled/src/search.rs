@@ -8,8 +8,6 @@
 //! on their volumes (ties go to the lower angle), so it is the same for any thread count.
 
 use rayon::prelude::*;
-use schemars::JsonSchema;
-use serde::Serialize;
 
 use crate::error::{PreCutError, Result};
 use crate::frame::Block;
@@ -20,7 +18,8 @@ use geom::surface::Surface;
 pub const MAX_CANDIDATES: usize = 36;
 
 /// One direction tried by [`search_directions`].
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Candidate {
     /// Angle from +x towards +y, degrees, in [0, 180).
     pub degrees: f64,
@@ -36,7 +35,8 @@ pub struct Candidate {
 }
 
 /// What [`search_directions`] found.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct DirectionSearch {
     /// Index of the kept candidate.
     pub best: usize,

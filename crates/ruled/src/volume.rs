@@ -5,8 +5,6 @@
 
 use geom::hull::convex_hull;
 use nalgebra::Vector3;
-use schemars::JsonSchema;
-use serde::Serialize;
 
 use crate::error::Result;
 use crate::frame::Block;
@@ -14,7 +12,8 @@ use crate::height::{Height, MeshHeight};
 
 /// Volumes, all divided by the block's volume (Table 2.1's normalisation by the
 /// bounding box), and the "more removed" ratios.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Volumes {
     /// Grid cells per side of the midpoint rule.
     pub grid: usize,

@@ -39,7 +39,6 @@ use elastica::discrete::{discrete_elastica, DiscreteParams};
 use elastica::fit::{fit_points_with_arclength, FitConstraint, FitParams, FitResult};
 use elastica::segment::{ElasticaParams, Segment};
 use elastica::unit::Family;
-use serde::Serialize;
 
 use crate::bezier::wrap;
 use crate::error::{DesignError, Result};
@@ -51,7 +50,8 @@ use pendulum::{
 };
 
 /// The data an elastica must meet.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct EndData {
     /// Start point.
     pub start: [f64; 2],
@@ -67,7 +67,8 @@ pub struct EndData {
 }
 
 /// The solved elastica.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Solution {
     /// The closed-form segment, t ∈ [0, 1] from the start to the end.
     pub segment: Segment,

@@ -15,8 +15,6 @@
 //! that makes the minimizer unique (module `sqp`). The energy and its gradient are exact for the
 //! spline (module `basis`).
 
-use serde::Serialize;
-
 use crate::error::{DesignError, Result};
 
 /// The refined spline: basis, energy, length and the least-squares fit.
@@ -47,7 +45,8 @@ pub struct NumericalParams {
 }
 
 /// What the numerical approach found.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct NumericalResult {
     /// The input as a spline on the refined basis: its control points.
     pub input_control: Vec<[f64; 2]>,

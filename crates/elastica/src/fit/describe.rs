@@ -5,9 +5,6 @@
 //! Entry points: [`CurveFit::new`](crate::fit::describe::CurveFit::new),
 //! [`FitSummary::of`](crate::fit::describe::FitSummary::of).
 
-use schemars::JsonSchema;
-use serde::Serialize;
-
 use super::{FitError, FitResult};
 use crate::elliptic::EllipticError;
 use crate::segment::Segment;
@@ -17,7 +14,8 @@ use crate::unit::Family;
 pub const FITTED_SAMPLES: usize = 400;
 
 /// Totals over many fitted curves.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct FitSummary {
     /// Curves read.
     pub curves: usize,
@@ -40,7 +38,8 @@ pub struct FitSummary {
 }
 
 /// One curve and its fit.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct CurveFit {
     /// The curve's id (from the input file; `section <plane>.<piece>` for sections).
     pub id: String,
@@ -49,15 +48,16 @@ pub struct CurveFit {
     /// Length of the input polyline (sections: of the section curve).
     pub input_length: f64,
     /// Why the curve could not be fitted; absent when it was.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub error: Option<String>,
     /// The fit; absent when the curve could not be fitted.
-    #[serde(flatten)]
+    #[cfg_attr(feature = "serde", serde(flatten))]
     pub fit: Option<FittedCurve>,
 }
 
 /// A fitted segment with its quality and geometry.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct FittedCurve {
     /// `line`, `arc`, `inflectional` or `noninflectional`.
     pub family: String,

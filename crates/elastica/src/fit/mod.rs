@@ -46,13 +46,13 @@ mod tangents;
 use crate::segment::{ElasticaParams, Segment};
 use crate::unit::Family;
 use model::{Data, Placement, Shape, C};
-use serde::{Deserialize, Serialize};
 
 pub use error::FitError;
 pub use tangents::fit_with_end_tangents;
 
 /// Which boundary data the fitted segment must reproduce exactly.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum FitConstraint {
     /// Nothing: the best segment in the L2 sense.
     #[default]
@@ -105,7 +105,8 @@ impl Default for FitParams {
 }
 
 /// A fitted segment and how well it fits.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct FitResult {
     /// The segment; t = 0 and t = 1 are the feet of the first and last point.
     pub segment: Segment,

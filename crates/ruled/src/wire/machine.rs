@@ -3,14 +3,15 @@
 //! ([`Machine`]), and the built-in profiles. The conventions and their sources are in
 //! `docs/wire-controllers.md`.
 
-use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
-
 use super::dialect;
 use crate::error::{PreCutError, Result};
 
 /// How a cutting move's `F` is read.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize, schemars::JsonSchema)
+)]
 pub enum FeedMode {
     /// `G93`: `F` is 1 / minutes for the whole move, whatever axes move. Both towers start
     /// and finish together on every controller.
@@ -51,7 +52,11 @@ impl FeedMode {
 }
 
 /// The unit of the dwell word `G4 P`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize, schemars::JsonSchema)
+)]
 pub enum DwellUnit {
     /// `G4 P2` waits 2 s (LinuxCNC, GRBL, FluidNC, Mach3 by default).
     #[default]
@@ -78,7 +83,8 @@ pub const DECIMALS: (usize, usize) = (2, 6);
 /// assert_eq!(m.heat_on_line(), "M3 S1000");
 /// assert_eq!(m.preheat_line().as_deref(), Some("G4 P2"));
 /// ```
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct Machine {
     /// The profile's name, written in the program's header.
     pub profile: String,

@@ -24,7 +24,6 @@ pub mod program;
 use std::fmt::Write as _;
 
 use nalgebra::Vector3;
-use serde::Serialize;
 
 use crate::error::{PreCutError, Result};
 use crate::DirectionCut;
@@ -80,7 +79,8 @@ pub fn kerf_from_table(t: &[(f64, f64)], v: f64) -> Option<f64> {
 
 /// One wire position: the two tower points (machine coordinates, mm) and the 3D points
 /// where the wire crosses the block's sides (model coordinates, job units).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct WireStep {
     /// Position along the cut (frame `u`, job units).
     pub u: f64,
@@ -97,7 +97,8 @@ pub struct WireStep {
 }
 
 /// The path of one cut.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct WirePath {
     /// Direction index.
     pub direction: usize,

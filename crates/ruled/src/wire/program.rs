@@ -9,9 +9,6 @@
 
 use std::fmt::Write as _;
 
-use schemars::JsonSchema;
-use serde::Serialize;
-
 use super::machine::{FeedMode, Machine};
 use super::{WireParams, WirePath, MAX_SPEED_MM_PER_MIN, MIN_SPEED_MM_PER_MIN};
 use crate::error::{PreCutError, Result};
@@ -26,7 +23,8 @@ pub struct Program {
 }
 
 /// What one program makes the machine do (for the report).
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct ProgramSummary {
     /// Direction index (0-based).
     pub direction: usize,
@@ -46,7 +44,8 @@ pub struct ProgramSummary {
 }
 
 /// The range of one axis in a program.
-#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub struct AxisExtent {
     /// The axis letter.
     pub axis: char,
