@@ -16,6 +16,10 @@
 //!   fixture — descend, cut, retreat, rise, travel — with both robots' joints.
 //! - [`carrier`]: the same program in a three-robot cell where a robot carries the block
 //!   through a blade that stays at a station.
+//! - [`layout`]: a cell in millimetres, with the default cell (robots facing each other
+//!   across the blade's mean chord, holders, fixture) placed for a job's blade poses.
+//! - [`program`]: the whole program for a job's blade poses, the default layout searched
+//!   over table heights, standoffs, holder styles and wrist sides.
 //! - [`plan`]: a robot's sweep of tool poses solved in order, continuous from a start
 //!   posture, with every pose out of reach, configuration change and joint jump flagged.
 //!
@@ -47,11 +51,15 @@ pub mod error;
 pub mod fixture;
 /// Forward and inverse kinematics, joint choice, limit margins.
 pub mod kinematics;
+/// A cell in millimetres with the default cell where parts are left out.
+pub mod layout;
 /// Robot models: OPW parameters, joint limits, built-in ABB arms.
 pub mod model;
 /// The closed-form OPW kinematics in the paper's angles.
 pub mod opw;
 /// Joint solutions along a robot's sweep of tool poses, with flags.
 pub mod plan;
+/// The whole program of a cell for a job's blade poses, with the default layout searched.
+pub mod program;
 
 pub use error::{CellError, Result};

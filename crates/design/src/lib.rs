@@ -4,6 +4,9 @@
 //! it can be cut, by planar design curves with one cubic piece per block, each replaced by
 //! the elastica with the same end points, end tangents and length.
 //!
+//! - [`assembly`]: a design's blocks and the cuts through them: each cut resolved
+//!   against its blocks, per block its cuts in priority order and their envelope, and
+//!   the order the robots cut them in.
 //! - [`bezier`]: planar cubic Bézier curves: points, derivatives, curvature, arc length,
 //!   end data, the angles of the control polygon.
 //! - [`chain`]: design curves over several blocks, one Bézier per block joined G¹, and
@@ -36,6 +39,8 @@
 //! assert!(r.max_deviation < 0.01 * r.length); // a well-behaved polygon: close to an elastica
 //! ```
 
+/// A design's blocks and cuts: resolution, per-block envelopes, cutting order.
+pub mod assembly;
 /// Planar cubic Bézier curves.
 pub mod bezier;
 /// The elastica with given end points, end tangents and length.

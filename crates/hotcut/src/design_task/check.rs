@@ -5,7 +5,9 @@
 use design::cut::CutParams;
 use elastica::blade::BladeParams;
 
-use super::file::{self, resolve_cut, Block, DesignFile, ResolvedCut};
+use design::assembly::{resolve_cut, Block, ResolvedCut};
+
+use super::file::{self, DesignFile};
 use super::outputs;
 
 /// Largest design coordinate, mm (as the cell's frames): a kilometre.
@@ -119,7 +121,7 @@ fn check_cut(
     if !errors.is_empty() {
         return None;
     }
-    let r = match resolve_cut(c, blocks) {
+    let r = match resolve_cut(&c.input(), blocks) {
         Ok(r) => r,
         Err(list) => {
             errors.extend(list.into_iter().map(|(p, m)| {

@@ -6,7 +6,7 @@
 use design::cut::CutResult;
 use export::svg::{bounds, Legend, Mark, SvgDoc, Viewport};
 
-use super::file::{Block, ResolvedCut};
+use design::assembly::{Block, ResolvedCut};
 
 /// A station's design curve and its elastica, sampled alike.
 type DesignAndElastica = (Vec<[f64; 2]>, Vec<[f64; 2]>);

@@ -9,9 +9,7 @@ use nalgebra::Vector3;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use design::bezier::Bezier;
-use design::cut::{DesignCurve, Station};
-use design::spline::BSpline;
+use design::assembly::{Block, CurveInput, CutInput, StationInput};
 
 /// A design for the hot blade: blocks and the cuts through them.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -140,17 +138,6 @@ pub enum CurveSpec {
     Spline(#[schemars(length(min = 4, max = 103))] Vec<[f64; 2]>),
 }
 
-/// A block, resolved.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Block {
-    /// Its name.
-    pub id: String,
-    /// Smallest corner.
-    pub min: Vector3<f64>,
-    /// Largest corner.
-    pub max: Vector3<f64>,
-}
-
 /// The JSON Schema of design files (`schemas/design.schema.json`).
 pub fn design_schema() -> serde_json::Value {
     serde_json::to_value(schemars::schema_for!(DesignFile)).unwrap_or(serde_json::Value::Null)
@@ -221,140 +208,25 @@ impl DesignFile {
     }
 }
 
-/// A cut resolved against its blocks: what [`design::cut::solve`] needs but the blade and
-/// the planes.
-#[derive(Debug, Clone)]
-pub struct ResolvedCut {
-    /// Its name.
-    pub id: String,
-    /// Indices of its blocks in the design's block list, across the cut.
-    pub blocks: Vec<usize>,
-    /// The planes' frame.
-    pub frame: PlaneFrame,
-    /// Faces across the cut.
-    pub faces: Vec<f64>,
-    /// Entry and exit offsets along the cut.
-    pub span: (f64, f64),
-    /// Per block, its base and top along the planes' `v` (up).
-    pub heights: Vec<[f64; 2]>,
-    /// Stations.
-    pub stations: Vec<Station>,
-}
-
-/// Extent of a block along `axis` (a world axis or its negative).
-fn extent(b: &Block, axis: &Vector3<f64>) -> (f64, f64) {
-    let (a, c) = (axis.dot(&b.min), axis.dot(&b.max));
-    (a.min(c), a.max(c))
-}
-
-/// Resolves cut `c` against `blocks`: every problem as `(pointer under the cut, message)`.
-pub fn resolve_cut(c: &CutSpec, blocks: &[Block]) -> Result<ResolvedCut, Vec<(String, String)>> {
-    let mut errors = Vec::new();
-    let frame = c.direction.frame();
-    let mut idx = Vec::new();
-    for (i, id) in c.blocks.iter().enumerate() {
-        match blocks.iter().position(|b| &b.id == id) {
-            Some(k) if idx.contains(&k) => errors.push((
-                format!("/blocks/{i}"),
-                format!("block `{id}` is listed twice"),
-            )),
-            Some(k) => idx.push(k),
-            None => errors.push((format!("/blocks/{i}"), format!("no block `{id}`"))),
+impl CutSpec {
+    /// The cut as [`design::assembly::resolve_cut`] takes it.
+    pub fn input(&self) -> CutInput {
+        CutInput {
+            id: self.id.clone(),
+            frame: self.direction.frame(),
+            blocks: self.blocks.clone(),
+            stations: self
+                .stations
+                .iter()
+                .map(|s| StationInput {
+                    at: s.at,
+                    curve: match &s.curve {
+                        CurveSpec::Bezier(p) => CurveInput::Bezier(p.clone()),
+                        CurveSpec::Spline(p) => CurveInput::Spline(p.clone()),
+                    },
+                })
+                .collect(),
         }
-    }
-    if !errors.is_empty() {
-        return Err(errors);
-    }
-    let across: Vec<(f64, f64)> = idx.iter().map(|&k| extent(&blocks[k], &frame.u)).collect();
-    let along: Vec<(f64, f64)> = idx
-        .iter()
-        .map(|&k| extent(&blocks[k], &frame.normal))
-        .collect();
-    let span = along[0];
-    let scale = (span.1 - span.0).abs() + (across[across.len() - 1].1 - across[0].0).abs();
-    let tol = 1e-9 * scale;
-    for (i, a) in along.iter().enumerate().skip(1) {
-        if (a.0 - span.0).abs() > tol || (a.1 - span.1).abs() > tol {
-            errors.push((
-                format!("/blocks/{i}"),
-                format!(
-                    "block `{}` spans {:.6}…{:.6} along the cut, the first block {:.6}…{:.6}: a cut's blocks share their extent along it",
-                    c.blocks[i], a.0, a.1, span.0, span.1
-                ),
-            ));
-        }
-    }
-    for (i, w) in across.windows(2).enumerate() {
-        if (w[1].0 - w[0].1).abs() > tol {
-            errors.push((
-                format!("/blocks/{}", i + 1),
-                format!(
-                    "block `{}` starts at {:.6} across the cut but `{}` ends at {:.6}: list the blocks side by side, in increasing across coordinate",
-                    c.blocks[i + 1], w[1].0, c.blocks[i], w[0].1
-                ),
-            ));
-        }
-    }
-    let mut faces: Vec<f64> = across.iter().map(|a| a.0).collect();
-    faces.push(across[across.len() - 1].1);
-    if c.stations.first().map(|s| s.at) != Some(0.0) || c.stations.last().map(|s| s.at) != Some(1.0)
-    {
-        errors.push((
-            "/stations".into(),
-            "the first station is at the entry face (at: 0) and the last at the exit face (at: 1)"
-                .into(),
-        ));
-    }
-    for (i, w) in c.stations.windows(2).enumerate() {
-        if !(w[1].at > w[0].at) {
-            errors.push((
-                format!("/stations/{}/at", i + 1),
-                "stations must be listed in increasing `at`".into(),
-            ));
-        }
-    }
-    let mut stations = Vec::new();
-    for (i, s) in c.stations.iter().enumerate() {
-        let curve = match &s.curve {
-            CurveSpec::Bezier(p) => Ok(DesignCurve::Bezier(
-                p.iter().map(|p| Bezier { p: *p }).collect(),
-            )),
-            CurveSpec::Spline(p) => BSpline::new(faces.clone(), p.clone())
-                .map(DesignCurve::Spline)
-                .map_err(|e| e.to_string()),
-        };
-        match curve {
-            Ok(curve) => {
-                for m in curve.problems(&faces) {
-                    errors.push((format!("/stations/{i}/curve"), m));
-                }
-                stations.push(Station {
-                    offset: span.0 + s.at * (span.1 - span.0),
-                    curve,
-                });
-            }
-            Err(m) => errors.push((format!("/stations/{i}/curve"), m)),
-        }
-    }
-    if errors.is_empty() {
-        let heights = idx
-            .iter()
-            .map(|&k| {
-                let (lo, hi) = extent(&blocks[k], &frame.v);
-                [lo, hi]
-            })
-            .collect();
-        Ok(ResolvedCut {
-            id: c.id.clone(),
-            blocks: idx,
-            frame,
-            faces,
-            span,
-            heights,
-            stations,
-        })
-    } else {
-        Err(errors)
     }
 }
 

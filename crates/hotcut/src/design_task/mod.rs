@@ -11,8 +11,6 @@ mod check;
 mod drawing;
 /// The design file.
 pub mod file;
-/// Blocks cut several times.
-pub mod multi;
 /// Its files: SVG per block, glTF, robot targets, RAPID.
 mod outputs;
 /// What `report.html` shows of it.
@@ -36,8 +34,9 @@ use crate::spec::defaults::{APPROACH_MM, BLADE_SPEED_MM_PER_S};
 use crate::spec::OutputKind;
 use crate::task::{Output, Task};
 use check::check_design;
+use design::assembly::{self as multi, Block, ResolvedCut};
 use export::robot::Motion;
-use file::{read, Block, DesignFile, ResolvedCut};
+use file::{read, DesignFile};
 use report::{
     cut_report, summary, BlockCut, BlockInfo, DesignReport, DesignSettings, EnvelopeReport,
 };

@@ -9,7 +9,9 @@ use export::gltf::{write_gltf, xyz, Material, Mesh};
 use export::robot::{Targets, TargetsBlock};
 use nalgebra::{Vector2, Vector3};
 
-use super::file::{Block, DesignFile, ResolvedCut};
+use design::assembly::{Block, ResolvedCut};
+
+use super::file::DesignFile;
 use super::Design;
 use crate::output::robot;
 use crate::output::{block_material, deviation_color, Files};
@@ -19,7 +21,7 @@ use crate::task::Finished;
 type Done<'a> = Finished<'a, Design>;
 
 /// The targets of a run: per (cut, block) pair in the robots' `order`
-/// ([`super::multi::robot_order`]; numbered 1, 2, … in it) the poses on every cutting plane,
+/// ([`design::assembly::robot_order`]; numbered 1, 2, … in it) the poses on every cutting plane,
 /// the block's frame having its x-axis along the cut; and the blocks' sizes in those
 /// frames.
 pub(super) fn targets(

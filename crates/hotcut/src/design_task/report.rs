@@ -9,8 +9,8 @@ use serde::Serialize;
 use crate::robot_cell::report::CellReport;
 use crate::spec::Units;
 
-use super::file::Block;
 use super::Resolution;
+use design::assembly::Block;
 
 /// The result of the `Design` task.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]

@@ -8,61 +8,21 @@ pub mod report;
 /// The cell in millimetres, with its defaults.
 pub mod resolve;
 
-use cell::carrier::{CarriedProgram, CarrierCell};
-use cell::fixture::{BlockCheck, BlockCut, CellProgram, FixtureCell, Step};
-use cell::plan::PoseSolution;
+use cell::layout::{PlacedBlock, ResolvedCell};
+use cell::program::{Motion, Program};
 use export::robot::Targets;
-use nalgebra::Isometry3;
-use rayon::prelude::*;
 
 use crate::context::{Context, JobFields};
 use crate::error::{HotcutError, JobError, Result};
 use crate::spec::CellSpec;
 use report::CellReport;
-use resolve::{block_frame, defaults, Carry, HolderStyle, Layout, Resolved};
-
-/// A planned program, at the fixture or with the block carried.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Program {
-    /// Every move, the blade's ends in the work object's frame (the block's at the
-    /// fixture, or the carried block's), in order.
-    pub steps: Vec<Step>,
-    /// With a carrier: the carried block's frame in the cell at each move.
-    pub block_poses: Option<Vec<Isometry3<f64>>>,
-    /// Each robot's solution at every move, in task order (first end's, second end's,
-    /// carrier's).
-    pub solutions: Vec<Vec<PoseSolution>>,
-    /// Per block.
-    pub blocks: Vec<BlockCheck>,
-}
-
-impl From<CellProgram> for Program {
-    fn from(p: CellProgram) -> Self {
-        Program {
-            steps: p.steps,
-            block_poses: None,
-            solutions: p.solutions.into(),
-            blocks: p.blocks,
-        }
-    }
-}
-
-impl From<CarriedProgram> for Program {
-    fn from(p: CarriedProgram) -> Self {
-        Program {
-            steps: p.moves.steps,
-            block_poses: Some(p.block_poses),
-            solutions: p.solutions.into(),
-            blocks: p.blocks,
-        }
-    }
-}
+use resolve::{block_frame, end_frame};
 
 /// What the robot files are written from.
 #[derive(Debug, Clone)]
 pub struct CellPlan {
     /// The cell.
-    pub cell: Resolved,
+    pub cell: ResolvedCell,
     /// The planned program.
     pub program: Program,
     /// Cutting speed, mm/s.
@@ -315,114 +275,28 @@ fn check_holders(c: &CellSpec, robots: usize, mm: f64, err: Report<'_>) {
     }
 }
 
-/// The blocks of `t` in their own frames, mm, with their sizes.
-fn block_cuts(t: &Targets, sizes: &[[f64; 3]]) -> Vec<BlockCut> {
+/// The blocks of `t` (sizes `sizes`, job units) with the blade's ends, in mm.
+fn placed_blocks(t: &Targets, sizes: &[[f64; 3]]) -> Vec<PlacedBlock> {
     let mm = 1.0 / t.per_mm;
     t.blocks
         .iter()
         .zip(sizes)
-        .map(|(b, size)| {
-            let to_block = block_frame(b, mm).inverse();
-            BlockCut {
-                block: b.block,
-                size: size.map(|v| v * mm),
-                poses: b
-                    .poses
-                    .iter()
-                    .map(|p| p.ends.map(|e| to_block * resolve::end_frame(&e, mm)))
-                    .collect(),
-            }
+        .map(|(b, size)| PlacedBlock {
+            block: b.block,
+            frame: block_frame(b, mm),
+            size: size.map(|v| v * mm),
+            poses: b
+                .poses
+                .iter()
+                .map(|p| p.ends.map(|e| end_frame(&e, mm)))
+                .collect(),
         })
         .collect()
 }
 
-/// The layouts to try: every default table height, standoff and holder style that the
-/// job leaves to the default cell (the table with the default fixture and robots, the
-/// standoff with the default robots, the style with the default holders).
-fn layouts(job: &Context) -> Vec<Layout> {
-    let c = job.cell.as_ref();
-    let robots = c.is_none_or(|c| c.robots.is_none());
-    let fixture = c.is_none_or(|c| c.fixture.is_none());
-    let holders = c.is_none_or(|c| c.blade_holders.is_none());
-    let tables: &[f64] = if robots && fixture {
-        &defaults::TABLES_MM
-    } else {
-        &defaults::TABLES_MM[..1]
-    };
-    let standoffs: &[f64] = if robots {
-        &defaults::STANDOFFS_MM
-    } else {
-        &defaults::STANDOFFS_MM[..1]
-    };
-    let styles: &[HolderStyle] = if holders {
-        &[HolderStyle::Facing, HolderStyle::Hanging]
-    } else {
-        &[HolderStyle::Facing]
-    };
-    let mut out = Vec::new();
-    for &style in styles {
-        for &table in tables {
-            for &standoff in standoffs {
-                out.push(Layout {
-                    table,
-                    standoff,
-                    style,
-                });
-            }
-        }
-    }
-    out
-}
-
-/// How bad a program is: moves out of reach, then configuration changes and joint jumps,
-/// then the least joint margin (larger is better).
-fn score(p: &Program) -> (usize, usize, f64) {
-    let (mut reach, mut flips, mut margin) = (0, 0, f64::INFINITY);
-    for b in &p.blocks {
-        for r in &b.robots {
-            reach += r.out_of_reach;
-            flips += r.configuration_changes + r.joint_jumps;
-            margin = margin.min(r.margin_deg.unwrap_or(f64::NEG_INFINITY));
-        }
-    }
-    (reach, flips, -margin)
-}
-
-fn fixture_cell(
-    cell: &Resolved,
-    blade: f64,
-    max_curvature: f64,
-    approach: f64,
-    start: [f64; 6],
-) -> FixtureCell {
-    FixtureCell {
-        holders: [cell.holder(0), cell.holder(1)],
-        fixture: cell.fixture,
-        blade_length: blade,
-        max_curvature: Some(max_curvature),
-        approach,
-        clearance: cell.clearance,
-        travel_step: (
-            defaults::TRAVEL_STEP_MM,
-            defaults::TRAVEL_TURN_DEG.to_radians(),
-        ),
-        start: [start.map(f64::to_radians); 2],
-    }
-}
-
-/// What every plan starts from: the blocks in their frames, the blade and the motion, in
-/// mm.
-struct Setup {
-    cuts: Vec<BlockCut>,
-    largest: [f64; 3],
-    blade: f64,
-    curvature: f64,
-    approach: f64,
-}
-
 /// Plans the cell's program for the poses `t` (blocks of `sizes`, job units, in the
-/// order of `t.blocks`), cutting at `speed` with `approach` (job units): at the fixture
-/// (`plan_fixture`) or with the block carried (`plan_carried`).
+/// order of `t.blocks`), cutting at `speed` with `approach` (job units), with
+/// [`cell::program::plan`]: at the fixture or with the block carried.
 ///
 /// # Errors
 /// A plan that cannot be made (named), or with `strict: true`, any flag.
@@ -434,24 +308,15 @@ pub fn plan(
     approach: f64,
 ) -> Result<CellPlan> {
     let mm = 1.0 / t.per_mm;
-    let setup = Setup {
-        cuts: block_cuts(t, sizes),
-        largest: sizes
-            .iter()
-            .fold([0.0f64; 3], |m, s| {
-                [m[0].max(s[0]), m[1].max(s[1]), m[2].max(s[2])]
-            })
-            .map(|v| v * mm),
+    let placed = placed_blocks(t, sizes);
+    let motion = Motion {
         blade: t.blade_length * mm,
-        curvature: job.blade.max_curvature / mm,
+        max_curvature: job.blade.max_curvature / mm,
         approach: approach * mm,
     };
-    let carried = job.cell.as_ref().is_some_and(|c| c.block_carrier.is_some());
-    let (cell, program) = if carried {
-        plan_carried(job, t, &setup)?
-    } else {
-        plan_fixture(job, t, &setup)?
-    };
+    let settings = resolve::settings(job.cell.as_ref(), mm);
+    let (cell, program) = cell::program::plan(&settings, &placed, &motion)
+        .map_err(|e| job.fail(format!("robot cell: {e}")))?;
     let report = report::report(&cell, &program, speed * mm);
     if cell.strict && !report.clean {
         return Err(HotcutError::Task {
@@ -461,8 +326,7 @@ pub fn plan(
     }
     Ok(CellPlan {
         cut_speed: speed * mm,
-        blocks: setup
-            .cuts
+        blocks: placed
             .iter()
             .filter(|b| !b.poses.is_empty())
             .map(|b| (b.block, b.size))
@@ -471,115 +335,4 @@ pub fn plan(
         program,
         report,
     })
-}
-
-/// The program at the fixture. What the job leaves to the default cell is laid out by
-/// trying the default table heights, standoffs, holder styles and wrist sides in order, in
-/// chunks of four, until a chunk holds a layout with every move reached, no flip and a
-/// joint margin of [`defaults::GOOD_MARGIN_DEG`]; the first best is kept (fewest moves out
-/// of reach, then fewest flips, then the largest joint margin).
-fn plan_fixture(job: &Context, t: &Targets, s: &Setup) -> Result<(Resolved, Program)> {
-    let fail = |e: cell::CellError| job.fail(format!("robot cell: {e}"));
-    let layouts = layouts(job);
-    let fc = |cell: &Resolved, start: [f64; 6]| {
-        fixture_cell(cell, s.blade, s.curvature, s.approach, start)
-    };
-    let first = resolve::resolve(job.cell.as_ref(), t, s.blade, s.largest, layouts[0]);
-    // the fixture only moves up between layouts: the moves stay
-    let moves =
-        cell::fixture::moves(&fc(&first, defaults::STARTS_DEG[0]), &s.cuts).map_err(fail)?;
-    let tries: Vec<(Layout, [f64; 6])> = layouts
-        .iter()
-        .flat_map(|l| defaults::STARTS_DEG.iter().map(move |s| (*l, *s)))
-        .collect();
-    // in chunks of a fixed size, in order, until one is good enough: the same result
-    // whatever the thread count
-    let mut best: Option<(Resolved, Program)> = None;
-    for chunk in tries.chunks(4) {
-        let solved = chunk
-            .par_iter()
-            .map(|(layout, start)| {
-                let cell = resolve::resolve(job.cell.as_ref(), t, s.blade, s.largest, *layout);
-                let program = cell::fixture::solve(&fc(&cell, *start), &moves)?;
-                Ok((cell, Program::from(program)))
-            })
-            .collect::<std::result::Result<Vec<_>, cell::CellError>>()
-            .map_err(fail)?;
-        keep_best(&mut best, solved);
-        if good_enough(best.as_ref()) {
-            break;
-        }
-    }
-    best.ok_or_else(|| job.fail("robot cell: no layout"))
-}
-
-/// Keeps the best of `best` and `solved` (the first of equals).
-fn keep_best(best: &mut Option<(Resolved, Program)>, solved: Vec<(Resolved, Program)>) {
-    for (cell, program) in solved {
-        if best
-            .as_ref()
-            .is_none_or(|(_, b)| score(&program) < score(b))
-        {
-            *best = Some((cell, program));
-        }
-    }
-}
-
-/// Every move reached with no flip and a good joint margin.
-fn good_enough(best: Option<&(Resolved, Program)>) -> bool {
-    best.is_some_and(|(_, b)| {
-        let (reach, flips, margin) = score(b);
-        reach + flips == 0 && -margin >= defaults::GOOD_MARGIN_DEG
-    })
-}
-
-/// The program with the block carried through the blade at the station: the job gives
-/// the robots; the wrist sides of the blade robots and of the carrier are tried (four
-/// plans), the best kept.
-fn plan_carried(job: &Context, t: &Targets, s: &Setup) -> Result<(Resolved, Program)> {
-    let fail = |e: cell::CellError| job.fail(format!("robot cell: {e}"));
-    let layout = layouts(job)[0];
-    let cell = resolve::resolve(job.cell.as_ref(), t, s.blade, s.largest, layout);
-    let Some(Carry { robot, grip, .. }) = cell.carrier.clone() else {
-        return Err(job.fail("robot cell: no block carrier"));
-    };
-    let carrier_cell = |blade: [f64; 6], carrier: [f64; 6]| CarrierCell {
-        holders: [cell.holder(0), cell.holder(1)],
-        carrier: cell.arm(robot, grip),
-        station: cell
-            .carrier
-            .as_ref()
-            .map_or(Isometry3::identity(), |k| k.station),
-        blade_length: s.blade,
-        max_curvature: Some(s.curvature),
-        approach: s.approach,
-        clearance: cell.clearance,
-        travel_step: (
-            defaults::TRAVEL_STEP_MM,
-            defaults::TRAVEL_TURN_DEG.to_radians(),
-        ),
-        start: [
-            blade.map(f64::to_radians),
-            blade.map(f64::to_radians),
-            carrier.map(f64::to_radians),
-        ],
-    };
-    let starts = defaults::STARTS_DEG;
-    let (moves, poses) =
-        cell::carrier::moves(&carrier_cell(starts[0], starts[0]), &s.cuts).map_err(fail)?;
-    let tries: Vec<([f64; 6], [f64; 6])> = starts
-        .iter()
-        .flat_map(|a| starts.iter().map(move |b| (*a, *b)))
-        .collect();
-    let solved = tries
-        .par_iter()
-        .map(|(a, b)| {
-            let program = cell::carrier::solve(&carrier_cell(*a, *b), &moves, &poses)?;
-            Ok((cell.clone(), Program::from(program)))
-        })
-        .collect::<std::result::Result<Vec<_>, cell::CellError>>()
-        .map_err(fail)?;
-    let mut best = None;
-    keep_best(&mut best, solved);
-    best.ok_or_else(|| job.fail("robot cell: no plan"))
 }

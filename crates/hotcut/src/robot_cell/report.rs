@@ -7,8 +7,8 @@ use nalgebra::Isometry3;
 use schemars::JsonSchema;
 use serde::Serialize;
 
-use super::resolve::Resolved;
-use super::Program;
+use cell::layout::ResolvedCell;
+use cell::program::Program;
 
 /// A frame: origin (mm) and orientation `[w, x, y, z]`.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
@@ -223,7 +223,7 @@ impl CellReport {
 }
 
 /// The report of a planned cell.
-pub fn report(cell: &Resolved, program: &Program, cut_speed: f64) -> CellReport {
+pub fn report(cell: &ResolvedCell, program: &Program, cut_speed: f64) -> CellReport {
     // the holder of end e is task T_ROB<e+1>, the carrier T_ROB3
     let task = |i: usize| {
         let n = match cell.holders.iter().position(|h| h.robot == i) {
