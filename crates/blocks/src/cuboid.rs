@@ -141,6 +141,24 @@ fn separated(a: &Cuboid, b: &Cuboid, d: &Vector3<f64>) -> bool {
 }
 
 /// The exact volume of `a ∩ b`, by clipping `b` with `a`'s six face planes in `a`'s frame.
+///
+/// ```
+/// use blocks::{overlap_volume, Cuboid};
+/// use nalgebra::{UnitQuaternion, Vector3};
+/// let half = Vector3::new(0.5, 0.5, 0.5);
+/// let unit = |c: Vector3<f64>, q: UnitQuaternion<f64>| Cuboid::new(c, q, half);
+/// let a = unit(Vector3::zeros(), UnitQuaternion::identity());
+/// // shifted by half an edge: half the cube
+/// let b = unit(Vector3::new(0.5, 0.0, 0.0), UnitQuaternion::identity());
+/// assert!((overlap_volume(&a, &b) - 0.5).abs() < 1e-12);
+/// // turned 45° about z and lifted by a quarter: a regular octagon prism, area 2(√2 − 1),
+/// // three quarters high
+/// let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::FRAC_PI_4);
+/// let c = unit(Vector3::new(0.0, 0.0, 0.25), turn);
+/// assert!((overlap_volume(&a, &c) - 0.75 * 2.0 * (2f64.sqrt() - 1.0)).abs() < 1e-12);
+/// // apart: nothing
+/// assert_eq!(overlap_volume(&a, &unit(Vector3::new(2.0, 0.0, 0.0), UnitQuaternion::identity())), 0.0);
+/// ```
 pub fn overlap_volume(a: &Cuboid, b: &Cuboid) -> f64 {
     let d = b.center - a.center;
     if d.norm() >= a.radius() + b.radius() || separated(a, b, &d) {

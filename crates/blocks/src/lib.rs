@@ -15,17 +15,22 @@
 //! use geom::mesh::TriMesh;
 //! use nalgebra::Vector3;
 //!
-//! // A 3 × 1 × 1 bar covered with unit blocks.
+//! // A 3 × 1 × 1 bar covered with blocks of 1.2 × 1.2 × 1.2.
 //! let v: Vec<Vector3<f64>> = (0..8)
 //!     .map(|i| Vector3::new(3.0 * (i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
 //!     .collect();
 //! let f = vec![[0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4],
 //!              [2, 6, 7], [2, 7, 3], [0, 4, 6], [0, 6, 2], [1, 3, 7], [1, 7, 5]];
-//! let bar = TriMesh::try_new(v, f).unwrap();
+//! let bar = TriMesh::try_new(v.clone(), f)?;
 //! let params = Params { block_size: [1.2, 1.2, 1.2], ..Params::default() };
-//! let seg = segment(&bar, &params, &|_| {}).unwrap();
-//! assert!(seg.final_blocks <= seg.initial_blocks);
+//! let seg = segment(&bar, &params, &|_| {})?;
+//! // volume 3 needs at least ⌈3 / 1.728⌉ = 2 blocks; the optimization never adds any
 //! assert_eq!(seg.lower_bound, 2);
+//! assert!(seg.final_blocks <= seg.initial_blocks);
+//! assert_eq!(seg.blocks.len(), seg.final_blocks);
+//! // every corner of the bar lies in a block
+//! assert!(v.iter().all(|p| seg.blocks.iter().any(|b| b.cuboid().contains(p, -1e-9))));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 /// An oriented block and exact box–box overlap volumes.
@@ -51,8 +56,9 @@ use geom::mesh::TriMesh;
 use nalgebra::{UnitQuaternion, Vector3};
 use rayon::prelude::*;
 
-pub use cuboid::Cuboid;
+pub use cuboid::{overlap_volume, Cuboid};
 pub use error::{BlockError, Result};
+pub use obb::{box_in_frame, min_box, BoxFit};
 pub use samples::{Coverage, SampleCounts};
 
 /// One of the operations of §3.3 (the ablation of Table 3.2 picks a subset).
@@ -141,6 +147,19 @@ pub struct Placement {
 
 impl Placement {
     /// The placement of a block.
+    ///
+    /// ```
+    /// use blocks::{Cuboid, Placement};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    /// let q = UnitQuaternion::from_euler_angles(0.1, 0.2, 0.3);
+    /// let b = Cuboid::new(Vector3::new(1.0, 2.0, 3.0), q, Vector3::new(0.5, 1.0, 1.5));
+    /// let p = Placement::of(&b);
+    /// assert_eq!((p.center, p.size), ([1.0, 2.0, 3.0], [1.0, 2.0, 3.0]));
+    /// assert!(p.rotation[0] >= 0.0);
+    /// // and back: the same block
+    /// let back = p.cuboid();
+    /// assert!(back.corners().iter().zip(b.corners()).all(|(a, c)| (a - c).norm() < 1e-12));
+    /// ```
     pub fn of(b: &Cuboid) -> Self {
         let q = b.rotation.into_inner();
         let s = if q.w < 0.0 { -1.0 } else { 1.0 };
@@ -423,6 +442,27 @@ pub fn estimated_samples(mesh: &TriMesh, params: &Params) -> f64 {
 /// [`BlockError::Invalid`] for parameters out of range, [`BlockError::Model`] for a mesh
 /// that is not closed or has no volume, [`BlockError::TooManySamples`] when the block is
 /// too small for the model at the chosen sample spacing.
+///
+/// ```
+/// use blocks::{segment, BlockError, Params};
+/// use geom::bbox::Aabb;
+/// use geom::mesh::TriMesh;
+/// use nalgebra::Vector3;
+/// // a 2 × 1 × 1 box and blocks of 1.1: at least ⌈2 / 1.331⌉ = 2 of them
+/// let corners = Aabb { min: Vector3::zeros(), max: Vector3::new(2.0, 1.0, 1.0) }.corners();
+/// let model = TriMesh::cuboid(corners)?;
+/// let params = Params { block_size: [1.1, 1.1, 1.1], max_iterations: 20, ..Params::default() };
+/// let seg = segment(&model, &params, &|_| {})?;
+/// assert_eq!(seg.lower_bound, 2);
+/// assert!((seg.model_volume - 2.0).abs() < 1e-6); // computed in a unit frame
+/// assert!(seg.final_blocks >= seg.lower_bound && seg.final_blocks <= seg.initial_blocks);
+/// // the blocks cover the model: every corner lies in one
+/// assert!(corners.iter().all(|p| seg.blocks.iter().any(|b| b.cuboid().contains(p, -1e-9))));
+/// // an open mesh has no volume to cover
+/// let open = TriMesh::try_new(model.vertices().to_vec(), model.faces()[1..].to_vec())?;
+/// assert!(matches!(segment(&open, &params, &|_| {}), Err(BlockError::Model(_))));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn segment(
     mesh: &TriMesh,
     params: &Params,

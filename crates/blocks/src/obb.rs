@@ -31,6 +31,23 @@ impl BoxFit {
 const MAX_NORMALS: usize = 24;
 
 /// A near-minimum-volume box around `points`; `None` for no points or non-finite ones.
+///
+/// ```
+/// use blocks::min_box;
+/// use nalgebra::{UnitQuaternion, Vector3};
+/// // the corners of a 2 × 1 × 0.5 box turned 30° about z
+/// let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 30f64.to_radians());
+/// let pts: Vec<_> = (0..8)
+///     .map(|i| turn * Vector3::new(2.0 * (i & 1) as f64, ((i >> 1) & 1) as f64, 0.5 * ((i >> 2) & 1) as f64))
+///     .collect();
+/// let b = min_box(&pts).ok_or("no box")?;
+/// // the box is found again, not its larger axis-aligned box
+/// let mut size: Vec<f64> = b.size.iter().copied().collect();
+/// size.sort_by(f64::total_cmp);
+/// assert!((size[0] - 0.5).abs() < 1e-9 && (size[1] - 1.0).abs() < 1e-9 && (size[2] - 2.0).abs() < 1e-9);
+/// assert!(min_box(&[]).is_none());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn min_box(points: &[Vector3<f64>]) -> Option<BoxFit> {
     if points.is_empty() || points.iter().any(|p| !p.iter().all(|v| v.is_finite())) {
         return None;
@@ -93,6 +110,16 @@ pub fn min_box(points: &[Vector3<f64>]) -> Option<BoxFit> {
 
 /// The box around `points` with the given orientation (its axes are `rotation`'s columns).
 /// Points must be non-empty and finite.
+///
+/// ```
+/// use blocks::box_in_frame;
+/// use nalgebra::{UnitQuaternion, Vector3};
+/// let pts = [Vector3::new(0.0, 0.0, 0.0), Vector3::new(4.0, 1.0, 2.0), Vector3::new(1.0, 3.0, 0.0)];
+/// // in the model's own axes: the axis-aligned box
+/// let b = box_in_frame(&pts, UnitQuaternion::identity());
+/// assert!((b.size - Vector3::new(4.0, 3.0, 2.0)).norm() < 1e-12);
+/// assert!((b.center - Vector3::new(2.0, 1.5, 1.0)).norm() < 1e-12);
+/// ```
 pub fn box_in_frame(points: &[Vector3<f64>], rotation: UnitQuaternion<f64>) -> BoxFit {
     box_with(
         points,

@@ -1,6 +1,6 @@
 //! A cell in millimetres and frames, with the default cell where the user leaves parts
 //! out: the robots, the blade holders, the fixture (or the block carrier), air speed,
-//! clearance and heat. [`resolve`] places the default robots and holders for a job's
+//! clearance and heat. [`resolve`](crate::layout::resolve) places the default robots and holders for a job's
 //! blade poses; [`crate::program::plan`] searches the default layouts for the best one.
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3, Vector4};

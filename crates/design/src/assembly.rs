@@ -1,8 +1,10 @@
 //! A design's blocks and the cuts through them (§3.1, §5.3 of "Designing for Robotic
-//! Hot-Blade Cutting"): each cut resolved against its blocks ([`resolve_cut`]), per block
-//! its cuts in priority order with the ones that touch nothing dropped ([`block_cuts`],
-//! with [`crate::envelope`]), and the order the robots cut every (cut, block) pair in
-//! ([`robot_order`]). Coordinates are in the caller's units.
+//! Hot-Blade Cutting"): each cut resolved against its blocks
+//! ([`resolve_cut`](crate::assembly::resolve_cut)), per block its cuts in priority order
+//! with the ones that touch nothing dropped
+//! ([`block_cuts`](crate::assembly::block_cuts), with [`crate::envelope`]), and the order
+//! the robots cut every (cut, block) pair in
+//! ([`robot_order`](crate::assembly::robot_order)). Coordinates are in the caller's units.
 
 use geom::slice::PlaneFrame;
 use nalgebra::Vector3;
@@ -55,7 +57,7 @@ pub struct CutInput {
     pub stations: Vec<StationInput>,
 }
 
-/// A cut resolved against its blocks: what [`design::cut::solve`] needs but the blade and
+/// A cut resolved against its blocks: what [`crate::cut::solve`] needs but the blade and
 /// the planes.
 #[derive(Debug, Clone)]
 pub struct ResolvedCut {

@@ -8,6 +8,16 @@
 //! most one of them zero; the callers in this crate guarantee that.
 
 /// Carlson's R_F(x, y, z) = ½∫₀^∞ dt / √((t+x)(t+y)(t+z)).
+///
+/// ```
+/// use elastica::carlson::carlson_rf;
+/// use elastica::ellip_k;
+/// // R_F(x, x, x) = 1/√x, and K(m) = R_F(0, 1 − m, 1)
+/// assert!((carlson_rf(4.0, 4.0, 4.0) - 0.5).abs() < 1e-15);
+/// let m = 0.45;
+/// assert!((carlson_rf(0.0, 1.0 - m, 1.0) - ellip_k(m)?).abs() < 1e-14);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn carlson_rf(x: f64, y: f64, z: f64) -> f64 {
     let (mut x, mut y, mut z) = (x, y, z);
     let mut a = (x + y + z) / 3.0;
@@ -35,6 +45,17 @@ pub fn carlson_rf(x: f64, y: f64, z: f64) -> f64 {
 }
 
 /// Carlson's R_D(x, y, z) = 3/2 ∫₀^∞ dt / (√((t+x)(t+y)) (t+z)^{3/2}).
+///
+/// ```
+/// use elastica::carlson::carlson_rd;
+/// use elastica::{ellip_e, ellip_k};
+/// // R_D(x, x, x) = x^(−3/2), and K(m) − E(m) = m/3 · R_D(0, 1 − m, 1)
+/// assert!((carlson_rd(4.0, 4.0, 4.0) - 0.125).abs() < 1e-15);
+/// let m = 0.45;
+/// let lhs = ellip_k(m)? - ellip_e(m)?;
+/// assert!((lhs - m / 3.0 * carlson_rd(0.0, 1.0 - m, 1.0)).abs() < 1e-14);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn carlson_rd(x: f64, y: f64, z: f64) -> f64 {
     let (mut x, mut y, mut z) = (x, y, z);
     let mut a = (x + y + 3.0 * z) / 5.0;

@@ -270,6 +270,26 @@ pub fn place(
 ///
 /// # Errors
 /// A blade cannot be extended or evaluated; `sections` and `blocks` differ in length.
+///
+/// ```
+/// use elastica::clearance::{place_all, Section};
+/// use elastica::{BladeParams, Segment};
+/// // one block's flat top on two neighbouring planes (1 and 0.9 high), cut by a blade 4 long
+/// let tops = [
+///     Segment::Line { x0: 0.0, y0: 1.0, phi: 0.0, length: 2.0 },
+///     Segment::Line { x0: 0.0, y0: 0.9, phi: 0.0, length: 2.0 },
+/// ];
+/// let blocks: Vec<Section> = [1.0, 0.9]
+///     .iter()
+///     .map(|&h| Section { rect: [[0.0, 0.0], [2.0, h]], block: [[0.0, 0.0], [2.0, h]], keeps_below: true })
+///     .collect();
+/// let placed = place_all(&tops, &BladeParams::new(4.0), &blocks, 1e-9)?;
+/// assert_eq!(placed.len(), 2);
+/// assert!(placed.iter().all(|(_, c)| c.is_clean()));
+/// // one place along the blade on every plane: the extension is centred on both
+/// assert!(placed.iter().all(|(b, _)| (b.lead_in - 1.0).abs() < 1e-12));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn place_all(
     sections: &[Segment],
     params: &BladeParams,

@@ -298,6 +298,21 @@ impl Elliptic {
     }
 
     /// Evaluate sn, cn, dn, am, E(u|m) and D(u|m) at `u`. Non-finite `u` gives NaN.
+    ///
+    /// ```
+    /// use elastica::Elliptic;
+    /// let m = 0.6;
+    /// let e = Elliptic::new(m)?;
+    /// for u in [-2.0, 0.3, 1.0, 5.0] {
+    ///     let v = e.eval(u);
+    ///     assert!((v.sn * v.sn + v.cn * v.cn - 1.0).abs() < 1e-15);
+    ///     assert!((v.dn * v.dn + m * v.sn * v.sn - 1.0).abs() < 1e-15);
+    ///     assert!((v.sn - v.am.sin()).abs() < 1e-15); // sn = sin am
+    /// }
+    /// // E(K|m) is the complete integral E(m)
+    /// assert!((e.eval(e.k()).eps - e.e()).abs() < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn eval(&self, u: f64) -> JacobiValues {
         self.eval_inner(u, true)
     }
@@ -384,6 +399,19 @@ impl Elliptic {
     /// values `v = self.eval(u)` (closed form: ∂am/∂m = (sn cn − dn (u − D))/(2(1−m)), from
     /// ∂F(φ|m)/∂m, DLMF 19.4.1; at m = 1 its limit −¼(sinh u − u sech u)). Loses digits
     /// like ε/(1 − m) as m → 1, where the functions themselves become that sensitive.
+    ///
+    /// ```
+    /// use elastica::Elliptic;
+    /// // against central differences in m
+    /// let (u, m, h) = (0.7, 0.4, 1e-6);
+    /// let e = Elliptic::new(m)?;
+    /// let d = e.dm(u, &e.eval(u));
+    /// let (hi, lo) = (Elliptic::new(m + h)?.eval(u), Elliptic::new(m - h)?.eval(u));
+    /// assert!((d.sn - (hi.sn - lo.sn) / (2.0 * h)).abs() < 1e-8);
+    /// assert!((d.dn - (hi.dn - lo.dn) / (2.0 * h)).abs() < 1e-8);
+    /// assert!((d.eps - (hi.eps - lo.eps) / (2.0 * h)).abs() < 1e-8);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn dm(&self, u: f64, v: &JacobiValues) -> JacobiDm {
         let am = if self.at_one {
             -0.25 * (u.sinh() - u / u.cosh())
@@ -406,6 +434,18 @@ impl Elliptic {
 
     /// The incomplete integral of the first kind F(φ|m) = ∫₀^φ dθ/√(1 − m sin²θ) for any
     /// real φ (quasi-periodic: F(φ + jπ) = F(φ) + 2jK). Infinite at m = 1, |φ| ≥ π/2.
+    ///
+    /// ```
+    /// use elastica::Elliptic;
+    /// let e = Elliptic::new(0.8)?;
+    /// // F inverts the amplitude: F(am(u|m)|m) = u
+    /// let u = 1.3;
+    /// assert!((e.f(e.eval(u).am) - u).abs() < 1e-14);
+    /// // F(π/2) = K, and a half turn more adds 2K
+    /// assert!((e.f(std::f64::consts::FRAC_PI_2) - e.k()).abs() < 1e-14);
+    /// assert!((e.f(1.5 * std::f64::consts::PI) - 3.0 * e.k()).abs() < 1e-13);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn f(&self, phi: f64) -> f64 {
         let j = (phi / std::f64::consts::PI).round();
         let psi = phi - j * std::f64::consts::PI;
@@ -421,11 +461,38 @@ impl Elliptic {
 }
 
 /// The complete elliptic integral of the first kind K(m).
+///
+/// ```
+/// use elastica::ellip_k;
+/// // K(m) = π / (2·AGM(1, √(1 − m))), here with the AGM iterated by hand
+/// let m: f64 = 0.7;
+/// let (mut a, mut b) = (1.0f64, (1.0 - m).sqrt());
+/// for _ in 0..8 {
+///     (a, b) = ((a + b) / 2.0, (a * b).sqrt());
+/// }
+/// assert!((ellip_k(m)? - std::f64::consts::PI / (2.0 * a)).abs() < 1e-14);
+/// // no quarter period outside m ∈ [0, 1]
+/// assert!(ellip_k(1.5).is_err());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn ellip_k(m: f64) -> Result<f64, EllipticError> {
     Ok(Elliptic::new(m)?.k())
 }
 
 /// The complete elliptic integral of the second kind E(m).
+///
+/// ```
+/// use elastica::{ellip_e, ellip_k};
+/// use std::f64::consts::FRAC_PI_2;
+/// // Legendre's relation E·K′ + E′·K − K·K′ = π/2 (primes: at 1 − m)
+/// let (m, m1) = (0.3, 0.7);
+/// let (k, e, k1, e1) = (ellip_k(m)?, ellip_e(m)?, ellip_k(m1)?, ellip_e(m1)?);
+/// assert!((e * k1 + e1 * k - k * k1 - FRAC_PI_2).abs() < 1e-14);
+/// // E(0) = π/2 (a circle's quarter) and E(1) = 1
+/// assert!((ellip_e(0.0)? - FRAC_PI_2).abs() < 1e-15);
+/// assert!((ellip_e(1.0)? - 1.0).abs() < 1e-15);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn ellip_e(m: f64) -> Result<f64, EllipticError> {
     Ok(Elliptic::new(m)?.e())
 }

@@ -281,6 +281,20 @@ impl Segment {
     }
 
     /// `n ≥ 2` points at equal arc-length spacing from t = 0 to t = 1.
+    ///
+    /// ```
+    /// use elastica::Segment;
+    /// // half a circle of radius 2 about (0, 2), from the origin turning left
+    /// let arc = Segment::Arc { x0: 0.0, y0: 0.0, phi: 0.0, curvature: 0.5, length: 2.0 * std::f64::consts::PI };
+    /// let pts = arc.sample(9)?;
+    /// assert_eq!(pts.len(), 9);
+    /// assert!(pts.iter().all(|p| (p[0].hypot(p[1] - 2.0) - 2.0).abs() < 1e-12));
+    /// // the far end, heading back (−x) with curvature 1/2
+    /// let end = arc.eval(1.0)?;
+    /// assert!(end.p[0].abs() < 1e-12 && (end.p[1] - 4.0).abs() < 1e-12);
+    /// assert!((end.tangent[0] + 1.0).abs() < 1e-12 && end.curvature == 0.5);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn sample(&self, n: usize) -> Result<Vec<[f64; 2]>, EllipticError> {
         let e = self.evaluator()?;
         let n = n.max(2);
@@ -296,6 +310,24 @@ impl Segment {
     /// ([`geom::significance`]; an exact curve's floor is rounding). A zero a hair from
     /// an end, or a lobe of a nearly straight segment that no evaluation can tell from
     /// its chord, is not an inflection.
+    ///
+    /// ```
+    /// use elastica::{ElasticaParams, Elliptic, Family, Segment};
+    /// // the inflectional elastica over one full period 4K: κ = 2k·cn vanishes at K and 3K
+    /// let k = 0.5;
+    /// let quarter = Elliptic::from_modulus(k)?.k();
+    /// let s = Segment::Elastica(ElasticaParams {
+    ///     family: Family::Inflectional, k, s0: 0.0, l: 4.0 * quarter,
+    ///     scale: 1.0, phi: 0.0, x0: 0.0, y0: 0.0, one_minus_k: None,
+    /// });
+    /// let t = s.inflections()?;
+    /// assert_eq!(t.len(), 2);
+    /// assert!((t[0] - 0.25).abs() < 1e-12 && (t[1] - 0.75).abs() < 1e-12);
+    /// assert!(s.eval(t[0])?.curvature.abs() < 1e-12);
+    /// // |κ| peaks at σ = 0 with 2k
+    /// assert!((s.max_abs_curvature()? - 2.0 * k).abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn inflections(&self) -> Result<Vec<f64>, EllipticError> {
         let mut ts = self.curvature_zeros()?;
         if ts.is_empty() {

@@ -148,6 +148,28 @@ pub fn frame_quaternion(x: &Vector3<f64>, z: &Vector3<f64>) -> [f64; 4] {
 }
 
 /// The 3D pose of `blade` (in plane coordinates of `frame`) on the plane at `offset`.
+///
+/// ```
+/// use elastica::sweep::{blade_pose, rotate};
+/// use elastica::{extend_to_blade, BladeParams, Segment};
+/// use geom::slice::PlaneFrame;
+/// use nalgebra::Vector3;
+/// // cutting along +x: the planes' coordinates are (y, z)
+/// let frame = PlaneFrame::from_direction(Vector3::x())?;
+/// let arc = Segment::Arc { x0: 0.0, y0: 0.0, phi: 0.0, curvature: 0.001, length: 500.0 };
+/// let blade = extend_to_blade(&arc, &BladeParams::new(1000.0))?;
+/// let pose = blade_pose(&frame, 250.0, &blade);
+/// assert_eq!(pose.plane_normal, [1.0, 0.0, 0.0]);
+/// for end in &pose.ends {
+///     assert_eq!(end.position[0], 250.0); // on the plane x = 250
+///     // the tool's z axis is the plane normal, its x axis the blade's tangent
+///     let z = rotate(&end.rotation, &[0.0, 0.0, 1.0]);
+///     let x = rotate(&end.rotation, &[1.0, 0.0, 0.0]);
+///     assert!((Vector3::from(z) - Vector3::x()).norm() < 1e-12);
+///     assert!((Vector3::from(x) - Vector3::from(end.tangent)).norm() < 1e-12);
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn blade_pose(frame: &PlaneFrame, offset: f64, blade: &Blade) -> BladePose {
     let n = frame.normal;
     let end = |i: usize| {

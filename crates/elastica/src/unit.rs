@@ -48,6 +48,21 @@ pub struct UnitElastica {
 impl UnitElastica {
     /// The normalized curve of `family` with modulus `k` (k ∈ [0, 1] inflectional,
     /// k ∈ (0, 1] non-inflectional).
+    ///
+    /// ```
+    /// use elastica::{jacobi, Family, UnitElastica};
+    /// // ζ(σ) = (2E(σ|k²) − σ, 2k(1 − cn(σ|k²))) with curvature 2k·cn
+    /// let k = 0.7;
+    /// let z = UnitElastica::new(Family::Inflectional, k)?;
+    /// let sigma = 1.1;
+    /// let (p, v) = (z.eval(sigma), jacobi(sigma, k * k)?);
+    /// assert!((p.p[0] - (2.0 * v.eps - sigma)).abs() < 1e-14);
+    /// assert!((p.p[1] - 2.0 * k * (1.0 - v.cn)).abs() < 1e-14);
+    /// assert!((p.kappa - 2.0 * k * v.cn).abs() < 1e-14);
+    /// // the non-inflectional family needs k > 0
+    /// assert!(UnitElastica::new(Family::NonInflectional, 0.0).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(family: Family, k: f64) -> Result<Self, EllipticError> {
         let ok = match family {
             Family::Inflectional => (0.0..=1.0).contains(&k),

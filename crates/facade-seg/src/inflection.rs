@@ -212,6 +212,36 @@ fn arrange(
 /// [`SegError::Invalid`] for bad constraints; [`SegError::Section`] for a section that
 /// does not run across the facade; [`SegError::TooManyPieces`] when the moves do not
 /// settle within `max_moves`.
+///
+/// ```
+/// # use facade_seg::{Constraints, Facade, Segmentation};
+/// # use geom::expr::Expr;
+/// # use geom::heightfield::HeightField;
+/// # use geom::surface::{SectionParams, Surface};
+/// # // the wavy facade of the crate's front page: an inflection every ~470 mm across the cut
+/// # let z = Expr::parse("60*sin(y/150)")?;
+/// # let surface = Surface::HeightField(HeightField::try_new(z, (0.0, 600.0), (0.0, 1800.0))?);
+/// # let (frame, sections) = surface.sections(&SectionParams { count: 4, ..SectionParams::default() }, &|| {})?;
+/// # let facade = Facade::new(frame, &sections)?;
+/// # let c = Constraints {
+/// #     block: [600.0, 600.0, 400.0], blade_length: 800.0, max_curvature: 0.011,
+/// #     max_inflections: 2, tolerance_rms: 0.5, tolerance_max: 2.0,
+/// # };
+/// # // every section is cut into parts that meet end to end, from its start to its end
+/// # let tiles = |seg: &Segmentation| facade.sections.iter().enumerate().all(|(j, sec)| {
+/// #     let mut s: Vec<[f64; 2]> = seg.pieces.iter().flat_map(|p| &p.parts).filter(|q| q.plane == j).map(|q| q.s).collect();
+/// #     s.sort_by(|a, b| a[0].total_cmp(&b[0]));
+/// #     !s.is_empty() && s[0][0].abs() < 1e-6 && (s[s.len() - 1][1] - sec.length).abs() < 1e-6
+/// #         && s.windows(2).all(|w| (w[1][0] - w[0][1]).abs() < 1e-6)
+/// # });
+/// use facade_seg::inflection::{inflection_points, InflectionParams};
+/// let seg = inflection_points(&facade, &c, &InflectionParams::default(), &|| {})?;
+/// assert!(tiles(&seg));
+/// // cut at the inflections: no part holds more than the blade's two
+/// assert!(seg.pieces.iter().all(|p| p.verdicts.shape));
+/// assert!(seg.pieces.len() > 1);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn inflection_points(
     facade: &Facade,
     c: &Constraints,

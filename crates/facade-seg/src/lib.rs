@@ -15,19 +15,17 @@
 //! - [`survey::survey`]: every section checked against §5.1 before anything is cut.
 //!
 //! ```
-//! use facade_seg::inflection::{inflection_points, InflectionParams};
-//! use facade_seg::{Constraints, Facade};
+//! use facade_seg::{inflection_points, Constraints, Facade, InflectionParams};
 //! use geom::expr::Expr;
 //! use geom::heightfield::HeightField;
 //! use geom::surface::{SectionParams, Surface};
 //!
 //! // a wavy facade, an inflection every ~470 mm across the cut, 6 sections along it
-//! let z = Expr::parse("60*sin(y/150)").unwrap();
-//! let surface = Surface::HeightField(HeightField::try_new(z, (0.0, 600.0), (0.0, 1800.0)).unwrap());
+//! let z = Expr::parse("60*sin(y/150)")?;
+//! let surface = Surface::HeightField(HeightField::try_new(z, (0.0, 600.0), (0.0, 1800.0))?);
 //! let (frame, sections) = surface
-//!     .sections(&SectionParams { count: 6, ..SectionParams::default() }, &|| {})
-//!     .unwrap();
-//! let facade = Facade::new(frame, &sections).unwrap();
+//!     .sections(&SectionParams { count: 6, ..SectionParams::default() }, &|| {})?;
+//! let facade = Facade::new(frame, &sections)?;
 //! let c = Constraints {
 //!     block: [600.0, 600.0, 400.0],
 //!     blade_length: 800.0,
@@ -36,10 +34,19 @@
 //!     tolerance_rms: 0.5,
 //!     tolerance_max: 2.0,
 //! };
-//! let seg = inflection_points(&facade, &c, &InflectionParams::default(), &|| {}).unwrap();
+//! let seg = inflection_points(&facade, &c, &InflectionParams::default(), &|| {})?;
 //! // every part of every piece holds at most two inflections
 //! assert!(seg.pieces.iter().all(|p| p.verdicts.shape));
 //! assert!(seg.pieces.len() > 1);
+//! // and every section is shared out whole: the parts on it add up to its length
+//! for (j, section) in facade.sections.iter().enumerate() {
+//!     let held: f64 = seg.pieces.iter().flat_map(|p| &p.parts)
+//!         .filter(|q| q.plane == j)
+//!         .map(|q| q.s[1] - q.s[0])
+//!         .sum();
+//!     assert!((held - section.length).abs() < 1e-6);
+//! }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 /// Sections seen across the facade (`u` ↔ arc length, curvature, inflections).
@@ -73,3 +80,9 @@ pub use constraints::Constraints;
 pub use error::SegError;
 pub use piece::{Piece, PiecePart, Segmentation};
 pub use section::Facade;
+
+pub use inflection::{inflection_points, InflectionParams};
+pub use longest::{longest_elastica, LongestParams};
+pub use rationalize::{pose_pieces, RationalizeParams};
+pub use refine::{refine, RefineParams};
+pub use trace::{trace, TraceParams};

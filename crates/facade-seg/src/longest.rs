@@ -198,6 +198,36 @@ fn even_out(bound: Vec<f64>, max_step: f64) -> Vec<f64> {
 /// # Errors
 /// [`SegError::Invalid`] for bad constraints or parameters; [`SegError::TooManyPieces`]
 /// when more than `max_bands` bands would be needed.
+///
+/// ```
+/// # use facade_seg::{Constraints, Facade, Segmentation};
+/// # use geom::expr::Expr;
+/// # use geom::heightfield::HeightField;
+/// # use geom::surface::{SectionParams, Surface};
+/// # // the wavy facade of the crate's front page: an inflection every ~470 mm across the cut
+/// # let z = Expr::parse("60*sin(y/150)")?;
+/// # let surface = Surface::HeightField(HeightField::try_new(z, (0.0, 600.0), (0.0, 1800.0))?);
+/// # let (frame, sections) = surface.sections(&SectionParams { count: 4, ..SectionParams::default() }, &|| {})?;
+/// # let facade = Facade::new(frame, &sections)?;
+/// # let c = Constraints {
+/// #     block: [600.0, 600.0, 400.0], blade_length: 800.0, max_curvature: 0.011,
+/// #     max_inflections: 2, tolerance_rms: 0.5, tolerance_max: 2.0,
+/// # };
+/// # // every section is cut into parts that meet end to end, from its start to its end
+/// # let tiles = |seg: &Segmentation| facade.sections.iter().enumerate().all(|(j, sec)| {
+/// #     let mut s: Vec<[f64; 2]> = seg.pieces.iter().flat_map(|p| &p.parts).filter(|q| q.plane == j).map(|q| q.s).collect();
+/// #     s.sort_by(|a, b| a[0].total_cmp(&b[0]));
+/// #     !s.is_empty() && s[0][0].abs() < 1e-6 && (s[s.len() - 1][1] - sec.length).abs() < 1e-6
+/// #         && s.windows(2).all(|w| (w[1][0] - w[0][1]).abs() < 1e-6)
+/// # });
+/// use facade_seg::longest::{longest_elastica, LongestParams};
+/// let seg = longest_elastica(&facade, &c, &LongestParams { precision: 5.0, ..LongestParams::default() }, &|| {})?;
+/// assert_eq!(seg.algorithm, "LongestElastica");
+/// assert!(tiles(&seg));
+/// // pieces as long as an elastica fits within the tolerance
+/// assert!(seg.pieces.iter().all(|p| p.verdicts.approximation != Some(false)));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn longest_elastica(
     facade: &Facade,
     c: &Constraints,

@@ -183,6 +183,51 @@ pub fn pose_piece(
 ///
 /// # Errors
 /// The first piece's error, in piece order.
+///
+/// ```
+/// # use facade_seg::{Constraints, Facade, Segmentation};
+/// # use geom::expr::Expr;
+/// # use geom::heightfield::HeightField;
+/// # use geom::surface::{SectionParams, Surface};
+/// # // the wavy facade of the crate's front page: an inflection every ~470 mm across the cut
+/// # let z = Expr::parse("60*sin(y/150)")?;
+/// # let surface = Surface::HeightField(HeightField::try_new(z, (0.0, 600.0), (0.0, 1800.0))?);
+/// # let (frame, sections) = surface.sections(&SectionParams { count: 4, ..SectionParams::default() }, &|| {})?;
+/// # let facade = Facade::new(frame, &sections)?;
+/// # let c = Constraints {
+/// #     block: [600.0, 600.0, 400.0], blade_length: 800.0, max_curvature: 0.011,
+/// #     max_inflections: 2, tolerance_rms: 0.5, tolerance_max: 2.0,
+/// # };
+/// # // every section is cut into parts that meet end to end, from its start to its end
+/// # let tiles = |seg: &Segmentation| facade.sections.iter().enumerate().all(|(j, sec)| {
+/// #     let mut s: Vec<[f64; 2]> = seg.pieces.iter().flat_map(|p| &p.parts).filter(|q| q.plane == j).map(|q| q.s).collect();
+/// #     s.sort_by(|a, b| a[0].total_cmp(&b[0]));
+/// #     !s.is_empty() && s[0][0].abs() < 1e-6 && (s[s.len() - 1][1] - sec.length).abs() < 1e-6
+/// #         && s.windows(2).all(|w| (w[1][0] - w[0][1]).abs() < 1e-6)
+/// # });
+/// use elastica::FitConstraint;
+/// use facade_seg::inflection::{inflection_points, InflectionParams};
+/// use facade_seg::rationalize::{pose_pieces, RationalizeParams};
+/// use hotblade::BladeLimits;
+/// let seg = inflection_points(&facade, &c, &InflectionParams::default(), &|| {})?;
+/// let params = RationalizeParams {
+///     constraint: FitConstraint::EndPointsAndLength,
+///     samples: 64,
+///     blade: BladeLimits { length: c.blade_length, max_curvature: c.max_curvature, max_inflections: c.max_inflections },
+///     tolerance_max: c.tolerance_max,
+/// };
+/// let posed = pose_pieces(&facade, &seg, &params, &|| {})?;
+/// assert_eq!(posed.len(), seg.pieces.len());
+/// // every part of every piece gets a blade of the blade's length, both ends held on the
+/// // part's cutting plane
+/// for part in posed.iter().flat_map(|p| &p.parts) {
+///     assert!((part.blade.segment.length() - c.blade_length).abs() < 1e-6);
+///     let n = part.pose.plane_normal;
+///     let [a, b] = part.pose.ends.map(|e| n[0] * e.position[0] + n[1] * e.position[1] + n[2] * e.position[2]);
+///     assert!((a - b).abs() < 1e-9);
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn pose_pieces(
     facade: &Facade,
     seg: &crate::Segmentation,

@@ -122,6 +122,41 @@ enum Split {
 ///
 /// # Errors
 /// [`SegError::Invalid`] for a `min_length` that is not a positive number.
+///
+/// ```
+/// # use facade_seg::{Constraints, Facade, Segmentation};
+/// # use geom::expr::Expr;
+/// # use geom::heightfield::HeightField;
+/// # use geom::surface::{SectionParams, Surface};
+/// # // the wavy facade of the crate's front page: an inflection every ~470 mm across the cut
+/// # let z = Expr::parse("60*sin(y/150)")?;
+/// # let surface = Surface::HeightField(HeightField::try_new(z, (0.0, 600.0), (0.0, 1800.0))?);
+/// # let (frame, sections) = surface.sections(&SectionParams { count: 4, ..SectionParams::default() }, &|| {})?;
+/// # let facade = Facade::new(frame, &sections)?;
+/// # let c = Constraints {
+/// #     block: [600.0, 600.0, 400.0], blade_length: 800.0, max_curvature: 0.011,
+/// #     max_inflections: 2, tolerance_rms: 0.5, tolerance_max: 2.0,
+/// # };
+/// # // every section is cut into parts that meet end to end, from its start to its end
+/// # let tiles = |seg: &Segmentation| facade.sections.iter().enumerate().all(|(j, sec)| {
+/// #     let mut s: Vec<[f64; 2]> = seg.pieces.iter().flat_map(|p| &p.parts).filter(|q| q.plane == j).map(|q| q.s).collect();
+/// #     s.sort_by(|a, b| a[0].total_cmp(&b[0]));
+/// #     !s.is_empty() && s[0][0].abs() < 1e-6 && (s[s.len() - 1][1] - sec.length).abs() < 1e-6
+/// #         && s.windows(2).all(|w| (w[1][0] - w[0][1]).abs() < 1e-6)
+/// # });
+/// use facade_seg::longest::{longest_elastica, LongestParams};
+/// use facade_seg::refine::{refine, RefineParams};
+/// let seg = longest_elastica(&facade, &c, &LongestParams { precision: 5.0, ..LongestParams::default() }, &|| {})?;
+/// let p = RefineParams { min_length: 50.0, samples: 64, max_pieces: 1000 };
+/// let (refined, report) = refine(&facade, &c, &seg, &p, &|| {})?;
+/// assert!(tiles(&refined));
+/// // refinement only splits: never fewer pieces, and every split adds one
+/// assert_eq!(report.before.pieces, seg.pieces.len());
+/// assert_eq!(report.after.pieces, refined.pieces.len());
+/// assert!(report.after.pieces >= report.before.pieces);
+/// assert!(report.after.failing_pieces <= report.before.failing_pieces);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn refine(
     facade: &Facade,
     c: &Constraints,

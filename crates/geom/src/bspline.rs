@@ -187,6 +187,20 @@ impl<const D: usize> BSplineCurve<D> {
     ///
     /// # Errors
     /// As [`Self::try_new`].
+    ///
+    /// ```
+    /// use geom::BSplineCurve;
+    /// use nalgebra::Vector2;
+    /// let c = BSplineCurve::clamped_uniform(2, vec![
+    ///     Vector2::new(0.0, 0.0), Vector2::new(1.0, 2.0), Vector2::new(2.0, 0.0),
+    /// ])?;
+    /// // clamped: the curve starts and ends on its end control points...
+    /// assert_eq!(c.eval(0.0), Vector2::new(0.0, 0.0));
+    /// assert_eq!(c.eval(1.0), Vector2::new(2.0, 0.0));
+    /// // ...and this quadratic Bézier peaks at half its middle control point's height
+    /// assert!((c.eval(0.5) - Vector2::new(1.0, 1.0)).norm() < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn clamped_uniform(degree: usize, control: Vec<SVector<f64, D>>) -> Result<Self> {
         let knots = clamped_uniform_knots(degree, control.len(), 0.0, 1.0);
         Self::try_new(degree, knots, control)

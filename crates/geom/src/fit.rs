@@ -22,6 +22,13 @@ use crate::bspline::{basis_funs, clamped_uniform_knots, find_span, BSplineCurve}
 use crate::error::{GeomError, Result};
 
 /// Cumulative chord lengths of a polyline, starting at 0 (in the points' units).
+///
+/// ```
+/// use geom::fit::chord_length_params;
+/// use nalgebra::Vector2;
+/// let pts = [Vector2::new(0.0, 0.0), Vector2::new(3.0, 4.0), Vector2::new(3.0, 5.0)];
+/// assert_eq!(chord_length_params(&pts), vec![0.0, 5.0, 6.0]);
+/// ```
 pub fn chord_length_params<const D: usize>(points: &[SVector<f64, D>]) -> Vec<f64> {
     let mut t = Vec::with_capacity(points.len());
     let mut acc = 0.0;
@@ -224,6 +231,21 @@ pub fn polyline_sagitta<const D: usize>(points: &[SVector<f64, D>]) -> Vec<f64> 
 /// # Errors
 /// [`GeomError::InvalidFit`] for mismatched or too few points, or when the system is singular
 /// (a knot span with no data); [`GeomError::InvalidSpline`] for a bad knot vector.
+///
+/// ```
+/// use geom::bspline::clamped_uniform_knots;
+/// use geom::fit::fit_least_squares;
+/// use nalgebra::Vector2;
+/// // a cubic polynomial lies in the space of cubic splines: the fit reproduces it
+/// let f = |t: f64| Vector2::new(t, t * t * t - t);
+/// let params: Vec<f64> = (0..20).map(|i| i as f64 / 19.0).collect();
+/// let points: Vec<_> = params.iter().map(|&t| f(t)).collect();
+/// let curve = fit_least_squares(&points, &params, 3, clamped_uniform_knots(3, 6, 0.0, 1.0))?;
+/// for t in [0.0, 0.37, 0.81, 1.0] {
+///     assert!((curve.eval(t) - f(t)).norm() < 1e-12);
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn fit_least_squares<const D: usize>(
     points: &[SVector<f64, D>],
     params: &[f64],
@@ -321,6 +343,20 @@ pub fn fit_smoothing<const D: usize>(
 ///
 /// # Errors
 /// As [`fit_smoothing`]; `known` of another length than `points`.
+///
+/// ```
+/// use geom::fit::{fit_smoothing_allowing, SmoothingParams};
+/// use nalgebra::Vector2;
+/// // points known to lie up to 0.05 off the true curve may deviate that much from the fit
+/// let pts: Vec<_> = (0..40).map(|i| Vector2::new(i as f64, (i as f64 / 6.0).sin())).collect();
+/// let known = vec![0.05; pts.len()];
+/// let opts = SmoothingParams { tolerance: 1e-3, ..SmoothingParams::default() };
+/// let fit = fit_smoothing_allowing(&pts, None, &opts, Some(&known))?;
+/// assert!(fit.max_error <= 0.05 + 1e-9);
+/// // one allowance per point is required
+/// assert!(fit_smoothing_allowing(&pts, None, &opts, Some(&known[1..])).is_err());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn fit_smoothing_allowing<const D: usize>(
     points: &[SVector<f64, D>],
     params: Option<&[f64]>,

@@ -159,6 +159,22 @@ impl HeightField {
     /// # Errors
     /// [`GeomError::Unsupported`] when the cutting direction is not horizontal (a tilted
     /// plane's section of a graph is not a graph over the plane's `u` axis).
+    ///
+    /// ```
+    /// use geom::planar::PlanarCurve;
+    /// use geom::{Expr, HeightField, PlaneFrame};
+    /// use nalgebra::Vector3;
+    /// let hf = HeightField::try_new(Expr::parse("x*y")?, (0.0, 2.0), (0.0, 1.0))?;
+    /// let frame = PlaneFrame::from_direction(Vector3::x())?;
+    /// // the plane x = 1.5 cuts the graph in the line z = 1.5·y, y ∈ [0, 1]
+    /// let curve = hf.section(&frame, 1.5)?.ok_or("no section")?;
+    /// let end = curve.point(curve.domain().1);
+    /// assert!((end.x - 1.0).abs() < 1e-12 && (end.y - 1.5).abs() < 1e-12);
+    /// // x = 3 misses the rectangle; a vertical cutting direction is not supported
+    /// assert!(hf.section(&frame, 3.0)?.is_none());
+    /// assert!(hf.section(&PlaneFrame::from_direction(Vector3::z())?, 0.5).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn section(&self, frame: &PlaneFrame, offset: f64) -> Result<Option<GraphCurve>> {
         if frame.normal.z.abs() > 1e-12 {
             return Err(GeomError::Unsupported(

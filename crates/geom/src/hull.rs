@@ -43,6 +43,23 @@ impl Face {
 /// # Errors
 /// [`GeomError::NonFinite`] for NaN points, [`GeomError::Unsupported`] for fewer than four
 /// points or points that are all coplanar.
+///
+/// ```
+/// use geom::hull::convex_hull;
+/// use nalgebra::Vector3;
+/// // the unit cube's corners and a point inside: the hull keeps the corners only
+/// let mut pts: Vec<_> = (0..8)
+///     .map(|i| Vector3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
+///     .collect();
+/// pts.push(Vector3::new(0.5, 0.5, 0.5));
+/// let hull = convex_hull(&pts)?;
+/// assert_eq!(hull.vertices().len(), 8);
+/// assert!((hull.volume() - 1.0).abs() < 1e-12);
+/// assert!((hull.area() - 6.0).abs() < 1e-12);
+/// // coplanar points have no hull
+/// assert!(convex_hull(&pts[..4]).is_err());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn convex_hull(points: &[Vector3<f64>]) -> Result<TriMesh> {
     if points.iter().any(|p| p.iter().any(|v| !v.is_finite())) {
         return Err(GeomError::NonFinite {

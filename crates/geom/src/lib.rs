@@ -6,15 +6,20 @@
 //! no serde: the job-file layer maps these types at the edge.
 //!
 //! ```
-//! use geom::{expr::Expr, heightfield::HeightField, surface::{Surface, SectionParams}};
-//! use geom::analysis::{analyze_curve, CurveAnalysisParams};
-//! let hf = HeightField::try_new(Expr::parse("100*sin(y/200)").unwrap(), (0.0, 1000.0), (0.0, 2000.0)).unwrap();
+//! use geom::{analyze_curve, CurveAnalysisParams, Expr, HeightField, SectionParams, Surface};
+//!
+//! // z = 100·sin(y/200) over a 1000 × 2000 rectangle, cut by 4 planes normal to x
+//! let hf = HeightField::try_new(Expr::parse("100*sin(y/200)")?, (0.0, 1000.0), (0.0, 2000.0))?;
 //! let (_frame, sections) = Surface::HeightField(hf)
-//!     .sections(&SectionParams { count: 4, ..Default::default() }, &|| {})
-//!     .unwrap();
-//! let a = analyze_curve(&sections[0].curve, &CurveAnalysisParams::default()).unwrap();
+//!     .sections(&SectionParams { count: 4, ..SectionParams::default() }, &|| {})?;
+//! assert_eq!(sections.len(), 4);
+//! let a = analyze_curve(&sections[0].curve, &CurveAnalysisParams::default())?;
 //! // sin(y/200) changes sign at y = 200π·k: k = 1, 2, 3 lie inside (0, 2000)
 //! assert_eq!(a.inflections.len(), 3);
+//! for (p, k) in a.inflections.iter().zip(1..) {
+//!     assert!((p.point.x - 200.0 * std::f64::consts::PI * k as f64).abs() < 1e-6);
+//! }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 /// Curve analysis: inflections, lobes, curvature maxima.
@@ -56,4 +61,14 @@ pub mod surface_spline;
 /// User text made safe for each sink: XML, terminal, G-code and RAPID comments.
 pub mod text;
 
+pub use analysis::{analyze_curve, CurveAnalysis, CurveAnalysisParams};
+pub use bspline::BSplineCurve;
 pub use error::{GeomError, Result};
+pub use expr::Expr;
+pub use fit::{fit_least_squares, fit_smoothing, SmoothingParams, SplineFit};
+pub use heightfield::HeightField;
+pub use hull::convex_hull;
+pub use mesh::TriMesh;
+pub use slice::PlaneFrame;
+pub use surface::{Section, SectionCurve, SectionParams, Surface};
+pub use surface_spline::BSplineSurface;

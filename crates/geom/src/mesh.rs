@@ -90,6 +90,19 @@ impl TriMesh {
     ///
     /// # Errors
     /// A non-finite corner.
+    ///
+    /// ```
+    /// use geom::bbox::Aabb;
+    /// use geom::TriMesh;
+    /// use nalgebra::Vector3;
+    /// let b = Aabb { min: Vector3::new(0.0, 0.0, 0.0), max: Vector3::new(2.0, 3.0, 4.0) };
+    /// let mesh = TriMesh::cuboid(b.corners())?;
+    /// assert_eq!(mesh.faces().len(), 12);
+    /// assert!((mesh.volume() - 24.0).abs() < 1e-12);
+    /// assert!((mesh.area() - 52.0).abs() < 1e-12);
+    /// assert!(mesh.validate(true)?.is_empty()); // closed, consistently oriented
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn cuboid(corners: [Vector3<f64>; 8]) -> Result<Self> {
         Self::try_new(corners.to_vec(), BOX_FACES.to_vec())
     }
@@ -99,6 +112,19 @@ impl TriMesh {
     /// # Errors
     /// [`GeomError::EmptyMesh`] without faces, [`GeomError::NonFinite`] for NaN coordinates,
     /// [`GeomError::BadIndex`] for out-of-range indices.
+    ///
+    /// ```
+    /// use geom::TriMesh;
+    /// use nalgebra::Vector3;
+    /// // the corner tetrahedron of the unit cube, faces oriented outwards
+    /// let v = vec![Vector3::zeros(), Vector3::x(), Vector3::y(), Vector3::z()];
+    /// let tet = TriMesh::try_new(v.clone(), vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+    /// assert!((tet.volume() - 1.0 / 6.0).abs() < 1e-15);
+    /// assert_eq!(tet.topology().boundary_edges, 0);
+    /// // a face naming a vertex that does not exist is refused
+    /// assert!(TriMesh::try_new(v, vec![[0, 1, 4]]).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn try_new(vertices: Vec<Vector3<f64>>, faces: Vec<[u32; 3]>) -> Result<Self> {
         if vertices.is_empty() || faces.is_empty() {
             return Err(GeomError::EmptyMesh(format!(

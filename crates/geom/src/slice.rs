@@ -132,6 +132,22 @@ impl Chain {
 /// as on its positive side, so every crossing lies on an edge with a strict sign change and
 /// neighbouring triangles share crossings exactly. Degenerate faces are skipped. Chains come
 /// in the order of their lowest face index.
+///
+/// ```
+/// use geom::bbox::Aabb;
+/// use geom::slice::slice_mesh;
+/// use geom::TriMesh;
+/// use nalgebra::Vector3;
+/// let cube = TriMesh::cuboid(Aabb { min: Vector3::zeros(), max: Vector3::new(1.0, 1.0, 1.0) }.corners())?;
+/// // halfway up, the cube's section is one closed loop of its side faces' edges
+/// let chains = slice_mesh(&cube, &Vector3::z(), 0.5);
+/// assert_eq!(chains.len(), 1);
+/// assert!(chains[0].closed);
+/// assert!(chains[0].points(&cube).iter().all(|p| (p.z - 0.5).abs() < 1e-15));
+/// // above the cube: nothing
+/// assert!(slice_mesh(&cube, &Vector3::z(), 2.0).is_empty());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn slice_mesh(mesh: &TriMesh, normal: &Vector3<f64>, offset: f64) -> Vec<Chain> {
     let verts = mesh.vertices();
     let dist: Vec<f64> = verts.iter().map(|p| normal.dot(p) - offset).collect();

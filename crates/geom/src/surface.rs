@@ -278,6 +278,22 @@ impl Surface {
     /// [`GeomError::ZeroDirection`]; [`GeomError::InvalidDomain`] for zero planes;
     /// [`GeomError::Unsupported`] for a tilted direction on a height field;
     /// fit errors for unusable sections.
+    ///
+    /// ```
+    /// use geom::{Expr, HeightField, SectionParams, Surface};
+    /// // a wave across y over a 300 × 600 rectangle, cut by planes normal to x (the default)
+    /// let hf = HeightField::try_new(Expr::parse("50*sin(y/100)")?, (0.0, 300.0), (0.0, 600.0))?;
+    /// let params = SectionParams { count: 3, ..SectionParams::default() };
+    /// let (frame, sections) = Surface::HeightField(hf).sections(&params, &|| {})?;
+    /// assert_eq!(frame.normal, nalgebra::Vector3::x());
+    /// // one exact piece per plane, at the centres of three equal slabs of [0, 300]
+    /// assert_eq!(sections.len(), 3);
+    /// for (s, x) in sections.iter().zip([50.0, 150.0, 250.0]) {
+    ///     assert!((s.offset - x).abs() < 1e-9);
+    ///     assert!(s.curve.is_exact() && !s.closed);
+    /// }
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn sections(
         &self,
         params: &SectionParams,
@@ -304,6 +320,28 @@ impl Surface {
     ///
     /// # Errors
     /// As [`Surface::sections`].
+    ///
+    /// ```
+    /// use geom::planar::PlanarCurve;
+    /// use geom::slice::PlaneFrame;
+    /// use geom::{Expr, HeightField, SectionParams, Surface};
+    /// use nalgebra::Vector3;
+    /// // the plane z = x + 2y, cut by the planes x = 1 and x = 2
+    /// let plane = HeightField::try_new(Expr::parse("x + 2*y")?, (0.0, 3.0), (0.0, 1.0))?;
+    /// let frame = PlaneFrame::from_direction(Vector3::x())?;
+    /// let sections = Surface::HeightField(plane)
+    ///     .sections_at(&[(frame, 1.0), (frame, 2.0)], &SectionParams::default(), &|| {})?;
+    /// assert_eq!(sections.len(), 2);
+    /// // in plane coordinates (u, v) = (y, z) each section is the line v = x + 2u
+    /// for (s, x) in sections.iter().zip([1.0, 2.0]) {
+    ///     let (a, b) = s.curve.domain();
+    ///     for t in [a, 0.5 * (a + b), b] {
+    ///         let p = s.curve.point(t);
+    ///         assert!((p.y - (x + 2.0 * p.x)).abs() < 1e-12);
+    ///     }
+    /// }
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn sections_at(
         &self,
         planes: &[(PlaneFrame, f64)],
@@ -525,6 +563,16 @@ impl Surface {
     ///
     /// # Errors
     /// [`GeomError::InvalidDomain`] for `n < 2`; mesh errors for a degenerate grid.
+    ///
+    /// ```
+    /// use geom::{Expr, HeightField, Surface};
+    /// // a tilted plane z = x over the unit square: every tessellation has the area √2
+    /// let hf = HeightField::try_new(Expr::parse("x")?, (0.0, 1.0), (0.0, 1.0))?;
+    /// let mesh = Surface::HeightField(hf).to_mesh(4)?;
+    /// assert_eq!(mesh.faces().len(), 2 * 4 * 4);
+    /// assert!((mesh.area() - 2f64.sqrt()).abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn to_mesh(&self, n: usize) -> Result<TriMesh> {
         match self {
             Surface::Mesh(m) => Ok(m.clone()),

@@ -86,6 +86,19 @@ impl BSplineSurface {
     ///
     /// # Errors
     /// [`GeomError::InvalidSpline`] when the two curves do not share degree and knots.
+    ///
+    /// ```
+    /// use geom::{BSplineCurve, BSplineSurface};
+    /// use nalgebra::Vector3;
+    /// let line = |z: f64| BSplineCurve::clamped_uniform(1, vec![Vector3::new(0.0, 0.0, z), Vector3::new(1.0, 0.0, z)]);
+    /// let (top, bottom) = (line(1.0)?, line(0.0)?);
+    /// let r = BSplineSurface::ruled(&top, &bottom)?;
+    /// // v = 0 is the second curve, v = 1 the first, straight lines between
+    /// assert!((r.eval(0.3, 0.0) - bottom.eval(0.3)).norm() < 1e-15);
+    /// assert!((r.eval(0.3, 1.0) - top.eval(0.3)).norm() < 1e-15);
+    /// assert!((r.eval(0.3, 0.25) - Vector3::new(0.3, 0.0, 0.25)).norm() < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn ruled(s1: &BSplineCurve<3>, s2: &BSplineCurve<3>) -> Result<Self> {
         Self::piecewise_ruled(&[s2.clone(), s1.clone()])
     }

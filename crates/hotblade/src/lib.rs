@@ -23,24 +23,28 @@
 //! a callback, returns a plain serde-able result and does no I/O.
 //!
 //! ```
-//! use geom::expr::Expr;
-//! use geom::heightfield::HeightField;
-//! use geom::surface::Surface;
+//! use geom::{expr::Expr, heightfield::HeightField, surface::Surface};
+//! use hotblade::{rationalize, Params};
 //!
 //! // a gently curved panel, 1.2 m along the cut, 0.5 m across: two blocks of 600 mm
-//! let z = Expr::parse("40*sin(y/150)").unwrap();
-//! let surface = Surface::HeightField(HeightField::try_new(z, (0.0, 1200.0), (0.0, 500.0)).unwrap());
-//! let params = hotblade::Params {
+//! let z = Expr::parse("40*sin(y/150)")?;
+//! let surface = Surface::HeightField(HeightField::try_new(z, (0.0, 1200.0), (0.0, 500.0))?);
+//! let params = Params {
 //!     block: [600.0, 600.0, 400.0],
 //!     origin: Some([0.0, 0.0, -200.0]),
 //!     targets: 5,
-//!     ..hotblade::Params::default()
+//!     ..Params::default()
 //! };
-//! let cut = hotblade::rationalize(&surface, &params, &|_| {}).unwrap();
+//! let cut = rationalize(&surface, &params, &|_| {})?;
 //! assert_eq!(cut.blocks.len(), 2);
 //! // every block gets one blade pose per target plane, within the tolerance
 //! assert!(cut.blocks.iter().all(|b| b.sections.len() == 5));
 //! assert!(cut.summary.max_fit_distance < params.tolerance_max);
+//! // each fitted section is extended along its elastica to the whole blade
+//! for s in cut.blocks.iter().flat_map(|b| &b.sections) {
+//!     assert!((s.blade.segment.length() - params.blade.length).abs() < 1e-6);
+//! }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 /// Building a block from its fitted sections: swept surface, deviation, flags.

@@ -70,6 +70,29 @@ fn geom_err(context: &'static str) -> impl FnOnce(geom::GeomError) -> HotBladeEr
 /// [`HotBladeError::Geom`] when sectioning fails;
 /// [`HotBladeError::Fit`] when a section cannot be fitted; [`HotBladeError::Blade`] when a
 /// fit cannot be extended to the blade.
+///
+/// ```
+/// use geom::{expr::Expr, heightfield::HeightField, surface::Surface};
+/// use hotblade::{rationalize, HotBladeError, Params};
+///
+/// // a circular cylinder of radius 2000 mm, axis along the cut: every section is the same
+/// // arc, which an elastica (a circle is one, λ = 0) fits exactly
+/// let z = Expr::parse("sqrt(4000000 - (y - 250)^2) - 2000")?;
+/// let surface = Surface::HeightField(HeightField::try_new(z, (0.0, 600.0), (0.0, 500.0))?);
+/// let params = Params { block: [600.0, 600.0, 400.0], origin: Some([0.0, 0.0, -200.0]), targets: 3, ..Params::default() };
+/// let cut = rationalize(&surface, &params, &|_| {})?;
+/// assert_eq!((cut.blocks.len(), cut.summary.sections), (1, 3));
+/// assert!(cut.summary.max_fit_distance < 1e-6);
+/// for s in &cut.blocks[0].sections {
+///     // the blade's curvature is the cylinder's, 1/2000 mm⁻¹, and it never inflects
+///     assert!((s.blade.max_abs_curvature - 1.0 / 2000.0).abs() < 1e-9);
+///     assert_eq!(s.blade.inflections, 0);
+/// }
+/// // parameters out of range are refused before anything runs
+/// let bad = Params { targets: 0, ..params };
+/// assert!(matches!(rationalize(&surface, &bad, &|_| {}), Err(HotBladeError::Invalid { field: "targets", .. })));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn rationalize(
     surface: &Surface,
     params: &Params,
@@ -140,6 +163,16 @@ pub const MAX_PLANES: f64 = 1e7;
 ///
 /// # Errors
 /// [`HotBladeError::Geom`] for a cutting direction that spans no frame.
+///
+/// ```
+/// use geom::{expr::Expr, heightfield::HeightField, surface::Surface};
+/// use hotblade::{run_size, Params};
+/// // 1.8 m along the cut and 1 m across, in blocks of 600 mm: 3 rows of 2 columns
+/// let surface = Surface::HeightField(HeightField::try_new(Expr::parse("0")?, (0.0, 1800.0), (0.0, 1000.0))?);
+/// let size = run_size(&surface, &Params { block: [600.0, 600.0, 400.0], ..Params::default() })?;
+/// assert_eq!((size.rows, size.cols), (3.0, 2.0));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn run_size(surface: &Surface, params: &Params) -> Result<RunSize, HotBladeError> {
     let frame =
         PlaneFrame::from_direction(params.direction).map_err(geom_err("the cutting direction"))?;

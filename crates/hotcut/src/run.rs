@@ -90,12 +90,20 @@ impl Visit for Runner<'_> {
             source: e.into(),
         })?;
         Ok(RunOutcome {
-            summary: T::summary(&o.report, job),
+            summary: summary::<T>(&o.report, job),
             dir: o.dir,
             files: o.files,
             report,
         })
     }
+}
+
+/// What the CLI prints after a run of `T`: the task's own lines, then the verdict of
+/// `report.html` (the same [`Task::page`] call), so that the two cannot disagree.
+fn summary<T: Task>(report: &T::Report, job: &Context) -> String {
+    let verdict = T::page(report, job).verdict;
+    let word = if verdict.ok { "verdict" } else { "warning" };
+    format!("{}\n  {word}: {}", T::summary(report, job), verdict.text)
 }
 
 /// Runs task `task` on `job` and writes `outputs` to `<out>/<name>/` (see

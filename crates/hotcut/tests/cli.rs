@@ -813,3 +813,38 @@ fn bad_blade_kerfs_are_rejected_naming_the_field() {
         common::expect_invalid(&job(blade), needles);
     }
 }
+
+/// The CLI's verdict line is report.html's verdict: the same words, the same answer.
+#[test]
+fn the_printed_verdict_is_the_pages() {
+    // one blade cuts it (ok), and a blade too stiff for its curvature (not ok)
+    let page = VALID.replace(
+        "task: Analyze(),",
+        "task: Analyze(),\n    outputs: [Report, Html],",
+    );
+    let stiff = page.replace("max_curvature: 0.011", "max_curvature: 0.0001");
+    for (job, ok) in [(page.as_str(), true), (stiff.as_str(), false)] {
+        let dir = tempfile::tempdir().unwrap();
+        write(dir.path(), "job.ron", job);
+        let o = hotcut(&["run", "job.ron", "--out", "o"], dir.path());
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        let word = if ok { "  verdict: " } else { "  warning: " };
+        let line = stdout
+            .lines()
+            .rfind(|l| l.starts_with(word))
+            .unwrap_or_else(|| panic!("no {word:?} line in {stdout}"));
+        let text = &line[word.len()..];
+        let html = std::fs::read_to_string(dir.path().join("o/t/report.html")).unwrap();
+        let class = if ok { "ok" } else { "bad" };
+        let escaped = text
+            .replace('&', "&amp;")
+            .replace('<', "&lt;")
+            .replace('>', "&gt;");
+        assert!(
+            html.contains(&format!("<section id=\"verdict\" class=\"{class}\">"))
+                && html.contains(&escaped),
+            "{text}"
+        );
+    }
+}

@@ -43,6 +43,7 @@ pub use error::{PreCutError, Result};
 pub use frame::{Block, CutFrame};
 pub use height::Height;
 pub use volume::Volumes;
+pub use wire::{Machine, WireParams};
 
 use geom::surface::Surface;
 use legs::Legs;
@@ -231,6 +232,28 @@ pub struct Progress {
 /// [`PreCutError::InvalidParameter`] for bad parameters; [`PreCutError::Placement`] when
 /// the surface leaves the block or nothing of it is over the block;
 /// [`PreCutError::Solver`] / [`PreCutError::NotVerified`] from the optimization.
+///
+/// ```
+/// use geom::{expr::Expr, heightfield::HeightField, surface::Surface};
+/// use ruled::{pre_cut, Block, Params, PreCutError};
+///
+/// // a tilted plane: one straight cut along x removes all but a sliver above it
+/// let plane = Surface::HeightField(HeightField::try_new(Expr::parse("0.4 + 0.1*x")?, (0.0, 2.0), (0.0, 1.0))?);
+/// let block = Block { min: [0.0, 0.0, 0.0], max: [2.0, 1.0, 1.0] };
+/// let params = Params { legs: 1, sections: 4, samples: 4, ..Params::default() };
+/// let cut = pre_cut(&plane, &block, &params, &|_| {})?;
+/// let d = &cut.directions[0];
+/// assert!(d.clearance > 0.0); // the cut never dips below the design
+/// let v = cut.volumes;
+/// // volumes are shares of the block's: the model below z = 0.4 + 0.1·x is half of it,
+/// // milling from the block removes the other half, after the cut only a sliver is left
+/// assert!((v.model - 0.5).abs() < 1e-9 && (v.bounding_box - 0.5).abs() < 1e-9);
+/// assert!(v.ruled >= 0.0 && v.ruled < 1e-3);
+/// // parameters out of range are refused before anything runs
+/// let bad = Params { legs: 0, ..params };
+/// assert!(matches!(pre_cut(&plane, &block, &bad, &|_| {}), Err(PreCutError::InvalidParameter { name: "legs", .. })));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn pre_cut(
     surface: &Surface,
     block: &Block,

@@ -118,6 +118,19 @@ impl FittedCurve {
     /// # Errors
     /// When the segment cannot be evaluated (parameters outside the elliptic functions'
     /// domain).
+    ///
+    /// ```
+    /// use elastica::fit::describe::{FittedCurve, FITTED_SAMPLES};
+    /// use elastica::{fit_points, FitParams, Segment};
+    /// let line = Segment::Line { x0: 0.0, y0: 0.0, phi: 0.5, length: 10.0 };
+    /// let fit = fit_points(&line.sample(20)?, &FitParams::default())?;
+    /// let d = FittedCurve::of(&fit)?;
+    /// assert_eq!(d.family, "line");
+    /// assert_eq!((d.inflections, d.max_abs_curvature), (0, 0.0));
+    /// assert!((d.length - 10.0).abs() < 1e-6);
+    /// assert_eq!(d.fitted.len(), FITTED_SAMPLES);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn of(f: &FitResult) -> Result<Self, EllipticError> {
         let seg = &f.segment;
         let (family, parameters) = parameters(seg);

@@ -167,6 +167,27 @@ pub fn fit_points(points: &[[f64; 2]], params: &FitParams) -> Result<FitResult, 
 /// is relative and a curve in metres fits as the same numbers, to the same segment, as
 /// the curve in millimetres. The residuals (`rms`, `max`, `l2`) are measured to the points
 /// as given.
+///
+/// ```
+/// use elastica::{fit_points_with_arclength, ElasticaParams, Family, FitConstraint, FitParams, Segment};
+/// // a non-inflectional elastica sampled unevenly, with its exact arc lengths
+/// let truth = Segment::Elastica(ElasticaParams {
+///     family: Family::NonInflectional, k: 0.8, s0: 0.2, l: 1.5,
+///     scale: 50.0, phi: 0.0, x0: 0.0, y0: 0.0, one_minus_k: None,
+/// });
+/// let eval = truth.evaluator()?;
+/// let t: Vec<f64> = (0..30).map(|i| (i as f64 / 29.0).powf(1.3)).collect();
+/// let points: Vec<[f64; 2]> = t.iter().map(|&t| eval.eval(t).p).collect();
+/// let s: Vec<f64> = t.iter().map(|t| t * truth.length()).collect();
+/// let params = FitParams { constraint: FitConstraint::EndPointsAndLength, ..FitParams::default() };
+/// let fit = fit_points_with_arclength(&points, &s, &params)?;
+/// assert!(fit.max < 1e-6);
+/// // the constraint holds: same ends, same length
+/// assert!((fit.segment.length() - truth.length()).abs() < 1e-9);
+/// let end = fit.segment.eval(1.0)?.p;
+/// assert!((end[0] - points[29][0]).abs() < 1e-9 && (end[1] - points[29][1]).abs() < 1e-9);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn fit_points_with_arclength(
     points: &[[f64; 2]],
     s: &[f64],
@@ -497,6 +518,35 @@ fn checked_data(
 
 /// Fit a planar curve (e.g. a `geom` B-spline section) sampled at `samples` points of equal
 /// arc length.
+///
+/// ```
+/// use elastica::{fit_curve, FitParams, Segment};
+/// use geom::planar::{Jet2, PlanarCurve};
+/// use nalgebra::Vector2;
+///
+/// // a third of a circle of radius 50
+/// struct Circle;
+/// impl PlanarCurve for Circle {
+///     fn domain(&self) -> (f64, f64) {
+///         (0.0, 2.0 * std::f64::consts::FRAC_PI_3)
+///     }
+///     fn jet(&self, t: f64) -> Jet2 {
+///         let (s, c) = t.sin_cos();
+///         Jet2 {
+///             p: Vector2::new(50.0 * c, 50.0 * s),
+///             d1: Vector2::new(-50.0 * s, 50.0 * c),
+///             d2: Vector2::new(-50.0 * c, -50.0 * s),
+///         }
+///     }
+/// }
+/// let fit = fit_curve(&Circle, 40, &FitParams::default())?;
+/// let Segment::Arc { curvature, length, .. } = fit.segment else {
+///     panic!("expected an arc, got a {}", fit.segment.kind());
+/// };
+/// assert!((curvature - 1.0 / 50.0).abs() < 1e-9);
+/// assert!((length - 100.0 * std::f64::consts::FRAC_PI_3).abs() < 1e-6);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn fit_curve(
     curve: &dyn geom::planar::PlanarCurve,
     samples: usize,

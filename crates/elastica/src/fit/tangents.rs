@@ -127,6 +127,27 @@ impl Problem<'_> {
 ///
 /// # Errors
 /// [`FitError::Tangents`] when the constraints cannot be met from this start.
+///
+/// ```
+/// use elastica::{fit_points_with_arclength, fit_with_end_tangents, FitConstraint, FitParams};
+/// // the parabola y = x²/4 on [0, 1], with chord-length parameters
+/// let points: Vec<[f64; 2]> = (0..40).map(|i| { let x = i as f64 / 39.0; [x, x * x / 4.0] }).collect();
+/// let mut s = vec![0.0];
+/// for w in points.windows(2) {
+///     s.push(s[s.len() - 1] + (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]));
+/// }
+/// let params = FitParams { constraint: FitConstraint::EndPoints, ..FitParams::default() };
+/// let fit = fit_points_with_arclength(&points, &s, &params)?;
+/// // refit leaving horizontally and arriving with the parabola's slope 1/2
+/// let (start, end) = (0.0, 0.5f64.atan());
+/// let tangent = fit_with_end_tangents(&points, &s, &fit, None, Some(start), Some(end), FitConstraint::EndPoints)?;
+/// let (a, b) = (tangent.segment.eval(0.0)?, tangent.segment.eval(1.0)?);
+/// assert!((a.angle - start).abs() < 1e-9 && (b.angle - end).abs() < 1e-9);
+/// assert!(a.p[0].abs() < 1e-9 && a.p[1].abs() < 1e-9);
+/// assert!((b.p[0] - 1.0).abs() < 1e-9 && (b.p[1] - 0.25).abs() < 1e-9);
+/// assert!(tangent.rms < 1e-3);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn fit_with_end_tangents(
     points: &[[f64; 2]],
     s: &[f64],

@@ -224,14 +224,6 @@ impl Task for Analyze {
         for w in &r.surface.warnings {
             line(format!("  warning: {w}"));
         }
-        line(format!(
-            "  verdict: {}",
-            if s.cuttable_without_segmentation {
-                "cuttable with one blade from one block"
-            } else {
-                "needs segmentation or another tool (see report.json)"
-            }
-        ));
         out
     }
 }

@@ -295,18 +295,22 @@ impl Task for Design {
         let multi = multi::block_cuts(&blocks, &cuts, grid, params.points);
         let order = multi::robot_order(&multi, &cuts);
         // strict refuses robot programs for such a blade; a report alone is written
-        let strict = job.rapid && job.cell.as_ref().is_some_and(|c| c.strict);
-        if let (true, Some(m)) = (strict, gouge_message(&cuts, &blocks)) {
-            return Err(job.fail(format!("strict: no robot program for a blade that {m}")));
-        }
-        let cell = if job.rapid || job.cell.is_some() {
-            let (t, sizes) =
-                outputs::targets(&blocks, &cuts, &order, params.blade.length, job.units);
-            let m = &params.motion;
-            Some(robot_cell::plan(job, &t, &sizes, m.speed, m.approach)?)
-        } else {
-            None
-        };
+        let m = &params.motion;
+        let cell = robot_cell::program(
+            job,
+            (m.speed, m.approach),
+            true,
+            || gouge_message(&cuts, &blocks),
+            || {
+                Ok(outputs::targets(
+                    &blocks,
+                    &cuts,
+                    &order,
+                    params.blade.length,
+                    job.units,
+                ))
+            },
+        )?;
         Ok(DesignRun {
             design,
             blocks,
@@ -413,9 +417,7 @@ impl Task for Design {
                 ));
             }
         }
-        let verdict = if s.all_ok {
-            "  every blade within its curvature and inflection limits, clear of what the blocks keep".to_string()
-        } else {
+        let verdict = {
             let mut v = Vec::new();
             if s.strain_flags + s.inflection_flags > 0 {
                 v.push(format!(
@@ -429,7 +431,7 @@ impl Task for Design {
                     s.gouge_flags, s.collision_flags
                 ));
             }
-            v.join("\n")
+            v.iter().map(|l| format!("\n{l}")).collect::<String>()
         };
         let cell = r
             .cell
@@ -437,7 +439,7 @@ impl Task for Design {
             .map(|c| format!("\n{}", c.summary()))
             .unwrap_or_default();
         format!(
-            "{} (Design, {:?}, {}): {} cut(s), {} block(s), {} curve(s), {} blade pose(s)\n  design vs elastica: ≤ {:.3} % of the length; eq. (11) residual ≤ {:.3}; blade max |κ| {:.4e} /{units}{multi}\n{verdict}{cell}",
+            "{} (Design, {:?}, {}): {} cut(s), {} block(s), {} curve(s), {} blade pose(s)\n  design vs elastica: ≤ {:.3} % of the length; eq. (11) residual ≤ {:.3}; blade max |κ| {:.4e} /{units}{multi}{verdict}{cell}",
             r.job, r.settings.resolution, r.design, s.cuts, r.blocks.len(), s.curves, s.poses,
             s.max_deviation_percent, s.max_eq11_residual, s.blade_max_curvature,
         )

@@ -383,10 +383,6 @@ impl Task for FacadeSegmentation {
             Vec::new()
         };
         facade_seg::rationalize::adopt_blocks(&mut segmentation, &posed);
-        let strict = job.rapid && job.cell.as_ref().is_some_and(|c| c.strict);
-        if let (true, Some(m)) = (strict, worst_clearance(&posed)) {
-            return Err(job.fail(format!("strict: no robot program for a blade that {m}")));
-        }
         let mut run = SegmentationRun {
             facade,
             segmentation,
@@ -395,12 +391,17 @@ impl Task for FacadeSegmentation {
             surface: SurfaceInfo::of(job, surface),
             cell: None,
         };
-        if (job.rapid || job.cell.is_some()) && run.posed.iter().any(|p| !p.parts.is_empty()) {
-            let (t, sizes) = outputs::targets(&run, params.blade.length, job.units)
-                .map_err(|e| job.fail(e.to_string()))?;
-            let m = &params.motion;
-            run.cell = Some(robot_cell::plan(job, &t, &sizes, m.speed, m.approach)?);
-        }
+        let m = &params.motion;
+        run.cell = robot_cell::program(
+            job,
+            (m.speed, m.approach),
+            run.posed.iter().any(|p| !p.parts.is_empty()),
+            || worst_clearance(&run.posed),
+            || {
+                outputs::targets(&run, params.blade.length, job.units)
+                    .map_err(|e| job.fail(e.to_string()))
+            },
+        )?;
         Ok(run)
     }
 
@@ -490,9 +491,7 @@ impl Task for FacadeSegmentation {
         }
         let f = &c.failing;
         let broken = f.dimension + f.approximation + f.shape + f.blade_strain;
-        if c.all_ok {
-            out.push_str("\n  every piece meets every constraint");
-        } else if broken > 0 {
+        if broken > 0 {
             out.push_str(&format!(
                 "\n  warning: pieces breaking a constraint — dimension {}, approximation {}, shape {}, blade strain {}",
                 f.dimension, f.approximation, f.shape, f.blade_strain

@@ -300,32 +300,20 @@ impl Task for HotBlade {
                 other => job.fail(other.to_string()),
             })?;
         let posed = cut.blocks.iter().any(|b| !b.sections.is_empty());
-        let strict = job.rapid && job.cell.as_ref().is_some_and(|c| c.strict);
-        let gouging = cut
-            .blocks
-            .iter()
-            .filter(|b| b.report.flags.gouge)
-            .flat_map(|b| {
-                b.sections
-                    .iter()
-                    .enumerate()
-                    .filter_map(move |(i, s)| Some((b.report.block, i, s.clearance?)))
-            })
-            .filter(|(_, _, c)| !c.is_clean())
-            .max_by(|a, b| a.2.gouge_depth.total_cmp(&b.2.gouge_depth));
-        if let (true, Some((block, section, c))) = (strict, gouging) {
-            return Err(job.fail(format!(
-                "strict: no robot program for a blade that runs {:.4e} deep into what block {block} keeps (holder clearance {:.4e}) at its section {section} (report.json's index)",
-                c.gouge_depth, c.holder_clearance
-            )));
-        }
-        let cell = if (job.rapid || job.cell.is_some()) && posed {
-            let (t, sizes) = outputs::targets(&cut, params.pipeline.blade.length, job.units);
-            let m = &params.motion;
-            Some(robot_cell::plan(job, &t, &sizes, m.speed, m.approach)?)
-        } else {
-            None
-        };
+        let m = &params.motion;
+        let cell = robot_cell::program(
+            job,
+            (m.speed, m.approach),
+            posed,
+            || worst_gouge(&cut),
+            || {
+                Ok(outputs::targets(
+                    &cut,
+                    params.pipeline.blade.length,
+                    job.units,
+                ))
+            },
+        )?;
         Ok(HotBladeRun {
             cut,
             surface: SurfaceInfo::of(job, surface),
@@ -395,10 +383,10 @@ impl Task for HotBlade {
         let s = &r.summary;
         let f = &s.flagged;
         let verdict = if s.all_ok {
-            "  every block meets every constraint".to_string()
+            String::new()
         } else {
             format!(
-                "  warning: blocks breaking a constraint — approximation {}, blade strain {}, shape {}, blade length {}, flat blade {}, block height {}, overlap {}, gouge {}",
+                "\n  warning: blocks breaking a constraint — approximation {}, blade strain {}, shape {}, blade length {}, flat blade {}, block height {}, overlap {}, gouge {}",
                 f.approximation, f.blade_strain, f.shape, f.blade_length, f.flat_blade, f.block_height, f.overlap, f.gouge
             )
         };
@@ -408,10 +396,31 @@ impl Task for HotBlade {
             .map(|c| format!("\n{}", c.summary()))
             .unwrap_or_default();
         format!(
-            "{} (HotBlade, {:?}, {:?}): {} block(s) in {} row(s) × {} column(s), {} split(s)\n  {} section(s): L2 min {:.4}, max {:.4}, avg {:.4}; largest fit distance {:.4} {units}, deviation {:.4} {units}\n  blade: max |κ| {:.4e} /{units}, ≤ {} inflection(s); plane angle ≤ {:.1}°; face gap {:.1e} {units}, angle {:.1e} rad\n{verdict}{cell}",
+            "{} (HotBlade, {:?}, {:?}): {} block(s) in {} row(s) × {} column(s), {} split(s)\n  {} section(s): L2 min {:.4}, max {:.4}, avg {:.4}; largest fit distance {:.4} {units}, deviation {:.4} {units}\n  blade: max |κ| {:.4e} /{units}, ≤ {} inflection(s); plane angle ≤ {:.1}°; face gap {:.1e} {units}, angle {:.1e} rad{verdict}{cell}",
             r.job, r.settings.constraint, r.settings.continuity, s.blocks, r.grid.rows, r.grid.columns, r.splits.len(),
             s.sections, s.l2.min, s.l2.max, s.l2.avg, s.max_fit_distance, s.max_deviation,
             s.max_abs_curvature, s.max_inflections, s.max_plane_angle.to_degrees(), s.max_face_gap, s.max_face_angle,
         )
     }
+}
+
+/// How the deepest gouging blade of `cut` runs into its block (after "a blade that"), if
+/// any blade gouges or has a holder inside a block.
+fn worst_gouge(cut: &hotblade::Rationalization) -> Option<String> {
+    let (block, section, c) = cut
+        .blocks
+        .iter()
+        .filter(|b| b.report.flags.gouge)
+        .flat_map(|b| {
+            b.sections
+                .iter()
+                .enumerate()
+                .filter_map(move |(i, s)| Some((b.report.block, i, s.clearance?)))
+        })
+        .filter(|(_, _, c)| !c.is_clean())
+        .max_by(|a, b| a.2.gouge_depth.total_cmp(&b.2.gouge_depth))?;
+    Some(format!(
+        "runs {:.4e} deep into what block {block} keeps (holder clearance {:.4e}) at its section {section} (report.json's index)",
+        c.gouge_depth, c.holder_clearance
+    ))
 }

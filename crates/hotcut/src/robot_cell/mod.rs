@@ -275,6 +275,35 @@ fn check_holders(c: &CellSpec, robots: usize, mm: f64, err: Report<'_>) {
     }
 }
 
+/// The robot program of a task that poses the blade, the one place the three such tasks
+/// (`HotBlade`, `FacadeSegmentation`, `Design`) meet the cell: with `strict` and RAPID
+/// asked, a blade that gouges or whose holders hit a block (`refusal()` says how, after
+/// "a blade that") fails the run; else, when RAPID or a `cell:` is asked and the run
+/// posed a blade (`posed`), the poses `targets()` make are planned ([`plan`]) at the
+/// task's `(speed, approach)` (job units).
+///
+/// # Errors
+/// The strict refusal, the targets' error, or [`plan`]'s.
+pub fn program(
+    job: &Context,
+    (speed, approach): (f64, f64),
+    posed: bool,
+    refusal: impl FnOnce() -> Option<String>,
+    targets: impl FnOnce() -> Result<(Targets, Vec<[f64; 3]>)>,
+) -> Result<Option<CellPlan>> {
+    let strict = job.rapid && job.cell.as_ref().is_some_and(|c| c.strict);
+    if strict {
+        if let Some(m) = refusal() {
+            return Err(job.fail(format!("strict: no robot program for a blade that {m}")));
+        }
+    }
+    if !(posed && (job.rapid || job.cell.is_some())) {
+        return Ok(None);
+    }
+    let (t, sizes) = targets()?;
+    plan(job, &t, &sizes, speed, approach).map(Some)
+}
+
 /// The blocks of `t` (sizes `sizes`, job units) with the blade's ends, in mm.
 fn placed_blocks(t: &Targets, sizes: &[[f64; 3]]) -> Vec<PlacedBlock> {
     let mm = 1.0 / t.per_mm;

@@ -446,6 +446,36 @@ fn leg_curves(d: &DirectionCut) -> Result<Vec<geom::bspline::BSplineCurve<2>>> {
 /// The CSV of one cut: one row per step, with the time from the lead-in start (minutes,
 /// the faster tower at the set speed), both tower points (mm), the wire's points at the
 /// block's sides (model coordinates) and the kerf there.
+///
+/// ```
+/// use geom::{expr::Expr, heightfield::HeightField, surface::Surface};
+/// use ruled::wire::{csv, paths, WireParams};
+/// use ruled::{pre_cut, Block, Params};
+///
+/// // a tilted plane in a 200 × 100 × 100 mm block: one straight cut removes everything above it
+/// let plane = HeightField::try_new(Expr::parse("40 + 0.1*x")?, (0.0, 200.0), (0.0, 100.0))?;
+/// let block = Block { min: [0.0, 0.0, 0.0], max: [200.0, 100.0, 100.0] };
+/// let params = Params { legs: 1, sections: 4, samples: 4, ..Params::default() };
+/// let cut = pre_cut(&Surface::HeightField(plane), &block, &params, &|_| {})?;
+/// let wire = WireParams {
+///     tower_distance: 300.0, kerf: 0.0, kerf_table: Vec::new(), speed: 300.0, lead: 10.0,
+///     clearance: 20.0, origin: [0.0, 0.0], steps: 4, mm_per_unit: 1.0,
+/// };
+/// let path = &paths(&cut.directions[0], 0, block.min[2], &wire)?[0];
+/// let text = csv(path, &wire);
+/// // a header and one row per step
+/// assert_eq!(text.lines().count(), 1 + path.steps.len());
+/// // over the block the wire runs just above the plane z = 40 + 0.1·x, never below it
+/// let over: Vec<_> = path.steps.iter().filter(|s| (0.0..=200.0).contains(&s.u)).collect();
+/// assert_eq!(over.len(), wire.steps);
+/// for s in over {
+///     for p in [s.side0, s.side1] {
+///         let above = p[2] - (40.0 + 0.1 * p[0]);
+///         assert!((0.0..0.1).contains(&above), "{p:?}");
+///     }
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn csv(path: &WirePath, p: &WireParams) -> String {
     let mut c = String::from(
         "step,t_min,u,a_along,a_up,b_along,b_up,side0_x,side0_y,side0_z,side1_x,side1_y,side1_z,kerf0,kerf1\n",

@@ -100,6 +100,35 @@ fn comment(text: &str) -> String {
 ///   cut and the axis);
 /// - [`PreCutError::InvalidParameter`] when the dialect is invalid or a move's speed is out
 ///   of bounds.
+///
+/// ```
+/// use geom::{expr::Expr, heightfield::HeightField, surface::Surface};
+/// use ruled::wire::{check_program, paths, program, Machine, WireParams};
+/// use ruled::{pre_cut, Block, Params};
+///
+/// // a bump on a 400 × 300 × 200 mm block, two cuts along x
+/// let bump = HeightField::try_new(
+///     Expr::parse("100 + 50*exp(-((x - 200)^2 + (y - 150)^2)/8000)")?, (0.0, 400.0), (0.0, 300.0))?;
+/// let block = Block { min: [0.0, 0.0, 0.0], max: [400.0, 300.0, 200.0] };
+/// let params = Params { legs: 2, sections: 8, samples: 8, ..Params::default() };
+/// let cut = pre_cut(&Surface::HeightField(bump), &block, &params, &|_| {})?;
+///
+/// let wire = WireParams {
+///     tower_distance: 500.0, kerf: 1.0, kerf_table: Vec::new(), speed: 300.0, lead: 20.0,
+///     clearance: 50.0, origin: [20.0, 0.0], steps: 6, mm_per_unit: 1.0,
+/// };
+/// let cuts = paths(&cut.directions[0], 0, block.min[2], &wire)?;
+/// assert_eq!(cuts.len(), 2); // one wire path per leg
+/// let machine = Machine::linuxcnc_xyuv();
+/// let p = program(&cuts[0], &wire, &machine, block.max[2], block.min[2], "bump")?;
+/// // the G-code reads back clean against the same machine
+/// check_program(&p.text, &machine)?;
+/// assert!(p.text.contains("G1"));
+/// assert!(p.summary.cutting_moves > 0 && p.summary.cut_minutes > 0.0);
+/// // the towers travel at least the block's length plus both leads while cutting
+/// assert!(p.summary.cut_length_mm >= 400.0 + 2.0 * 20.0 - 1e-9);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn program(
     path: &WirePath,
     p: &WireParams,
