@@ -320,17 +320,7 @@ pub struct Progress {
     pub energy: f64,
 }
 
-/// A parameter out of range: the field (`operations`), the index of the offending element
-/// for a list, and what is wrong.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ParamProblem {
-    /// The field of [`Params`].
-    pub field: &'static str,
-    /// The element of a list field.
-    pub index: Option<usize>,
-    /// What is wrong, e.g. `must be 1–256, got 0`.
-    pub message: String,
-}
+pub use geom::ParamProblem;
 
 impl Params {
     /// Every parameter [`segment`] refuses, in field order (none: it runs).
@@ -472,9 +462,13 @@ pub fn segment(
     mesh.validate(true)
         .map_err(|e| BlockError::Model(e.to_string()))?;
     // computed in the unit frame, the same numbers in any unit
-    let unit = unit::UnitFrame::of(mesh, params);
-    let seg = segment_in(&unit.mesh(mesh)?, &unit.params(params), progress)?;
-    Ok(unit.result(seg))
+    let frame = unit::frame(mesh, params);
+    let seg = segment_in(
+        &unit::mesh(&frame, mesh)?,
+        &unit::params(&frame, params),
+        progress,
+    )?;
+    Ok(unit::result(&frame, seg))
 }
 
 /// [`segment`] of a mesh and parameters in the unit frame.

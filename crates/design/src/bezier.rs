@@ -256,8 +256,5 @@ fn first_direction(v: &[[f64; 2]]) -> Result<f64> {
         .ok_or_else(|| DesignError::Invalid("the Bézier's control points coincide".into()))
 }
 
-/// An angle in (−π, π].
-pub fn wrap(a: f64) -> f64 {
-    let pi = std::f64::consts::PI;
-    pi - (pi - a).rem_euclid(2.0 * pi)
-}
+/// An angle less whole turns, within (−π, π] ([`geom::polyline::principal_angle`]).
+pub use geom::polyline::principal_angle as wrap;

@@ -71,3 +71,31 @@ pub enum GeomError {
 
 /// Result alias for `geom`.
 pub type Result<T, E = GeomError> = std::result::Result<T, E>;
+
+/// A parameter out of range, as the algorithm crates' `Params::problems` list them: the
+/// field, the index of the offending element for a list field, and what is wrong. The
+/// caller maps the field to its own name for it (a job file's pointer, a CLI flag).
+///
+/// ```
+/// use geom::ParamProblem;
+/// let p = ParamProblem { field: "directions", index: Some(2), message: "must be finite".into() };
+/// assert_eq!(p.to_string(), "directions 2 must be finite");
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ParamProblem {
+    /// The field of the parameters.
+    pub field: &'static str,
+    /// The element of a list field.
+    pub index: Option<usize>,
+    /// What is wrong, e.g. `must be 1–256, got 0`.
+    pub message: String,
+}
+
+impl std::fmt::Display for ParamProblem {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.index {
+            Some(i) => write!(f, "{} {i} {}", self.field, self.message),
+            None => write!(f, "{} {}", self.field, self.message),
+        }
+    }
+}

@@ -50,6 +50,8 @@ pub mod mesh;
 pub mod normals;
 /// Planar curves: the `PlanarCurve` trait, curvature, arc length.
 pub mod planar;
+/// Planar polylines: chord lengths, distance from a point, angles wrapped to one turn.
+pub mod polyline;
 /// When a curvature sign change is an inflection: lobes against the noise floor.
 pub mod significance;
 /// Plane frames, slab offsets and mesh slicing.
@@ -60,10 +62,12 @@ pub mod surface;
 pub mod surface_spline;
 /// User text made safe for each sink: XML, terminal, G-code and RAPID comments.
 pub mod text;
+/// The rounded unit frame problems are solved in, the same numbers in any unit.
+pub mod unit;
 
 pub use analysis::{analyze_curve, CurveAnalysis, CurveAnalysisParams};
 pub use bspline::BSplineCurve;
-pub use error::{GeomError, Result};
+pub use error::{GeomError, ParamProblem, Result};
 pub use expr::Expr;
 pub use fit::{fit_least_squares, fit_smoothing, SmoothingParams, SplineFit};
 pub use heightfield::HeightField;

@@ -4,6 +4,7 @@
 use elastica::fit::{FitConstraint, FitError, FitParams};
 use elastica::segment::Segment;
 use elastica::sweep::{frame_quaternion, interpolate};
+use geom::polyline::distance_to_polyline;
 use nalgebra::Vector2;
 
 use crate::fit::design_polyline;
@@ -279,44 +280,5 @@ fn sample_blend(seg: &Segment, other: Option<&Segment>, w: f64, m: usize) -> Vec
             .map(|(p, q)| [p[0] + (q[0] - p[0]) * w, p[1] + (q[1] - p[1]) * w])
             .collect(),
         _ => a,
-    }
-}
-
-/// Distance from `q` to a polyline.
-pub fn distance_to_polyline(q: [f64; 2], poly: &[[f64; 2]]) -> f64 {
-    // squared distances in the loop, one square root at the end
-    let mut best = f64::INFINITY;
-    for w in poly.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-        let (ex, ey) = (q[0] - a[0], q[1] - a[1]);
-        let len2 = dx * dx + dy * dy;
-        let t = if len2 > 0.0 {
-            ((ex * dx + ey * dy) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let (rx, ry) = (ex - t * dx, ey - t * dy);
-        best = best.min(rx * rx + ry * ry);
-    }
-    if poly.len() == 1 {
-        let (rx, ry) = (q[0] - poly[0][0], q[1] - poly[0][1]);
-        best = rx * rx + ry * ry;
-    }
-    best.sqrt()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::distance_to_polyline;
-
-    #[test]
-    fn distance_to_a_polyline_is_to_its_nearest_segment() {
-        let poly = [[0.0, 0.0], [4.0, 0.0], [4.0, 3.0]];
-        assert_eq!(distance_to_polyline([2.0, -1.5], &poly), 1.5); // foot inside segment 1
-        assert_eq!(distance_to_polyline([5.0, 2.0], &poly), 1.0); // segment 2
-        assert_eq!(distance_to_polyline([-3.0, 4.0], &poly), 5.0); // beyond the first vertex
-        assert_eq!(distance_to_polyline([3.0, 4.0], &[[0.0, 0.0]]), 5.0);
-        assert_eq!(distance_to_polyline([1.0, 1.0], &[]), f64::INFINITY);
     }
 }

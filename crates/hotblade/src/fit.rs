@@ -20,11 +20,7 @@ pub(crate) fn design_polyline(
     range: (f64, f64),
     n: usize,
 ) -> Option<Vec<[f64; 2]>> {
-    let length = |p: &[[f64; 2]]| {
-        p.windows(2)
-            .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
-            .sum::<f64>()
-    };
+    let length = geom::polyline::length;
     ctx.sections[plane]
         .iter()
         .filter_map(|s| clip_polyline(s, &ctx.planes[plane], &ctx.grid.frame.u, range, n))

@@ -95,14 +95,7 @@ impl Default for Params {
     }
 }
 
-/// A parameter out of range: the field of [`Params`] and what is wrong.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ParamProblem {
-    /// The field (`targets`, `curve`, …).
-    pub field: &'static str,
-    /// What is wrong, e.g. `must be 2–10000, got 1`.
-    pub message: String,
-}
+pub use geom::ParamProblem;
 
 impl Params {
     /// Every rule [`rationalize`](crate::rationalize) checks that the parameters break,
@@ -110,7 +103,11 @@ impl Params {
     pub fn problems(&self) -> Vec<ParamProblem> {
         let mut out = Vec::new();
         let mut bad = |field: &'static str, message: String| {
-            out.push(ParamProblem { field, message });
+            out.push(ParamProblem {
+                field,
+                index: None,
+                message,
+            });
         };
         let positive = |v: f64| v.is_finite() && v > 0.0;
         if !self.block.iter().all(|&v| positive(v)) {

@@ -26,7 +26,7 @@ pub enum Height {
     /// A triangle mesh with a column index.
     Mesh(MeshHeight),
     /// An exact height field seen in a block's unit frame: evaluated at the model point,
-    /// the height mapped to the frame and rounded ([`UnitFrame::height`]).
+    /// the height mapped to the frame and rounded ([`crate::unit::height`]).
     FieldInFrame {
         /// The height field (model units).
         field: HeightField,

@@ -262,14 +262,20 @@ pub fn pre_cut(
 ) -> Result<PreCut> {
     validate(block, params)?;
     // computed in the block's unit frame, the same numbers in any unit
-    let unit = unit::UnitFrame::of(block);
-    let height = unit.height(surface)?;
+    let unit = unit::frame(block);
+    let height = unit::height(&unit, surface)?;
     let params = Params {
         span: params.span.map(|s| unit.length(s)),
         ..params.clone()
     };
-    let cut = pre_cut_in(&unit, &height, &unit.block(block), &params, progress)?;
-    Ok(unit.result(cut))
+    let cut = pre_cut_in(
+        &unit,
+        &height,
+        &unit::block(&unit, block),
+        &params,
+        progress,
+    )?;
+    Ok(unit::result(&unit, cut))
 }
 
 /// [`pre_cut`] in the unit frame `unit` (for messages in model units).
@@ -560,17 +566,7 @@ fn validate(block: &Block, p: &Params) -> Result<()> {
     }
 }
 
-/// A parameter out of range: the field (`directions`), the index of the offending element
-/// for a list, and what is wrong.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ParamProblem {
-    /// The field of [`Params`].
-    pub field: &'static str,
-    /// The element of a list field.
-    pub index: Option<usize>,
-    /// What is wrong, e.g. `must be 1–32, got 0`.
-    pub message: String,
-}
+pub use geom::ParamProblem;
 
 impl Params {
     /// Every parameter [`pre_cut`] refuses, in field order (none: it runs).

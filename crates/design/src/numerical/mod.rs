@@ -117,10 +117,7 @@ pub fn numerical_spline(points: &[[f64; 2]], p: &NumericalParams) -> Result<Nume
         )));
     }
     // chord-length parameters
-    let mut t = vec![0.0];
-    for w in points.windows(2) {
-        t.push(t[t.len() - 1] + (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]));
-    }
+    let mut t = geom::polyline::chord_lengths(points);
     let total = t[t.len() - 1];
     if !(total > 0.0) {
         return Err(DesignError::Invalid("the points coincide".into()));

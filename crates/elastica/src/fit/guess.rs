@@ -76,9 +76,7 @@ pub(crate) fn local_geometry(data: &Data) -> Local {
     Local { theta, kappa }
 }
 
-fn wrap(a: f64) -> f64 {
-    a - 2.0 * PI * (a / (2.0 * PI)).round()
-}
+use geom::polyline::wrap_angle as wrap;
 
 /// Weighted mean curvature: the circle guess.
 pub(crate) fn mean_curvature(data: &Data, local: &Local) -> f64 {

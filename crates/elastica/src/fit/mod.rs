@@ -144,18 +144,13 @@ pub struct FitResult {
 /// assert!(matches!(fit.segment, Segment::Arc { .. }));
 /// ```
 pub fn fit_points(points: &[[f64; 2]], params: &FitParams) -> Result<FitResult, FitError> {
-    let mut s = Vec::with_capacity(points.len());
-    let mut acc = 0.0;
-    for (i, p) in points.iter().enumerate() {
-        if !(p[0].is_finite() && p[1].is_finite()) {
-            return Err(FitError::NonFinite(i));
-        }
-        if i > 0 {
-            acc += (p[0] - points[i - 1][0]).hypot(p[1] - points[i - 1][1]);
-        }
-        s.push(acc);
+    if let Some(i) = points
+        .iter()
+        .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+    {
+        return Err(FitError::NonFinite(i));
     }
-    fit_points_with_arclength(points, &s, params)
+    fit_points_with_arclength(points, &geom::polyline::chord_lengths(points), params)
 }
 
 /// Fit points with given arc-length parameters `s` (increasing; the length is
@@ -233,7 +228,7 @@ pub fn fit_points_with_arclength(
 pub const FIT_GRID: f64 = 1.0 / (1u64 << 30) as f64;
 
 pub(crate) fn quantize(x: f64) -> f64 {
-    (x / FIT_GRID).round() * FIT_GRID
+    geom::unit::snap(x, FIT_GRID)
 }
 
 pub(crate) fn quantize_all(v: &[f64]) -> Vec<f64> {

@@ -15,10 +15,7 @@ use crate::unit::Family;
 /// Constraint residual that counts as met (radians, and relative length).
 const TOLERANCE: f64 = 1e-11;
 
-fn wrap(a: f64) -> f64 {
-    let tau = std::f64::consts::TAU;
-    a - (a / tau).round() * tau
-}
+use geom::polyline::wrap_angle as wrap;
 
 /// The two families as one chart: `q ∈ [0, 1]` is the inflectional elastica of modulus
 /// `k = q`, `q ∈ (1, 2)` the non-inflectional one of modulus `k = 2 − q`. Both families are
@@ -132,10 +129,7 @@ impl Problem<'_> {
 /// use elastica::{fit_points_with_arclength, fit_with_end_tangents, FitConstraint, FitParams};
 /// // the parabola y = x²/4 on [0, 1], with chord-length parameters
 /// let points: Vec<[f64; 2]> = (0..40).map(|i| { let x = i as f64 / 39.0; [x, x * x / 4.0] }).collect();
-/// let mut s = vec![0.0];
-/// for w in points.windows(2) {
-///     s.push(s[s.len() - 1] + (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]));
-/// }
+/// let s = geom::polyline::chord_lengths(&points);
 /// let params = FitParams { constraint: FitConstraint::EndPoints, ..FitParams::default() };
 /// let fit = fit_points_with_arclength(&points, &s, &params)?;
 /// // refit leaving horizontally and arriving with the parabola's slope 1/2

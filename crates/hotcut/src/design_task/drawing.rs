@@ -3,6 +3,7 @@
 //! the axes and a scale bar; below, the distance from each station's design curve to its
 //! elastica against arc length, so a fraction of a millimetre can be read.
 
+use crate::output::chart::{deviation_chart, DeviationLine};
 use design::cut::CutResult;
 use export::svg::{bounds, Legend, Mark, SvgDoc, Viewport};
 
@@ -114,61 +115,36 @@ fn deviation_panel(
     frame: (f64, f64, f64, f64),
     units: &str,
 ) {
-    let (x0, y0, pw, ph) = frame;
-    let lines: Vec<(Vec<f64>, Vec<f64>)> = curves
+    let lines: Vec<DeviationLine<'_>> = curves
         .iter()
-        .map(|(design, elastica)| {
-            let dev = design
-                .iter()
-                .map(|p| crate::output::distance_to_polyline(*p, elastica))
-                .collect();
-            let mut s = vec![0.0];
-            for w in design.windows(2) {
-                s.push(s[s.len() - 1] + (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]));
-            }
-            (s, dev)
+        .enumerate()
+        .map(|(i, (design, elastica))| DeviationLine {
+            points: design,
+            reference: elastica,
+            colour: STATION_COLOURS[i % STATION_COLOURS.len()],
+            label: format!("station {i}"),
         })
         .collect();
-    let len = lines
-        .iter()
-        .filter_map(|(s, _)| s.last().copied())
-        .fold(0.0, f64::max);
-    let top = lines
-        .iter()
-        .flat_map(|(_, d)| d.iter().copied())
-        .fold(0.0, f64::max);
-    doc.text(
-        (30.0, y0 - 24.0),
-        12.0,
-        "black",
-        &format!(
+    let title = |top: f64| {
+        format!(
             "design vs elastica along the curve: largest {} {units}",
             if top >= 0.01 {
                 format!("{top:.3}")
             } else {
                 format!("{top:.3e}")
             }
+        )
+    };
+    deviation_chart(
+        doc,
+        frame,
+        &lines,
+        title,
+        (
+            &format!("arc length along the design curve ({units})"),
+            &format!("distance from the design curve to its elastica ({units})"),
         ),
     );
-    doc.chart_axes(
-        frame,
-        (0.0, len),
-        (0.0, top),
-        &format!("arc length along the design curve ({units})"),
-        &format!("distance from the design curve to its elastica ({units})"),
-    );
-    if !(len > 0.0 && top > 0.0) {
-        return;
-    }
-    for (i, (s, dev)) in lines.iter().enumerate() {
-        let pts: Vec<(f64, f64)> = s
-            .iter()
-            .zip(dev)
-            .map(|(a, d)| (x0 + pw * a / len, y0 + ph - ph * d / top))
-            .collect();
-        let colour = STATION_COLOURS[i % STATION_COLOURS.len()];
-        doc.polyline(&pts, colour, 1.2, Some(&format!("station {i}")));
-    }
 }
 
 /// The title and legend lines of a design block's drawing.

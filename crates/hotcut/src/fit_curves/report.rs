@@ -75,7 +75,7 @@ pub struct NumericalCurve {
 /// Largest distance from the points `a` to the polyline `b`.
 fn distance_to_polyline(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
     a.iter()
-        .map(|p| crate::output::distance_to_polyline(*p, b))
+        .map(|p| geom::polyline::distance_to_polyline(*p, b))
         .fold(0.0, f64::max)
 }
 
@@ -131,10 +131,6 @@ impl NumericalCurve {
 pub(super) fn input_length(c: &InputCurve) -> f64 {
     match &c.arc_length {
         Some(s) => s[s.len() - 1] - s[0],
-        None => c
-            .points
-            .windows(2)
-            .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
-            .sum(),
+        None => geom::polyline::length(&c.points),
     }
 }

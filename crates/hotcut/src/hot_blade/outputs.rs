@@ -3,6 +3,7 @@
 //! job), an SVG per block of its worst section (hot-blade paper fig. 15) and a CSV of every
 //! fitted section.
 
+use crate::output::chart::{deviation_chart, DeviationLine};
 use export::csv::Table;
 use export::gltf::{write_gltf, xyz, Material, Mesh, SourceUnits};
 use export::svg::{bounds, Legend, Mark, SvgDoc, Viewport};
@@ -249,40 +250,27 @@ fn block_svg(b: &BlockResult, job: &str, units: &str) -> SvgDoc {
     // the fit sampled finely enough that its chords' sag (length² · κ / 8 per chord) stays
     // far below the deviations plotted
     let fine = sec.fit.segment.sample(8000).unwrap_or_default();
-    let pts = &sec.design.points;
-    let dev: Vec<f64> = pts
-        .iter()
-        .map(|p| crate::output::distance_to_polyline(*p, &fine))
-        .collect();
-    let mut s = vec![0.0];
-    for w in pts.windows(2) {
-        s.push(s[s.len() - 1] + (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]));
-    }
-    let (len, top_dev) = (s[s.len() - 1], dev.iter().copied().fold(0.0, f64::max));
-    let (x0, y0, pw, ph) = (90.0, 520.0, W - 130.0, 190.0);
-    doc.text(
-        (30.0, y0 - 24.0),
-        12.0,
-        "black",
-        &format!(
+    let line = DeviationLine {
+        points: &sec.design.points,
+        reference: &fine,
+        colour: "#e01010",
+        label: "distance design → fit".into(),
+    };
+    let title = |top: f64| {
+        format!(
             "deviation along the section, at the design's points: largest {} {units}",
-            crate::output::page::num(top_dev)
+            crate::output::page::num(top)
+        )
+    };
+    deviation_chart(
+        &mut doc,
+        (90.0, 520.0, W - 130.0, 190.0),
+        &[line],
+        title,
+        (
+            &format!("arc length along the design section ({units})"),
+            &format!("distance from the design to the fit ({units})"),
         ),
     );
-    doc.chart_axes(
-        (x0, y0, pw, ph),
-        (0.0, len),
-        (0.0, top_dev),
-        &format!("arc length along the design section ({units})"),
-        &format!("distance from the design to the fit ({units})"),
-    );
-    if len > 0.0 && top_dev > 0.0 {
-        let line: Vec<(f64, f64)> = s
-            .iter()
-            .zip(&dev)
-            .map(|(a, d)| (x0 + pw * a / len, y0 + ph - ph * d / top_dev))
-            .collect();
-        doc.polyline(&line, "#e01010", 1.2, Some("distance design → fit"));
-    }
     doc
 }

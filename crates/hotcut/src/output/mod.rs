@@ -3,6 +3,8 @@
 //! Format-generic helpers (glTF meshes from `geom` meshes and boxes, SVG bounds) live in
 //! the `export` crate.
 
+/// The deviation chart of the drawings.
+pub mod chart;
 /// The number formats of the tasks' `report.html` pages.
 pub mod page;
 /// Robot targets and RAPID programs from blade poses.
@@ -22,19 +24,6 @@ pub fn deviation_color(dev: f64, tolerance: f64) -> [f32; 4] {
     let g = 1.0 - (2.0 * t - 1.0).abs();
     let b = (1.0 - 2.0 * t).clamp(0.0, 1.0);
     [r as f32, g as f32, b as f32, 1.0]
-}
-
-/// Distance from point `p` to the polyline `line` (∞ for fewer than two points).
-pub fn distance_to_polyline(p: [f64; 2], line: &[[f64; 2]]) -> f64 {
-    line.windows(2)
-        .map(|w| {
-            let d = [w[1][0] - w[0][0], w[1][1] - w[0][1]];
-            let e = [p[0] - w[0][0], p[1] - w[0][1]];
-            let t = ((d[0] * e[0] + d[1] * e[1]) / (d[0] * d[0] + d[1] * d[1]).max(1e-300))
-                .clamp(0.0, 1.0);
-            (e[0] - t * d[0]).hypot(e[1] - t * d[1])
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// The unit the job's lengths are in, for the 3D writers (glTF scales to metres, OBJ
