@@ -2,8 +2,9 @@
 //! to a grid, so that the same problem in millimetres and in metres (whose inputs differ
 //! by the rounding of a ÷1000) becomes the same numbers and takes the same path through
 //! a search that follows near-ties. The result is mapped back with
-//! [`UnitFrame::to_model`]. Used by the block segmentation and the pre-cut; the elastica
-//! fit rounds its unit-length problems with [`snap`] to its own finer grid.
+//! [`UnitFrame::to_model`](crate::unit::UnitFrame::to_model). Used by the block
+//! segmentation and the pre-cut; the elastica fit rounds its unit-length problems with
+//! [`snap`](crate::unit::snap) to its own finer grid.
 
 use nalgebra::Vector3;
 
