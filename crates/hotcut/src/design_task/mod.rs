@@ -160,8 +160,6 @@ impl Task for Design {
                 "task Design takes its blocks from the design file: leave block out",
             ));
         }
-        job.check_motion(PTR, self.speed, self.approach, errors);
-        job.check_kerf(errors);
         robot_cell::check(job, (PTR, self.speed, self.approach), errors);
         if self.resolution == Resolution::Design {
             for (i, o) in job.outputs.iter().enumerate() {

@@ -1,5 +1,6 @@
 //! What `report.html` shows of a `Design` run.
 
+use crate::robot_cell::report::CellReport;
 use export::html::{Body, Constraint, Row, Table};
 
 use super::report::DesignReport;
@@ -67,10 +68,7 @@ pub fn body(r: &DesignReport, job: &Context) -> Body {
         },
     ];
     let mut tables = vec![curves(r, job), blocks(r, job)];
-    if let Some(cell) = &r.cell {
-        constraints.push(cell.constraint());
-        tables.push(cell.table());
-    }
+    CellReport::add_to_page(r.cell.as_ref(), &mut constraints, &mut tables);
     let notes = r
         .blocks
         .iter()

@@ -234,8 +234,6 @@ impl Task for FacadeSegmentation {
         if self.constraint == FitConstraintSpec::Free {
             errors.push(job.error(&format!("{PTR}/constraint"), "a piece's fits keep its parts' end points so that neighbouring pieces meet: use EndPoints or EndPointsAndLength"));
         }
-        job.check_motion(PTR, self.speed, self.approach, errors);
-        job.check_kerf(errors);
         robot_cell::check(job, (PTR, self.speed, self.approach), errors);
         if job.blade.is_some_and(|b| b.max_inflections == 0) {
             errors.push(job.error("/blade/max_inflections", "FacadeSegmentation needs max_inflections ≥ 1: parts meet between inflections, never exactly on one, so a section with an inflection cannot be split into parts without any"));

@@ -1,5 +1,6 @@
 //! What `report.html` shows of a `FacadeSegmentation` run.
 
+use crate::robot_cell::report::CellReport;
 use export::html::{Body, Constraint, Row, Table, Verdict};
 
 use super::report::SegmentationReport;
@@ -98,10 +99,7 @@ pub fn body(r: &SegmentationReport, job: &Context) -> Body {
     ];
     constraints.extend(clearance(r, job));
     let mut tables = vec![pieces(r, job)];
-    if let Some(cell) = &r.cell {
-        constraints.push(cell.constraint());
-        tables.push(cell.table());
-    }
+    CellReport::add_to_page(r.cell.as_ref(), &mut constraints, &mut tables);
     Body {
         verdict,
         counts,

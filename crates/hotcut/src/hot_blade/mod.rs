@@ -158,8 +158,6 @@ impl Task for HotBlade {
         if self.constraint == FitConstraintSpec::Free {
             errors.push(job.error(&format!("{PTR}/constraint"), "HotBlade fits keep the sections' end points so that neighbouring blocks meet: use EndPoints or EndPointsAndLength"));
         }
-        job.check_motion(PTR, self.speed, self.approach, errors);
-        job.check_kerf(errors);
         robot_cell::check(job, (PTR, self.speed, self.approach), errors);
         // the pipeline's own checks of these fields and of the cutting curve
         let pipeline = hotblade::Params {

@@ -1,5 +1,6 @@
 //! What `report.html` shows of a `HotBlade` run.
 
+use crate::robot_cell::report::CellReport;
 use export::html::{Body, Constraint, Row, Table};
 
 use super::report::HotBladeReport;
@@ -111,10 +112,7 @@ pub fn body(r: &HotBladeReport, job: &Context) -> Body {
         },
     ];
     let mut tables = vec![blocks(r, job)];
-    if let Some(cell) = &r.cell {
-        constraints.push(cell.constraint());
-        tables.push(cell.table());
-    }
+    CellReport::add_to_page(r.cell.as_ref(), &mut constraints, &mut tables);
     Body {
         verdict,
         counts,

@@ -61,14 +61,17 @@ fn frame_message() -> String {
     format!("a frame's origin must lie within {MAX_MM} mm, its angles within ±720°")
 }
 
-/// Checks the job's `cell:` and what a robot program needs of the task's motion: a
-/// positive approach (the blade must start and end outside the block) and a cutting
-/// speed RAPID can state (`mm`: millimetres per job unit; `ptr` the task's pointer).
+/// The checks every task that poses the blade for the cell makes, in one place: its motion
+/// (`speed`, `approach` under the task's pointer `ptr`), the blade's kerf, the job's
+/// `cell:`, and what a robot program needs of the motion: a positive approach (the blade
+/// must start and end outside the block) and a cutting speed RAPID can state.
 pub fn check(
     job: &JobFields<'_>,
     (ptr, speed, approach): (&str, Option<f64>, Option<f64>),
     errors: &mut Vec<JobError>,
 ) {
+    job.check_motion(ptr, speed, approach, errors);
+    job.check_kerf(errors);
     let mm = 1.0 / job.units.per_mm();
     let rapid = job
         .outputs

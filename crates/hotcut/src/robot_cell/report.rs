@@ -108,6 +108,19 @@ pub struct CellReport {
 }
 
 impl CellReport {
+    /// What a task's `report.html` shows of its cell, if it planned one: a constraint row
+    /// and the per-block table, added to the page's.
+    pub fn add_to_page(
+        cell: Option<&Self>,
+        constraints: &mut Vec<export::html::Constraint>,
+        tables: &mut Vec<export::html::Table>,
+    ) {
+        if let Some(cell) = cell {
+            constraints.push(cell.constraint());
+            tables.push(cell.table());
+        }
+    }
+
     /// One line for the run's summary: the robots, the moves, the verdict.
     pub fn summary(&self) -> String {
         let models: Vec<&str> = self.robots.iter().map(|r| r.model.as_str()).collect();
