@@ -11,7 +11,13 @@ fn metadata() -> serde_json::Value {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let out = Command::new(cargo)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(["metadata", "--format-version", "1", "--no-deps", "--offline"])
+        .args([
+            "metadata",
+            "--format-version",
+            "1",
+            "--no-deps",
+            "--offline",
+        ])
         .output()
         .expect("cargo metadata");
     assert!(
@@ -107,12 +113,21 @@ fn every_publishable_crate_has_registry_metadata_and_a_readme() {
         if p["publish"].as_array().is_some_and(|r| r.is_empty()) {
             continue;
         }
-        for field in ["description", "repository", "license", "readme", "rust_version"] {
+        for field in [
+            "description",
+            "repository",
+            "license",
+            "readme",
+            "rust_version",
+        ] {
             assert!(p[field].is_string(), "{name}: no {field}");
         }
         for field in ["keywords", "categories"] {
             let list = p[field].as_array().unwrap();
-            assert!(!list.is_empty() && list.len() <= 5, "{name}: {field} {list:?}");
+            assert!(
+                !list.is_empty() && list.len() <= 5,
+                "{name}: {field} {list:?}"
+            );
         }
         let dir = Path::new(p["manifest_path"].as_str().unwrap())
             .parent()
@@ -135,5 +150,8 @@ fn every_publishable_crate_has_registry_metadata_and_a_readme() {
         }
         checked += 1;
     }
-    assert_eq!(checked, 10, "the ten library and CLI crates are publishable");
+    assert_eq!(
+        checked, 10,
+        "the ten library and CLI crates are publishable"
+    );
 }
