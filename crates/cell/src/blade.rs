@@ -44,6 +44,25 @@ pub struct BladeShape {
 
 impl BladeShape {
     /// The lowest `z` of the blade.
+    ///
+    /// ```
+    /// use cell::blade::{from_planar, PlanarPose};
+    /// use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+    /// // a blade held 700 apart along y, 300 up, its ends leaving the chord at 20° upwards
+    /// // and back, in the plane whose normal is x
+    /// let a = 20f64.to_radians();
+    /// let frame = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(
+    ///     Matrix3::from_columns(&[Vector3::y(), Vector3::z(), Vector3::x()]),
+    /// ));
+    /// let held = PlanarPose { mid: Vector3::new(0.0, 0.0, 300.0), frame, chord: 700.0, angles: [a, -a] };
+    /// let pose = from_planar(&held);
+    /// // a blade 714 long: nearly the circular arc with those ends (700 · θ / sin θ at
+    /// // θ = 20°), an arch above its chord whose ends are lowest
+    /// let s = cell::blade::shape(&pose, 714.0)?;
+    /// assert!((s.lowest() - 300.0).abs() < 1e-9);
+    /// assert!(s.points.iter().all(|p| p[2] >= 300.0 - 1e-9));
+    /// # Ok::<(), cell::CellError>(())
+    /// ```
     pub fn lowest(&self) -> f64 {
         self.points
             .iter()
@@ -54,6 +73,26 @@ impl BladeShape {
 
 /// The pose in the blade's plane. The plane's normal is the first end's tool z-axis made
 /// perpendicular to the chord.
+///
+/// ```
+/// use cell::blade::{from_planar, PlanarPose};
+/// use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+/// // a blade held 700 apart along y, 300 up, its ends leaving the chord at 20° upwards
+/// // and back, in the plane whose normal is x
+/// let a = 20f64.to_radians();
+/// let frame = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(
+///     Matrix3::from_columns(&[Vector3::y(), Vector3::z(), Vector3::x()]),
+/// ));
+/// let held = PlanarPose { mid: Vector3::new(0.0, 0.0, 300.0), frame, chord: 700.0, angles: [a, -a] };
+/// let pose = from_planar(&held);
+/// let q = cell::blade::planar(&pose)?;
+/// assert!((q.chord - 700.0).abs() < 1e-9 && (q.mid - held.mid).norm() < 1e-9);
+/// assert!((q.angles[0] - a).abs() < 1e-12 && (q.angles[1] + a).abs() < 1e-12);
+/// assert!(q.frame.angle_to(&frame) < 1e-9);
+/// // the ends at one point: no plane
+/// assert!(cell::blade::planar(&[pose[0], pose[0]]).is_err());
+/// # Ok::<(), cell::CellError>(())
+/// ```
 ///
 /// # Errors
 /// [`CellError::Blade`] when the two ends coincide or the normal lies along the chord.
@@ -90,6 +129,27 @@ pub fn planar(p: &BladePose) -> Result<PlanarPose> {
 }
 
 /// The tool frames of a planar pose.
+///
+/// ```
+/// use cell::blade::{from_planar, PlanarPose};
+/// use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+/// // a blade held 700 apart along y, 300 up, its ends leaving the chord at 20° upwards
+/// // and back, in the plane whose normal is x
+/// let a = 20f64.to_radians();
+/// let frame = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(
+///     Matrix3::from_columns(&[Vector3::y(), Vector3::z(), Vector3::x()]),
+/// ));
+/// let held = PlanarPose { mid: Vector3::new(0.0, 0.0, 300.0), frame, chord: 700.0, angles: [a, -a] };
+/// let pose = from_planar(&held);
+/// // the ends on the chord, 350 either side of the middle, along the frame's x (here y)
+/// let (first, second) = (pose[0].translation.vector, pose[1].translation.vector);
+/// assert!((first - Vector3::new(0.0, -350.0, 300.0)).norm() < 1e-9);
+/// assert!((second - Vector3::new(0.0, 350.0, 300.0)).norm() < 1e-9);
+/// // each tool frame: x along the blade's tangent, z the plane's normal
+/// let tangent = pose[0].rotation * Vector3::x();
+/// assert!((tangent - Vector3::new(0.0, a.cos(), a.sin())).norm() < 1e-12);
+/// assert!((pose[1].rotation * Vector3::z() - Vector3::x()).norm() < 1e-12);
+/// ```
 pub fn from_planar(p: &PlanarPose) -> BladePose {
     let x = p.frame * Vector3::x();
     let y = p.frame * Vector3::y();
@@ -109,6 +169,25 @@ pub fn from_planar(p: &PlanarPose) -> BladePose {
 /// angles linear (each angle the short way round), plane frame by spherical
 /// interpolation. Each end then moves on a smooth path, and the chord never exceeds the
 /// longer of the two.
+///
+/// ```
+/// use cell::blade::{from_planar, PlanarPose};
+/// use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+/// // a blade held 700 apart along y, 300 up, its ends leaving the chord at 20° upwards
+/// // and back, in the plane whose normal is x
+/// let a = 20f64.to_radians();
+/// let frame = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(
+///     Matrix3::from_columns(&[Vector3::y(), Vector3::z(), Vector3::x()]),
+/// ));
+/// let held = PlanarPose { mid: Vector3::new(0.0, 0.0, 300.0), frame, chord: 700.0, angles: [a, -a] };
+/// let pose = from_planar(&held);
+/// use cell::blade::interpolate;
+/// let wider = PlanarPose { chord: 760.0, angles: [0.5 * a, -0.5 * a], ..held };
+/// let half = interpolate(&held, &wider, 0.5);
+/// assert!((half.chord - 730.0).abs() < 1e-12);
+/// assert!((half.angles[0] - 0.75 * a).abs() < 1e-12);
+/// assert_eq!(interpolate(&held, &wider, 0.0), held);
+/// ```
 pub fn interpolate(a: &PlanarPose, b: &PlanarPose, w: f64) -> PlanarPose {
     let lerp = |u: f64, v: f64| u + (v - u) * w;
     let turn = |u: f64, v: f64| u + angle_between(u, v) * w;
@@ -124,6 +203,15 @@ pub fn interpolate(a: &PlanarPose, b: &PlanarPose, w: f64) -> PlanarPose {
 }
 
 /// The turn from angle `u` to angle `v` the short way round, in (−π, π].
+///
+/// ```
+/// use cell::blade::angle_between;
+/// use std::f64::consts::PI;
+/// assert!((angle_between(0.1, 0.3) - 0.2).abs() < 1e-15);
+/// // from just below +π to just above −π: a small turn left, not almost a whole one back
+/// assert!((angle_between(PI - 0.1, -PI + 0.1) - 0.2).abs() < 1e-12);
+/// assert_eq!(angle_between(0.0, PI), PI); // half a turn: in (−π, π]
+/// ```
 pub fn angle_between(u: f64, v: f64) -> f64 {
     let pi = std::f64::consts::PI;
     pi - (pi - (v - u)).rem_euclid(2.0 * pi)
@@ -184,12 +272,45 @@ pub fn shape(p: &BladePose, length: f64) -> Result<BladeShape> {
 }
 
 /// The pose moved by `v` (both ends, orientation kept).
+///
+/// ```
+/// use cell::blade::{from_planar, PlanarPose};
+/// use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+/// // a blade held 700 apart along y, 300 up, its ends leaving the chord at 20° upwards
+/// // and back, in the plane whose normal is x
+/// let a = 20f64.to_radians();
+/// let frame = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(
+///     Matrix3::from_columns(&[Vector3::y(), Vector3::z(), Vector3::x()]),
+/// ));
+/// let held = PlanarPose { mid: Vector3::new(0.0, 0.0, 300.0), frame, chord: 700.0, angles: [a, -a] };
+/// let pose = from_planar(&held);
+/// use cell::blade::{normal, translated};
+/// let v = Vector3::new(10.0, 0.0, -5.0);
+/// let moved = translated(&pose, &v);
+/// assert!((moved[1].translation.vector - pose[1].translation.vector - v).norm() < 1e-12);
+/// assert_eq!(moved[0].rotation, pose[0].rotation);
+/// assert!((normal(&moved) - Vector3::x()).norm() < 1e-12);
+/// ```
 pub fn translated(p: &BladePose, v: &Vector3<f64>) -> BladePose {
     let t = Translation3::from(*v);
     [t * p[0], t * p[1]]
 }
 
 /// The cutting plane's normal of a pose (the first end's tool z-axis).
+///
+/// ```
+/// use cell::blade::{from_planar, PlanarPose};
+/// use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+/// // a blade held 700 apart along y, 300 up, its ends leaving the chord at 20° upwards
+/// // and back, in the plane whose normal is x
+/// let a = 20f64.to_radians();
+/// let frame = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(
+///     Matrix3::from_columns(&[Vector3::y(), Vector3::z(), Vector3::x()]),
+/// ));
+/// let held = PlanarPose { mid: Vector3::new(0.0, 0.0, 300.0), frame, chord: 700.0, angles: [a, -a] };
+/// let pose = from_planar(&held);
+/// assert!((cell::blade::normal(&pose) - Vector3::x()).norm() < 1e-12);
+/// ```
 pub fn normal(p: &BladePose) -> Vector3<f64> {
     p[0].rotation * Vector3::z()
 }

@@ -71,6 +71,73 @@ pub struct CarriedProgram {
 
 impl CarriedProgram {
     /// The blade's ends in the cell's frame at move `k`.
+    ///
+    /// ```
+    /// # use cell::blade::{from_planar, PlanarPose};
+    /// # use cell::carrier::CarrierCell;
+    /// # use cell::fixture::BlockCut;
+    /// # use cell::plan::Holder;
+    /// # use cell::RobotModel;
+    /// # use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+    /// #
+    /// # // the rotation whose x- and z-axes are `x` and `z`
+    /// # let rotation = |x: Vector3<f64>, z: Vector3<f64>| {
+    /// #     let m = Matrix3::from_columns(&[x, z.cross(&x), z]);
+    /// #     UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(m))
+    /// # };
+    /// # // two IRB 2600 facing each other across the cut (x), 1200 mm either side, each holding
+    /// # // its end of the blade 150 mm in front of its flange
+    /// # let holder = |y: f64, yaw: f64| Holder {
+    /// #     model: RobotModel::irb2600_12_165(),
+    /// #     base: Isometry3::from_parts(
+    /// #         Translation3::new(0.0, y, 0.0),
+    /// #         UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+    /// #     ),
+    /// #     tool: Isometry3::from_parts(
+    /// #         Translation3::new(0.0, 0.0, 150.0),
+    /// #         rotation(-Vector3::z(), Vector3::x()).inverse() * rotation(Vector3::y(), Vector3::x()),
+    /// #     ),
+    /// # };
+    /// # let quarter = std::f64::consts::FRAC_PI_2;
+    /// # // an IRB 4600 behind the blade carrying the block from below, its flange 200 mm under the
+    /// # // floor's middle and tilted 75° towards the blade; the blade's chord along y 1 m up
+    /// # let tilt = UnitQuaternion::from_axis_angle(&Vector3::y_axis(), 75f64.to_radians());
+    /// # let grip = Isometry3::from_parts(Translation3::new(300.0, 300.0, -200.0), tilt);
+    /// # let cell = CarrierCell {
+    /// #     holders: [holder(-1200.0, quarter), holder(1200.0, -quarter)],
+    /// #     carrier: Holder {
+    /// #         model: RobotModel::irb4600_60_205(),
+    /// #         base: Isometry3::translation(-1300.0, 0.0, 0.0),
+    /// #         tool: grip.inverse(),
+    /// #     },
+    /// #     station: Isometry3::from_parts(
+    /// #         Translation3::new(0.0, 0.0, 1000.0),
+    /// #         rotation(Vector3::y(), Vector3::x()),
+    /// #     ),
+    /// #     blade_length: 800.0,
+    /// #     max_curvature: None,
+    /// #     approach: 50.0,
+    /// #     clearance: 100.0,
+    /// #     travel_step: (100.0, 5f64.to_radians()),
+    /// #     start: [[0.0, 0.0, 0.0, 0.0, 0.5, 0.0]; 3],
+    /// # };
+    /// # // a 600 mm block cut along x by arches of the blade, its ends turned 0.35 rad
+    /// # let turn: f64 = 0.35;
+    /// # let arch = |along: f64| from_planar(&PlanarPose {
+    /// #     mid: Vector3::new(along, 300.0, 350.0),
+    /// #     frame: rotation(Vector3::y(), Vector3::x()),
+    /// #     chord: 800.0 * turn.sin() / turn * 0.98,
+    /// #     angles: [turn, -turn],
+    /// # });
+    /// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+    /// let program = cell::carrier::plan(&cell, &blocks)?;
+    /// // move k's ends, relative to the block, put where the block is
+    /// let k = 2;
+    /// let world = program.blade(k);
+    /// let expected = program.block_poses[k] * program.moves.steps[k].ends[0];
+    /// assert!((world[0].translation.vector - expected.translation.vector).norm() < 1e-12);
+    /// # Ok::<(), cell::CellError>(())
+    /// ```
     pub fn blade(&self, k: usize) -> BladePose {
         let b = &self.block_poses[k];
         self.moves.steps[k].ends.map(|e| b * e)
@@ -79,6 +146,27 @@ impl CarriedProgram {
 
 /// The block's frame in the cell that puts the blade of relative pose `ends` (in the
 /// block's frame) at `station`.
+///
+/// ```
+/// use cell::blade::{from_planar, planar, PlanarPose};
+/// use cell::carrier::block_pose;
+/// use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+/// // the blade 700 across a block at (300, 300, 350) in the block's frame, its plane
+/// // facing along x; the station 1 m up in the cell, turned about z
+/// let ends = from_planar(&PlanarPose {
+///     mid: Vector3::new(300.0, 300.0, 350.0),
+///     frame: UnitQuaternion::from_euler_angles(0.3, -0.2, 0.1),
+///     chord: 700.0,
+///     angles: [0.3, -0.3],
+/// });
+/// let station = Isometry3::new(Vector3::new(0.0, 0.0, 1000.0), Vector3::z() * 0.5);
+/// let block = block_pose(&station, &ends)?;
+/// // with the block there the blade's chord is the station's x, centred on it
+/// let q = planar(&ends.map(|e| block * e))?;
+/// assert!((q.mid - station.translation.vector).norm() < 1e-9);
+/// assert!(q.frame.angle_to(&station.rotation) < 1e-6);
+/// # Ok::<(), cell::CellError>(())
+/// ```
 ///
 /// # Errors
 /// [`crate::CellError::Blade`] when the ends coincide or the normal lies along the chord.
@@ -90,6 +178,75 @@ pub fn block_pose(station: &Isometry3<f64>, ends: &BladePose) -> Result<Isometry
 
 /// The relative moves through `blocks` (in cutting order; blocks without poses are
 /// skipped) and the block's pose at each.
+///
+/// ```
+/// use cell::blade::{from_planar, PlanarPose};
+/// use cell::carrier::CarrierCell;
+/// use cell::fixture::BlockCut;
+/// use cell::plan::Holder;
+/// use cell::RobotModel;
+/// use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+///
+/// // the rotation whose x- and z-axes are `x` and `z`
+/// let rotation = |x: Vector3<f64>, z: Vector3<f64>| {
+///     let m = Matrix3::from_columns(&[x, z.cross(&x), z]);
+///     UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(m))
+/// };
+/// // two IRB 2600 facing each other across the cut (x), 1200 mm either side, each holding
+/// // its end of the blade 150 mm in front of its flange
+/// let holder = |y: f64, yaw: f64| Holder {
+///     model: RobotModel::irb2600_12_165(),
+///     base: Isometry3::from_parts(
+///         Translation3::new(0.0, y, 0.0),
+///         UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+///     ),
+///     tool: Isometry3::from_parts(
+///         Translation3::new(0.0, 0.0, 150.0),
+///         rotation(-Vector3::z(), Vector3::x()).inverse() * rotation(Vector3::y(), Vector3::x()),
+///     ),
+/// };
+/// let quarter = std::f64::consts::FRAC_PI_2;
+/// // an IRB 4600 behind the blade carrying the block from below, its flange 200 mm under the
+/// // floor's middle and tilted 75° towards the blade; the blade's chord along y 1 m up
+/// let tilt = UnitQuaternion::from_axis_angle(&Vector3::y_axis(), 75f64.to_radians());
+/// let grip = Isometry3::from_parts(Translation3::new(300.0, 300.0, -200.0), tilt);
+/// let cell = CarrierCell {
+///     holders: [holder(-1200.0, quarter), holder(1200.0, -quarter)],
+///     carrier: Holder {
+///         model: RobotModel::irb4600_60_205(),
+///         base: Isometry3::translation(-1300.0, 0.0, 0.0),
+///         tool: grip.inverse(),
+///     },
+///     station: Isometry3::from_parts(
+///         Translation3::new(0.0, 0.0, 1000.0),
+///         rotation(Vector3::y(), Vector3::x()),
+///     ),
+///     blade_length: 800.0,
+///     max_curvature: None,
+///     approach: 50.0,
+///     clearance: 100.0,
+///     travel_step: (100.0, 5f64.to_radians()),
+///     start: [[0.0, 0.0, 0.0, 0.0, 0.5, 0.0]; 3],
+/// };
+/// // a 600 mm block cut along x by arches of the blade, its ends turned 0.35 rad
+/// let turn: f64 = 0.35;
+/// let arch = |along: f64| from_planar(&PlanarPose {
+///     mid: Vector3::new(along, 300.0, 350.0),
+///     frame: rotation(Vector3::y(), Vector3::x()),
+///     chord: 800.0 * turn.sin() / turn * 0.98,
+///     angles: [turn, -turn],
+/// });
+/// let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// let (m, poses) = cell::carrier::moves(&cell, &blocks)?;
+/// assert_eq!(poses.len(), m.steps.len());
+/// // at every move the block is where the blade, relative to it, sits at the station
+/// for (step, block) in m.steps.iter().zip(&poses) {
+///     let ends = step.ends.map(|e| block * e);
+///     let q = cell::blade::planar(&ends)?;
+///     assert!((q.mid - cell.station.translation.vector).norm() < 1e-9);
+/// }
+/// # Ok::<(), cell::CellError>(())
+/// ```
 ///
 /// # Errors
 /// Those of [`crate::fixture::moves`] and [`block_pose`].
@@ -205,6 +362,76 @@ fn per_move(sw: Sweep, owner: &[usize]) -> Sweep {
 /// that composed path. The first move is the exception: it starts from wherever the robots
 /// stand, and the blade's robots make it in the world.
 ///
+/// ```
+/// # use cell::blade::{from_planar, PlanarPose};
+/// # use cell::carrier::CarrierCell;
+/// # use cell::fixture::BlockCut;
+/// # use cell::plan::Holder;
+/// # use cell::RobotModel;
+/// # use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+/// #
+/// # // the rotation whose x- and z-axes are `x` and `z`
+/// # let rotation = |x: Vector3<f64>, z: Vector3<f64>| {
+/// #     let m = Matrix3::from_columns(&[x, z.cross(&x), z]);
+/// #     UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(m))
+/// # };
+/// # // two IRB 2600 facing each other across the cut (x), 1200 mm either side, each holding
+/// # // its end of the blade 150 mm in front of its flange
+/// # let holder = |y: f64, yaw: f64| Holder {
+/// #     model: RobotModel::irb2600_12_165(),
+/// #     base: Isometry3::from_parts(
+/// #         Translation3::new(0.0, y, 0.0),
+/// #         UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+/// #     ),
+/// #     tool: Isometry3::from_parts(
+/// #         Translation3::new(0.0, 0.0, 150.0),
+/// #         rotation(-Vector3::z(), Vector3::x()).inverse() * rotation(Vector3::y(), Vector3::x()),
+/// #     ),
+/// # };
+/// # let quarter = std::f64::consts::FRAC_PI_2;
+/// # // an IRB 4600 behind the blade carrying the block from below, its flange 200 mm under the
+/// # // floor's middle and tilted 75° towards the blade; the blade's chord along y 1 m up
+/// # let tilt = UnitQuaternion::from_axis_angle(&Vector3::y_axis(), 75f64.to_radians());
+/// # let grip = Isometry3::from_parts(Translation3::new(300.0, 300.0, -200.0), tilt);
+/// # let cell = CarrierCell {
+/// #     holders: [holder(-1200.0, quarter), holder(1200.0, -quarter)],
+/// #     carrier: Holder {
+/// #         model: RobotModel::irb4600_60_205(),
+/// #         base: Isometry3::translation(-1300.0, 0.0, 0.0),
+/// #         tool: grip.inverse(),
+/// #     },
+/// #     station: Isometry3::from_parts(
+/// #         Translation3::new(0.0, 0.0, 1000.0),
+/// #         rotation(Vector3::y(), Vector3::x()),
+/// #     ),
+/// #     blade_length: 800.0,
+/// #     max_curvature: None,
+/// #     approach: 50.0,
+/// #     clearance: 100.0,
+/// #     travel_step: (100.0, 5f64.to_radians()),
+/// #     start: [[0.0, 0.0, 0.0, 0.0, 0.5, 0.0]; 3],
+/// # };
+/// # // a 600 mm block cut along x by arches of the blade, its ends turned 0.35 rad
+/// # let turn: f64 = 0.35;
+/// # let arch = |along: f64| from_planar(&PlanarPose {
+/// #     mid: Vector3::new(along, 300.0, 350.0),
+/// #     frame: rotation(Vector3::y(), Vector3::x()),
+/// #     chord: 800.0 * turn.sin() / turn * 0.98,
+/// #     angles: [turn, -turn],
+/// # });
+/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// let (m, poses) = cell::carrier::moves(&cell, &blocks)?;
+/// let program = cell::carrier::solve(&cell, &m, &poses)?;
+/// assert_eq!(program.solutions.len(), 3); // both blade robots and the carrier
+/// assert!(program.solutions.iter().all(|s| s.len() == m.steps.len()));
+/// // the blade stays at the station at every move
+/// for k in 0..m.steps.len() {
+///     let q = cell::blade::planar(&program.blade(k))?;
+///     assert!((q.mid - cell.station.translation.vector).norm() < 1e-9);
+/// }
+/// # Ok::<(), cell::CellError>(())
+/// ```
+///
 /// # Errors
 /// The errors of [`sweep`].
 pub fn solve(
@@ -235,6 +462,76 @@ pub fn solve(
 }
 
 /// Plans the program of `blocks` (in cutting order): [`moves`], then [`solve`].
+///
+/// ```
+/// # use cell::blade::{from_planar, PlanarPose};
+/// # use cell::carrier::CarrierCell;
+/// # use cell::fixture::BlockCut;
+/// # use cell::plan::Holder;
+/// # use cell::RobotModel;
+/// # use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+/// #
+/// # // the rotation whose x- and z-axes are `x` and `z`
+/// # let rotation = |x: Vector3<f64>, z: Vector3<f64>| {
+/// #     let m = Matrix3::from_columns(&[x, z.cross(&x), z]);
+/// #     UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(m))
+/// # };
+/// # // two IRB 2600 facing each other across the cut (x), 1200 mm either side, each holding
+/// # // its end of the blade 150 mm in front of its flange
+/// # let holder = |y: f64, yaw: f64| Holder {
+/// #     model: RobotModel::irb2600_12_165(),
+/// #     base: Isometry3::from_parts(
+/// #         Translation3::new(0.0, y, 0.0),
+/// #         UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+/// #     ),
+/// #     tool: Isometry3::from_parts(
+/// #         Translation3::new(0.0, 0.0, 150.0),
+/// #         rotation(-Vector3::z(), Vector3::x()).inverse() * rotation(Vector3::y(), Vector3::x()),
+/// #     ),
+/// # };
+/// # let quarter = std::f64::consts::FRAC_PI_2;
+/// # // an IRB 4600 behind the blade carrying the block from below, its flange 200 mm under the
+/// # // floor's middle and tilted 75° towards the blade; the blade's chord along y 1 m up
+/// # let tilt = UnitQuaternion::from_axis_angle(&Vector3::y_axis(), 75f64.to_radians());
+/// # let grip = Isometry3::from_parts(Translation3::new(300.0, 300.0, -200.0), tilt);
+/// # let cell = CarrierCell {
+/// #     holders: [holder(-1200.0, quarter), holder(1200.0, -quarter)],
+/// #     carrier: Holder {
+/// #         model: RobotModel::irb4600_60_205(),
+/// #         base: Isometry3::translation(-1300.0, 0.0, 0.0),
+/// #         tool: grip.inverse(),
+/// #     },
+/// #     station: Isometry3::from_parts(
+/// #         Translation3::new(0.0, 0.0, 1000.0),
+/// #         rotation(Vector3::y(), Vector3::x()),
+/// #     ),
+/// #     blade_length: 800.0,
+/// #     max_curvature: None,
+/// #     approach: 50.0,
+/// #     clearance: 100.0,
+/// #     travel_step: (100.0, 5f64.to_radians()),
+/// #     start: [[0.0, 0.0, 0.0, 0.0, 0.5, 0.0]; 3],
+/// # };
+/// # // a 600 mm block cut along x by arches of the blade, its ends turned 0.35 rad
+/// # let turn: f64 = 0.35;
+/// # let arch = |along: f64| from_planar(&PlanarPose {
+/// #     mid: Vector3::new(along, 300.0, 350.0),
+/// #     frame: rotation(Vector3::y(), Vector3::x()),
+/// #     chord: 800.0 * turn.sin() / turn * 0.98,
+/// #     angles: [turn, -turn],
+/// # });
+/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// let program = cell::carrier::plan(&cell, &blocks)?;
+/// let (m, poses) = cell::carrier::moves(&cell, &blocks)?;
+/// assert_eq!(program, cell::carrier::solve(&cell, &m, &poses)?);
+/// // every cutting move reached by all three robots
+/// for (k, step) in m.steps.iter().enumerate() {
+///     if step.heat {
+///         assert!(program.solutions.iter().all(|s| s[k].joints.is_some()), "move {k}");
+///     }
+/// }
+/// # Ok::<(), cell::CellError>(())
+/// ```
 ///
 /// # Errors
 /// As [`moves`] and [`solve`].

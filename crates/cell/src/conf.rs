@@ -25,6 +25,15 @@ pub struct Conf {
 /// truncate `a / 90°`, negative ones truncate `a / 90° − 1`). The angle is first rounded
 /// to 1e-6°, the precision programs state joints with, so that an angle a hair below a
 /// boundary gets the quarter its printed value has.
+///
+/// ```
+/// use cell::conf::quadrant;
+/// assert_eq!(quadrant(10f64.to_radians()), 0);
+/// assert_eq!(quadrant(100f64.to_radians()), 1);
+/// assert_eq!(quadrant(-10f64.to_radians()), -1);
+/// assert_eq!(quadrant(-100f64.to_radians()), -2);
+/// assert_eq!(quadrant(90f64.to_radians() - 1e-12), 1); // as printed: 90.000000°
+/// ```
 pub fn quadrant(angle: f64) -> i32 {
     let degrees = (angle.to_degrees() * 1e6).round() / 1e6;
     let angle = if degrees == 0.0 {
@@ -43,6 +52,17 @@ pub fn quadrant(angle: f64) -> i32 {
 /// The arm-plane geometry of a solution: the wrist centre's distance in front of axis 1
 /// (along the arm's own forward direction), and the sine of the angle that puts it in
 /// front of (> 0) or behind (< 0) the lower arm, the line from axis 2 to axis 3.
+///
+/// ```
+/// use cell::conf::arm_geometry;
+/// use cell::RobotModel;
+/// let robot = RobotModel::irb1600_6_145();
+/// // at zero: the wrist centre a1 + c3 in front of axis 1, the forearm square to the lower arm
+/// let (front, elbow) = arm_geometry(&robot, &[0.0; 6]);
+/// assert!((front - 750.0).abs() < 1e-9 && (elbow - 1.0).abs() < 1e-12);
+/// // axis 1 turned half round: the arm plane turns with it, still in front
+/// assert!((arm_geometry(&robot, &[3.0, 0.0, 0.0, 0.0, 0.0, 0.0]).0 - 750.0).abs() < 1e-9);
+/// ```
 pub fn arm_geometry(model: &RobotModel, joints: &Joints) -> (f64, f64) {
     let o = &model.opw;
     // the paper's joint angles
@@ -57,6 +77,16 @@ pub fn arm_geometry(model: &RobotModel, joints: &Joints) -> (f64, f64) {
 }
 
 /// The configuration data of a joint solution.
+///
+/// ```
+/// use cell::{conf, Conf, RobotModel};
+/// let robot = RobotModel::irb1600_6_145();
+/// let home = [0.0, 0.0, 0.0, 0.0, 30f64.to_radians(), 0.0];
+/// assert_eq!(conf(&robot, &home), Conf { cf1: 0, cf4: 0, cf6: 0, cfx: 0 });
+/// // the wrist flipped (axis 5 negative), axis 6 past a quarter turn
+/// let flipped = [0.0, 0.0, 0.0, 0.0, -0.5, 2.0];
+/// assert_eq!(conf(&robot, &flipped), Conf { cf1: 0, cf4: 0, cf6: 1, cfx: 1 });
+/// ```
 pub fn conf(model: &RobotModel, joints: &Joints) -> Conf {
     let (front, elbow) = arm_geometry(model, joints);
     let behind_axis1 = i32::from(front < 0.0);

@@ -391,6 +391,58 @@ pub struct Moves {
 /// Plans the program of `blocks` (in cutting order; blocks without poses are skipped):
 /// [`moves`], then [`solve`].
 ///
+/// ```
+/// # use cell::blade::{from_planar, PlanarPose};
+/// # use cell::fixture::{BlockCut, FixtureCell, Phase};
+/// # use cell::plan::Holder;
+/// # use cell::RobotModel;
+/// # use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+/// #
+/// # // the rotation whose x- and z-axes are `x` and `z`
+/// # let rotation = |x: Vector3<f64>, z: Vector3<f64>| {
+/// #     let m = Matrix3::from_columns(&[x, z.cross(&x), z]);
+/// #     UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(m))
+/// # };
+/// # // two IRB 2600 facing each other across the cut (x), 1200 mm either side, each holding
+/// # // its end of the blade 150 mm in front of its flange
+/// # let holder = |y: f64, yaw: f64| Holder {
+/// #     model: RobotModel::irb2600_12_165(),
+/// #     base: Isometry3::from_parts(
+/// #         Translation3::new(0.0, y, 0.0),
+/// #         UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+/// #     ),
+/// #     tool: Isometry3::from_parts(
+/// #         Translation3::new(0.0, 0.0, 150.0),
+/// #         rotation(-Vector3::z(), Vector3::x()).inverse() * rotation(Vector3::y(), Vector3::x()),
+/// #     ),
+/// # };
+/// # let quarter = std::f64::consts::FRAC_PI_2;
+/// # let cell = FixtureCell {
+/// #     holders: [holder(-1200.0, quarter), holder(1200.0, -quarter)],
+/// #     fixture: Isometry3::translation(-300.0, -300.0, 200.0),
+/// #     blade_length: 800.0,
+/// #     max_curvature: None,
+/// #     approach: 50.0,
+/// #     clearance: 100.0,
+/// #     travel_step: (100.0, 5f64.to_radians()),
+/// #     start: [[0.0, 0.0, 0.0, 0.0, 0.5, 0.0]; 2],
+/// # };
+/// # // a 600 mm block cut along x by arches of the blade, its ends turned 0.35 rad
+/// # let turn: f64 = 0.35;
+/// # let arch = |along: f64| from_planar(&PlanarPose {
+/// #     mid: Vector3::new(along, 300.0, 350.0),
+/// #     frame: rotation(Vector3::y(), Vector3::x()),
+/// #     chord: 800.0 * turn.sin() / turn * 0.98,
+/// #     angles: [turn, -turn],
+/// # });
+/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// let program = cell::fixture::plan(&cell, &blocks)?;
+/// let by_hand = cell::fixture::solve(&cell, &cell::fixture::moves(&cell, &blocks)?)?;
+/// assert_eq!(program, by_hand);
+/// assert_eq!(program.blocks.len(), 1);
+/// # Ok::<(), cell::CellError>(())
+/// ```
+///
 /// # Errors
 /// As [`moves`] and [`solve`].
 pub fn plan(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<CellProgram> {
@@ -398,6 +450,63 @@ pub fn plan(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<CellProgram> {
 }
 
 /// The moves through `blocks` (in cutting order; blocks without poses are skipped).
+///
+/// ```
+/// use cell::blade::{from_planar, PlanarPose};
+/// use cell::fixture::{BlockCut, FixtureCell, Phase};
+/// use cell::plan::Holder;
+/// use cell::RobotModel;
+/// use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+///
+/// // the rotation whose x- and z-axes are `x` and `z`
+/// let rotation = |x: Vector3<f64>, z: Vector3<f64>| {
+///     let m = Matrix3::from_columns(&[x, z.cross(&x), z]);
+///     UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(m))
+/// };
+/// // two IRB 2600 facing each other across the cut (x), 1200 mm either side, each holding
+/// // its end of the blade 150 mm in front of its flange
+/// let holder = |y: f64, yaw: f64| Holder {
+///     model: RobotModel::irb2600_12_165(),
+///     base: Isometry3::from_parts(
+///         Translation3::new(0.0, y, 0.0),
+///         UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+///     ),
+///     tool: Isometry3::from_parts(
+///         Translation3::new(0.0, 0.0, 150.0),
+///         rotation(-Vector3::z(), Vector3::x()).inverse() * rotation(Vector3::y(), Vector3::x()),
+///     ),
+/// };
+/// let quarter = std::f64::consts::FRAC_PI_2;
+/// let cell = FixtureCell {
+///     holders: [holder(-1200.0, quarter), holder(1200.0, -quarter)],
+///     fixture: Isometry3::translation(-300.0, -300.0, 200.0),
+///     blade_length: 800.0,
+///     max_curvature: None,
+///     approach: 50.0,
+///     clearance: 100.0,
+///     travel_step: (100.0, 5f64.to_radians()),
+///     start: [[0.0, 0.0, 0.0, 0.0, 0.5, 0.0]; 2],
+/// };
+/// // a 600 mm block cut along x by arches of the blade, its ends turned 0.35 rad
+/// let turn: f64 = 0.35;
+/// let arch = |along: f64| from_planar(&PlanarPose {
+///     mid: Vector3::new(along, 300.0, 350.0),
+///     frame: rotation(Vector3::y(), Vector3::x()),
+///     chord: 800.0 * turn.sin() / turn * 0.98,
+///     angles: [turn, -turn],
+/// });
+/// let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// let m = cell::fixture::moves(&cell, &blocks)?;
+/// let phases: Vec<Phase> = m.steps.iter().map(|s| s.phase).collect();
+/// use Phase::*;
+/// assert_eq!(phases, [Start, Descend, Cut, Cut, Cut, Retreat, Rise]);
+/// assert_eq!(m.steps[1].change, Some((None, 1))); // the block is placed before the descent
+/// assert!(m.steps.iter().all(|s| s.heat == matches!(s.phase, Cut | Retreat)));
+/// // the blade waits above the block by at least the clearance
+/// assert_eq!(m.clearances[0].0, 1);
+/// assert!(m.clearances[0].1 >= cell.clearance - 1e-6);
+/// # Ok::<(), cell::CellError>(())
+/// ```
 ///
 /// # Errors
 /// [`CellError::Blade`] for bad settings, a cutting plane too flat to rise in, or a
@@ -467,6 +576,63 @@ pub fn moves(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<Moves> {
 
 /// Both robots' joints along the moves, and the per-block summary.
 ///
+/// ```
+/// # use cell::blade::{from_planar, PlanarPose};
+/// # use cell::fixture::{BlockCut, FixtureCell, Phase};
+/// # use cell::plan::Holder;
+/// # use cell::RobotModel;
+/// # use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+/// #
+/// # // the rotation whose x- and z-axes are `x` and `z`
+/// # let rotation = |x: Vector3<f64>, z: Vector3<f64>| {
+/// #     let m = Matrix3::from_columns(&[x, z.cross(&x), z]);
+/// #     UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(m))
+/// # };
+/// # // two IRB 2600 facing each other across the cut (x), 1200 mm either side, each holding
+/// # // its end of the blade 150 mm in front of its flange
+/// # let holder = |y: f64, yaw: f64| Holder {
+/// #     model: RobotModel::irb2600_12_165(),
+/// #     base: Isometry3::from_parts(
+/// #         Translation3::new(0.0, y, 0.0),
+/// #         UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+/// #     ),
+/// #     tool: Isometry3::from_parts(
+/// #         Translation3::new(0.0, 0.0, 150.0),
+/// #         rotation(-Vector3::z(), Vector3::x()).inverse() * rotation(Vector3::y(), Vector3::x()),
+/// #     ),
+/// # };
+/// # let quarter = std::f64::consts::FRAC_PI_2;
+/// # let cell = FixtureCell {
+/// #     holders: [holder(-1200.0, quarter), holder(1200.0, -quarter)],
+/// #     fixture: Isometry3::translation(-300.0, -300.0, 200.0),
+/// #     blade_length: 800.0,
+/// #     max_curvature: None,
+/// #     approach: 50.0,
+/// #     clearance: 100.0,
+/// #     travel_step: (100.0, 5f64.to_radians()),
+/// #     start: [[0.0, 0.0, 0.0, 0.0, 0.5, 0.0]; 2],
+/// # };
+/// # // a 600 mm block cut along x by arches of the blade, its ends turned 0.35 rad
+/// # let turn: f64 = 0.35;
+/// # let arch = |along: f64| from_planar(&PlanarPose {
+/// #     mid: Vector3::new(along, 300.0, 350.0),
+/// #     frame: rotation(Vector3::y(), Vector3::x()),
+/// #     chord: 800.0 * turn.sin() / turn * 0.98,
+/// #     angles: [turn, -turn],
+/// # });
+/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// let m = cell::fixture::moves(&cell, &blocks)?;
+/// let program = cell::fixture::solve(&cell, &m)?;
+/// // one solution per move and robot; both robots reach every cutting move
+/// assert!(program.solutions.iter().all(|s| s.len() == m.steps.len()));
+/// for (k, step) in m.steps.iter().enumerate() {
+///     if step.phase == Phase::Cut {
+///         assert!(program.solutions.iter().all(|s| s[k].joints.is_some()), "move {k}");
+///     }
+/// }
+/// # Ok::<(), cell::CellError>(())
+/// ```
+///
 /// # Errors
 /// The errors of [`sweep`].
 pub fn solve(cell: &FixtureCell, moves: &Moves) -> Result<CellProgram> {
@@ -490,6 +656,59 @@ pub fn solve(cell: &FixtureCell, moves: &Moves) -> Result<CellProgram> {
 
 /// The per-block summary of robots' `solutions` and `flags` (one list per robot, by step)
 /// along `moves`.
+///
+/// ```
+/// # use cell::blade::{from_planar, PlanarPose};
+/// # use cell::fixture::{BlockCut, FixtureCell, Phase};
+/// # use cell::plan::Holder;
+/// # use cell::RobotModel;
+/// # use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+/// #
+/// # // the rotation whose x- and z-axes are `x` and `z`
+/// # let rotation = |x: Vector3<f64>, z: Vector3<f64>| {
+/// #     let m = Matrix3::from_columns(&[x, z.cross(&x), z]);
+/// #     UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(m))
+/// # };
+/// # // two IRB 2600 facing each other across the cut (x), 1200 mm either side, each holding
+/// # // its end of the blade 150 mm in front of its flange
+/// # let holder = |y: f64, yaw: f64| Holder {
+/// #     model: RobotModel::irb2600_12_165(),
+/// #     base: Isometry3::from_parts(
+/// #         Translation3::new(0.0, y, 0.0),
+/// #         UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+/// #     ),
+/// #     tool: Isometry3::from_parts(
+/// #         Translation3::new(0.0, 0.0, 150.0),
+/// #         rotation(-Vector3::z(), Vector3::x()).inverse() * rotation(Vector3::y(), Vector3::x()),
+/// #     ),
+/// # };
+/// # let quarter = std::f64::consts::FRAC_PI_2;
+/// # let cell = FixtureCell {
+/// #     holders: [holder(-1200.0, quarter), holder(1200.0, -quarter)],
+/// #     fixture: Isometry3::translation(-300.0, -300.0, 200.0),
+/// #     blade_length: 800.0,
+/// #     max_curvature: None,
+/// #     approach: 50.0,
+/// #     clearance: 100.0,
+/// #     travel_step: (100.0, 5f64.to_radians()),
+/// #     start: [[0.0, 0.0, 0.0, 0.0, 0.5, 0.0]; 2],
+/// # };
+/// # // a 600 mm block cut along x by arches of the blade, its ends turned 0.35 rad
+/// # let turn: f64 = 0.35;
+/// # let arch = |along: f64| from_planar(&PlanarPose {
+/// #     mid: Vector3::new(along, 300.0, 350.0),
+/// #     frame: rotation(Vector3::y(), Vector3::x()),
+/// #     chord: 800.0 * turn.sin() / turn * 0.98,
+/// #     angles: [turn, -turn],
+/// # });
+/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// let program = cell::fixture::plan(&cell, &blocks)?;
+/// let m = cell::fixture::moves(&cell, &blocks)?;
+/// // the summary of the robots' solutions along the moves is the program's
+/// assert_eq!(cell::fixture::summarize(&m, &program.solutions, &program.flags), program.blocks);
+/// assert_eq!(program.blocks[0].moves, m.steps.len());
+/// # Ok::<(), cell::CellError>(())
+/// ```
 pub fn summarize(
     moves: &Moves,
     solutions: &[Vec<PoseSolution>],

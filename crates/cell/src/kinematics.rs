@@ -41,6 +41,19 @@ fn maker(model: &RobotModel, q: &opw::Angles) -> Joints {
 
 /// The flange pose of `joints` in the robot's base frame (mm).
 ///
+/// ```
+/// use cell::{forward, RobotModel};
+/// // at the maker's zero an IRB 1600-6/1.45 points its forearm along x: the flange at
+/// // a1 + c3 + c4 in front of axis 1, c1 + c2 up
+/// let robot = RobotModel::irb1600_6_145();
+/// let flange = forward(&robot, &[0.0; 6])?;
+/// let p = flange.translation.vector;
+/// assert!((p.x - (150.0 + 600.0 + 65.0)).abs() < 1e-9);
+/// assert!(p.y.abs() < 1e-9 && (p.z - (486.5 + 700.0)).abs() < 1e-9);
+/// assert!(forward(&robot, &[f64::NAN; 6]).is_err());
+/// # Ok::<(), cell::CellError>(())
+/// ```
+///
 /// # Errors
 /// [`CellError::NotFinite`] for joints that are not finite.
 pub fn forward(model: &RobotModel, joints: &Joints) -> Result<Isometry3<f64>> {
@@ -55,6 +68,15 @@ pub fn forward(model: &RobotModel, joints: &Joints) -> Result<Isometry3<f64>> {
 }
 
 /// The distance of two poses: position (mm) and rotation angle (radians).
+///
+/// ```
+/// use cell::kinematics::pose_distance;
+/// use nalgebra::{Isometry3, Vector3};
+/// let a = Isometry3::translation(1.0, 2.0, 3.0);
+/// let b = Isometry3::new(Vector3::new(4.0, 6.0, 3.0), Vector3::z() * 0.25);
+/// let (d, angle) = pose_distance(&a, &b);
+/// assert!((d - 5.0).abs() < 1e-12 && (angle - 0.25).abs() < 1e-12);
+/// ```
 pub fn pose_distance(a: &Isometry3<f64>, b: &Isometry3<f64>) -> (f64, f64) {
     let d = (a.translation.vector - b.translation.vector).norm();
     (d, a.rotation.angle_to(&b.rotation))
@@ -69,6 +91,24 @@ pub fn pose_distance(a: &Isometry3<f64>, b: &Isometry3<f64>) -> (f64, f64) {
 /// [`POSITION_TOLERANCE_MM`] and [`ANGLE_TOLERANCE_RAD`]). With
 /// `previous`, a singularity (axis 5 at 0, the wrist centre on axis 1) is resolved at its
 /// values. Empty when out of reach.
+///
+/// ```
+/// use cell::kinematics::{forward, inverse, pose_distance};
+/// use cell::RobotModel;
+/// use nalgebra::Isometry3;
+/// let robot = RobotModel::irb2600_12_165();
+/// let pose = forward(&robot, &[0.2, 0.3, 0.1, -0.5, 0.8, 1.0])?;
+/// let solutions = inverse(&robot, &pose, None)?;
+/// assert!(solutions.len() >= 2);
+/// for q in &solutions {
+///     let (d, angle) = pose_distance(&forward(&robot, q)?, &pose);
+///     assert!(d < 1e-6 && angle < 1e-9);
+///     assert!(q.iter().zip(&robot.limits).all(|(v, (lo, hi))| lo <= v && v <= hi));
+/// }
+/// // 5 m away: out of reach
+/// assert!(inverse(&robot, &Isometry3::translation(5000.0, 0.0, 0.0), None)?.is_empty());
+/// # Ok::<(), cell::CellError>(())
+/// ```
 ///
 /// # Errors
 /// [`CellError::NotFinite`] for a pose or previous joints that are not finite.
@@ -196,6 +236,15 @@ pub fn configurations(solutions: &[Joints]) -> usize {
 }
 
 /// The solution nearest `previous`: the least largest joint change (`None` for none).
+///
+/// ```
+/// use cell::nearest;
+/// let previous = [0.0; 6];
+/// let a = [0.1, 0.1, 0.1, 0.1, 0.1, 0.1];
+/// let b = [0.0, 0.0, 0.0, 0.0, 0.0, 0.5]; // less in all, more in its largest change
+/// assert_eq!(nearest(&[a, b], &previous), Some(a));
+/// assert_eq!(nearest(&[], &previous), None);
+/// ```
 pub fn nearest(solutions: &[Joints], previous: &Joints) -> Option<Joints> {
     let change = |q: &Joints| {
         q.iter()
@@ -210,6 +259,16 @@ pub fn nearest(solutions: &[Joints], previous: &Joints) -> Option<Joints> {
 }
 
 /// The margin of each joint to its nearer limit, radians (negative: past it).
+///
+/// ```
+/// use cell::kinematics::margins;
+/// use cell::RobotModel;
+/// let robot = RobotModel::irb1600_6_145(); // axis 1 within ±180°, axis 5 within ±115°
+/// let m = margins(&robot, &[0.0, 0.0, 0.0, 0.0, 0.5, 0.0]);
+/// assert!((m[0] - std::f64::consts::PI).abs() < 1e-12);
+/// assert!((m[4] - (115f64.to_radians() - 0.5)).abs() < 1e-12);
+/// assert!(margins(&robot, &[4.0, 0.0, 0.0, 0.0, 0.0, 0.0])[0] < 0.0); // past the limit
+/// ```
 pub fn margins(model: &RobotModel, joints: &Joints) -> [f64; 6] {
     std::array::from_fn(|i| {
         let (lo, hi) = model.limits[i];

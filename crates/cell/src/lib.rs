@@ -3,14 +3,31 @@
 //! The robots that hold the blade's ends (and, in a three-robot cell, the one that carries
 //! the block) are 6-axis arms with an ortho-parallel base and a spherical wrist. This crate
 //! gives their kinematics in the closed form of Brandstötter, Angerer and Hofbaur (2014),
-//! "OPW":
+//! "OPW". A posture of the arm to its flange pose and back, with its ABB configuration
+//! data:
+//!
+//! ```
+//! use cell::{conf, forward, inverse, nearest, RobotModel};
+//!
+//! let robot = RobotModel::irb1600_6_145();
+//! let joints = [0.3, 0.2, -0.4, 0.5, 0.6, -0.7];
+//! let flange = forward(&robot, &joints)?;
+//! let solutions = inverse(&robot, &flange, None)?;
+//! let back = nearest(&solutions, &joints).ok_or("out of reach")?;
+//! assert!(solutions.len() > 1); // the other arm configurations reach the flange too
+//! assert!(back.iter().zip(&joints).all(|(a, b)| (a - b).abs() < 1e-9));
+//! assert_eq!(conf(&robot, &back).cfx, 0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! The modules:
 //!
 //! - [`model`]: OPW parameters and joint limits; built-in ABB IRB 1600-6/1.45,
 //!   IRB 2600-12/1.65 and IRB 4600-60/2.05.
 //! - [`opw`]: the closed form, in the paper's angles (our own; see the module for why).
 //! - [`kinematics`]: forward kinematics; every inverse solution within the limits, verified
 //!   by forward kinematics; the solution nearest a previous one; margins to the limits.
-//! - [`conf`]: ABB configuration data (`cf1`, `cf4`, `cf6`, `cfx`) of a solution.
+//! - [`conf`](mod@conf): ABB configuration data (`cf1`, `cf4`, `cf6`, `cfx`) of a solution.
 //! - [`blade`]: the blade between its two held ends, in its plane, interpolated, rebuilt.
 //! - [`fixture`]: the synchronized program of a cell that cuts blocks one at a time at a
 //!   fixture — descend, cut, retreat, rise, travel — with both robots' joints.
@@ -24,20 +41,6 @@
 //!   posture, with every pose out of reach, configuration change and joint jump flagged.
 //!
 //! Like the other algorithm crates it does no I/O. Lengths are millimetres, angles radians.
-//!
-//! ```
-//! use cell::model::RobotModel;
-//! use cell::kinematics::{forward, inverse, nearest};
-//! use cell::conf::conf;
-//!
-//! let robot = RobotModel::irb1600_6_145();
-//! let joints = [0.3, 0.2, -0.4, 0.5, 0.6, -0.7];
-//! let flange = forward(&robot, &joints).unwrap();
-//! let solutions = inverse(&robot, &flange, None).unwrap();
-//! let back = nearest(&solutions, &joints).unwrap();
-//! assert!(back.iter().zip(&joints).all(|(a, b)| (a - b).abs() < 1e-9));
-//! assert_eq!(conf(&robot, &back).cfx, 0);
-//! ```
 
 /// The hot blade between its held ends: poses, interpolation, shape.
 pub mod blade;
@@ -62,4 +65,7 @@ pub mod plan;
 /// The whole program of a cell for a job's blade poses, with the default layout searched.
 pub mod program;
 
+pub use conf::{conf, Conf};
 pub use error::{CellError, Result};
+pub use kinematics::{forward, inverse, nearest, Joints};
+pub use model::RobotModel;

@@ -55,6 +55,13 @@ fn degrees(limits: [(f64, f64); 6]) -> [(f64, f64); 6] {
 impl RobotModel {
     /// ABB IRB 1600-6/1.45 (the Rob|Arch workshop's blade robots). Joint limits: the
     /// narrower of the published ranges where the sources disagree (axes 2 and 3).
+    ///
+    /// ```
+    /// use cell::RobotModel;
+    /// let robot = RobotModel::irb1600_6_145();
+    /// assert!((robot.reach() - 1450.0).abs() < 1e-9); // its nominal reach, 1.45 m
+    /// assert!(robot.check().is_ok());
+    /// ```
     pub fn irb1600_6_145() -> Self {
         Self {
             name: "IRB 1600-6/1.45".into(),
@@ -81,6 +88,13 @@ impl RobotModel {
     }
 
     /// ABB IRB 2600-12/1.65 (and -20/1.65, the same arm).
+    ///
+    /// ```
+    /// use cell::RobotModel;
+    /// let robot = RobotModel::irb2600_12_165();
+    /// assert!((robot.reach() - 1650.0).abs() < 5.0); // 1.65 m, nominally
+    /// assert!(robot.check().is_ok());
+    /// ```
     pub fn irb2600_12_165() -> Self {
         Self {
             name: "IRB 2600-12/1.65".into(),
@@ -107,6 +121,13 @@ impl RobotModel {
     }
 
     /// ABB IRB 4600-60/2.05.
+    ///
+    /// ```
+    /// use cell::RobotModel;
+    /// let robot = RobotModel::irb4600_60_205();
+    /// assert!((robot.reach() - 2050.0).abs() < 5.0); // 2.05 m, nominally
+    /// assert!(robot.check().is_ok());
+    /// ```
     pub fn irb4600_60_205() -> Self {
         Self {
             name: "IRB 4600-60/2.05".into(),
@@ -134,6 +155,12 @@ impl RobotModel {
 
     /// The reach of the wrist centre from axis 2's circle: `a1 + c2 + √(a2² + c3²)`, mm
     /// (ABB's nominal reach: 1450 mm for an IRB 1600-x/1.45).
+    ///
+    /// ```
+    /// use cell::RobotModel;
+    /// let o = RobotModel::irb2600_12_165().opw;
+    /// assert_eq!(RobotModel::irb2600_12_165().reach(), o.a1 + o.c2 + o.a2.hypot(o.c3));
+    /// ```
     pub fn reach(&self) -> f64 {
         let o = &self.opw;
         o.a1 + o.c2 + o.a2.hypot(o.c3)
@@ -141,6 +168,17 @@ impl RobotModel {
 
     /// Checks the model: finite lengths within 20 m, positive upper arm and forearm, joint
     /// offsets within a turn, signs ±1, each limit finite with min < max within ±2 turns.
+    ///
+    /// ```
+    /// use cell::{CellError, RobotModel};
+    /// let mut robot = RobotModel::irb1600_6_145();
+    /// assert!(robot.check().is_ok());
+    /// robot.opw.c3 = -600.0;
+    /// assert!(matches!(robot.check(), Err(CellError::InvalidModel { name: "c3", .. })));
+    /// robot = RobotModel::irb1600_6_145();
+    /// robot.limits[0] = (1.0, -1.0);
+    /// assert!(robot.check().is_err());
+    /// ```
     ///
     /// # Errors
     /// [`CellError::InvalidModel`] naming the parameter.

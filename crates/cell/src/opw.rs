@@ -20,6 +20,17 @@ use crate::model::Opw;
 pub type Angles = [f64; 6];
 
 /// The flange's rotation and position for paper angles `q`.
+///
+/// ```
+/// use cell::opw::forward;
+/// use cell::RobotModel;
+/// // the paper's zero: the arm straight up, the flange on top
+/// let o = RobotModel::irb1600_6_145().opw;
+/// let (r, p) = forward(&o, &[0.0; 6]);
+/// assert!((p.x - o.a1).abs() < 1e-9 && p.y.abs() < 1e-9);
+/// assert!((p.z - (o.c1 + o.c2 + o.c3 + o.c4)).abs() < 1e-9);
+/// assert!((r.matrix() - nalgebra::Matrix3::identity()).norm() < 1e-12);
+/// ```
 pub fn forward(o: &Opw, q: &Angles) -> (Rotation3<f64>, Vector3<f64>) {
     let (psi3, k) = (o.a2.atan2(o.c3), o.a2.hypot(o.c3));
     let x = o.a1 + o.c2 * q[1].sin() + k * (q[1] + q[2] + psi3).sin();
@@ -56,6 +67,20 @@ fn acos(c: f64) -> Option<f64> {
 /// `hint` (paper angles) fixes what a singularity leaves free: axis 1 with the wrist centre
 /// on axis 1, axis 4 with axis 5 at 0. Candidates are not verified: the caller checks each
 /// by [`forward`].
+///
+/// ```
+/// use cell::opw::{forward, inverse};
+/// use cell::RobotModel;
+/// let o = RobotModel::irb2600_12_165().opw;
+/// let q = [0.2, 0.3, -0.4, 0.5, 0.6, 0.7];
+/// let (r, p) = forward(&o, &q);
+/// let candidates = inverse(&o, &r, &p, &[0.0; 6]);
+/// assert_eq!(candidates.len(), 8); // two shoulders, two elbows, two wrists
+/// // one of them is q (the candidates are unverified: the caller checks each)
+/// let found = candidates.iter().find(|c| c.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9));
+/// let (rc, pc) = forward(&o, found.expect("q among the candidates"));
+/// assert!((pc - p).norm() < 1e-6 && rc.angle_to(&r) < 1e-9);
+/// ```
 pub fn inverse(o: &Opw, r: &Rotation3<f64>, p: &Vector3<f64>, hint: &Angles) -> Vec<Angles> {
     let m: Matrix3<f64> = *r.matrix();
     let c = p - m.column(2) * o.c4;

@@ -144,6 +144,35 @@ fn follow(
 /// out of reach is flagged and the next pose starts again from `start`; so is a move
 /// with a piece out of reach.
 ///
+/// ```
+/// use cell::plan::{sweep, Holder};
+/// use cell::{forward, RobotModel};
+/// use nalgebra::Isometry3;
+///
+/// // an IRB 1600 at the origin holding nothing (TCP at the flange), swept through the
+/// // flange poses of a slow turn of axis 1
+/// let holder = Holder {
+///     model: RobotModel::irb1600_6_145(),
+///     base: Isometry3::identity(),
+///     tool: Isometry3::identity(),
+/// };
+/// let posture = |a: f64| [a, 0.2, -0.3, 0.4, 0.6, 0.5];
+/// let tcp = (0..5).map(|i| forward(&holder.model, &posture(0.1 * i as f64))).collect::<Result<Vec<_>, _>>()?;
+/// let s = sweep(&holder, &tcp, &posture(0.0))?;
+/// assert!(s.is_clean());
+/// // the robot follows the turn: axis 1 at 0°, 5.7°, 11.5°, … the others kept
+/// for (i, p) in s.poses.iter().enumerate() {
+///     let joints = p.joints.ok_or("out of reach")?;
+///     assert!((joints[0] - (0.1 * i as f64).to_degrees()).abs() < 1e-6);
+///     assert!((joints[4] - 0.6f64.to_degrees()).abs() < 1e-6);
+/// }
+/// assert!(s.margin().ok_or("no margin")? > 0.0);
+/// // a pose 5 m away is flagged out of reach
+/// let far = [tcp[0], Isometry3::translation(5000.0, 0.0, 0.0)];
+/// assert!(!sweep(&holder, &far, &posture(0.0))?.is_clean());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
 /// # Errors
 /// [`CellError::InvalidModel`] for a bad robot model, [`CellError::NotFinite`] for a pose
 /// that is not finite.

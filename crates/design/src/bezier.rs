@@ -6,6 +6,15 @@
 use crate::error::{DesignError, Result};
 
 /// A planar cubic Bézier curve by its four control points.
+///
+/// ```
+/// use design::Bezier;
+/// // an arch over [0, 4], symmetric about x = 2
+/// let b = Bezier { p: [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]] };
+/// assert_eq!(b.point(0.0), b.p[0]);
+/// assert_eq!(b.point(1.0), b.p[3]);
+/// assert_eq!(b.point(0.5), [2.0, 1.5]); // (b₀ + 3b₁ + 3b₂ + b₃) / 8
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Bezier {
@@ -25,6 +34,17 @@ pub struct ArcTable {
 
 impl ArcTable {
     /// The whole length.
+    ///
+    /// ```
+    /// use design::Bezier;
+    /// let b = Bezier { p: [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]] }; // an arch
+    /// let (length, table) = (b.length(), b.arc_table());
+    /// assert!((table.length() - length).abs() < 1e-14 * length); // the same panels, to rounding
+    /// // half the length lies on either side of the axis of symmetry
+    /// let t = table.at_length(0.5 * length);
+    /// assert!((t - 0.5).abs() < 1e-12);
+    /// assert!((b.length_to(t) - 0.5 * length).abs() < 1e-12 * length);
+    /// ```
     pub fn length(&self) -> f64 {
         self.cumulative[PIECES]
     }
@@ -32,6 +52,14 @@ impl ArcTable {
     /// The parameter at arc length `s` from the start (`s` clamped to the curve): its
     /// panel from the table, then Newton on the panel's own Gauss rule, bisection
     /// safeguarded, to `1e-14` of the length.
+    ///
+    /// ```
+    /// use design::Bezier;
+    /// let b = Bezier { p: [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]] }; // an arch
+    /// let t = b.arc_table().at_length(1.0);
+    /// assert!((b.length_to(t) - 1.0).abs() < 1e-12);
+    /// assert_eq!(b.arc_table().at_length(-1.0), 0.0); // clamped to the curve
+    /// ```
     pub fn at_length(&self, s: f64) -> f64 {
         let total = self.length();
         let s = s.clamp(0.0, total);
@@ -92,6 +120,13 @@ impl Bezier {
     }
 
     /// The first derivative at `t`.
+    ///
+    /// ```
+    /// use design::Bezier;
+    /// let b = Bezier { p: [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]] }; // an arch
+    /// assert_eq!(b.d1(0.0), [3.0, 6.0]); // 3 (b₁ − b₀)
+    /// assert_eq!(b.d1(1.0), [3.0, -6.0]); // 3 (b₃ − b₂)
+    /// ```
     pub fn d1(&self, t: f64) -> [f64; 2] {
         let [a, b, c, d] = self.p;
         let (u, v, w) = (sub(b, a), sub(c, b), sub(d, c));
@@ -100,6 +135,13 @@ impl Bezier {
     }
 
     /// The second derivative at `t`.
+    ///
+    /// ```
+    /// use design::Bezier;
+    /// let b = Bezier { p: [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]] }; // an arch
+    /// assert_eq!(b.d2(0.0), [6.0, -12.0]); // 6 (b₀ − 2b₁ + b₂)
+    /// assert_eq!(b.d2(0.5), [0.0, -12.0]);
+    /// ```
     pub fn d2(&self, t: f64) -> [f64; 2] {
         let [a, b, c, d] = self.p;
         let u = [a[0] - 2.0 * b[0] + c[0], a[1] - 2.0 * b[1] + c[1]];
@@ -109,6 +151,15 @@ impl Bezier {
     }
 
     /// The signed curvature at `t` (positive turns left); `NaN` where the speed vanishes.
+    ///
+    /// ```
+    /// use design::Bezier;
+    /// let b = Bezier { p: [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]] }; // an arch
+    /// // at its top the arch runs along x at speed 4.5 and turns right: κ = −12 / 4.5²
+    /// assert!((b.curvature(0.5) + 12.0 / 4.5f64.powi(2)).abs() < 1e-12);
+    /// let line = Bezier { p: [[0.0, 0.0], [1.0, 1.0], [2.0, 2.0], [3.0, 3.0]] };
+    /// assert_eq!(line.curvature(0.3), 0.0);
+    /// ```
     pub fn curvature(&self, t: f64) -> f64 {
         let (d, dd) = (self.d1(t), self.d2(t));
         let speed = d[0].hypot(d[1]);
@@ -116,6 +167,15 @@ impl Bezier {
     }
 
     /// Arc length from 0 to `t`.
+    ///
+    /// ```
+    /// use design::Bezier;
+    /// // a line whose control points bunch up towards the end: its speed varies, its length
+    /// // does not
+    /// let line = Bezier { p: [[0.0, 0.0], [2.0, 0.0], [2.5, 0.0], [3.0, 0.0]] };
+    /// assert!((line.length() - 3.0).abs() < 1e-12);
+    /// assert!((line.length_to(0.5) - line.point(0.5)[0]).abs() < 1e-12);
+    /// ```
     pub fn length_to(&self, t: f64) -> f64 {
         let n = ((PIECES as f64 * t.abs()).ceil() as usize).max(1);
         let h = t / n as f64;
@@ -131,6 +191,13 @@ impl Bezier {
     }
 
     /// The whole length.
+    ///
+    /// ```
+    /// use design::Bezier;
+    /// let b = Bezier { p: [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]] }; // an arch
+    /// let polygon = 2.0 * 5f64.sqrt() + 2.0;
+    /// assert!(b.length() > 4.0 && b.length() < polygon); // between its chord and its polygon
+    /// ```
     pub fn length(&self) -> f64 {
         self.length_to(1.0)
     }
@@ -150,6 +217,15 @@ impl Bezier {
     /// The cumulative arc length at the panel ends `k / PIECES`, for sampling the curve at
     /// many arc lengths ([`ArcTable::at_length`]): built once, each lookup then costs a
     /// few Gauss rules on one panel instead of integrating from the start each time.
+    ///
+    /// ```
+    /// use design::Bezier;
+    /// let b = Bezier { p: [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]] }; // an arch
+    /// let table = b.arc_table();
+    /// for s in [0.5, 1.0, 2.5] {
+    ///     assert!((b.length_to(table.at_length(s)) - s).abs() < 1e-12);
+    /// }
+    /// ```
     pub fn arc_table(&self) -> ArcTable {
         let mut cumulative = Vec::with_capacity(PIECES + 1);
         cumulative.push(0.0);
@@ -165,6 +241,14 @@ impl Bezier {
 
     /// The parameter at arc length `s` from the start (Newton on the length, bisection
     /// safeguarded; `s` clamped to the curve).
+    ///
+    /// ```
+    /// use design::Bezier;
+    /// let b = Bezier { p: [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]] }; // an arch
+    /// let t = b.at_length(1.0);
+    /// assert!((b.length_to(t) - 1.0).abs() < 1e-12);
+    /// assert!((b.at_length(0.5 * b.length()) - 0.5).abs() < 1e-12); // the symmetric middle
+    /// ```
     pub fn at_length(&self, s: f64) -> f64 {
         let total = self.length();
         let s = s.clamp(0.0, total);
@@ -193,6 +277,17 @@ impl Bezier {
     /// Tangent angle at the start: the direction of the first leg (or of the next nonzero
     /// one when legs collapse).
     ///
+    /// ```
+    /// use design::Bezier;
+    /// let b = Bezier { p: [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]] }; // an arch
+    /// assert_eq!(b.start_angle()?, 2f64.atan2(1.0));
+    /// // a collapsed first leg: the direction towards b₂
+    /// let c = Bezier { p: [[0.0, 0.0], [0.0, 0.0], [1.0, 1.0], [2.0, 0.0]] };
+    /// assert_eq!(c.start_angle()?, std::f64::consts::FRAC_PI_4);
+    /// assert!(Bezier { p: [[1.0, 1.0]; 4] }.start_angle().is_err());
+    /// # Ok::<(), design::DesignError>(())
+    /// ```
+    ///
     /// # Errors
     /// [`DesignError::Invalid`] when all control points coincide.
     pub fn start_angle(&self) -> Result<f64> {
@@ -203,6 +298,13 @@ impl Bezier {
     /// Tangent angle at the end: the direction of the last leg (or of the previous nonzero
     /// one).
     ///
+    /// ```
+    /// use design::Bezier;
+    /// let b = Bezier { p: [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]] }; // an arch
+    /// assert_eq!(b.end_angle()?, (-2f64).atan2(1.0));
+    /// # Ok::<(), design::DesignError>(())
+    /// ```
+    ///
     /// # Errors
     /// [`DesignError::Invalid`] when all control points coincide.
     pub fn end_angle(&self) -> Result<f64> {
@@ -212,6 +314,17 @@ impl Bezier {
 
     /// The end tangent angle unwrapped along the curve: the start angle plus the total
     /// turning ∫κ ds, so that a curve turning by more than π keeps its true turn.
+    ///
+    /// ```
+    /// use design::Bezier;
+    /// use std::f64::consts::TAU;
+    /// // a hook turning left by more than half a turn: the end leg points back and down
+    /// let hook = Bezier { p: [[0.0, 0.0], [3.0, 0.0], [3.0, 2.0], [0.0, 1.0]] };
+    /// let (wrapped, unwrapped) = (hook.end_angle()?, hook.end_angle_unwrapped()?);
+    /// assert!(wrapped < 0.0);
+    /// assert!((unwrapped - (wrapped + TAU)).abs() < 1e-12);
+    /// # Ok::<(), design::DesignError>(())
+    /// ```
     ///
     /// # Errors
     /// As [`Bezier::start_angle`].
@@ -236,6 +349,16 @@ impl Bezier {
 
     /// The interior angles of the control polygon at b₁ and b₂, radians in [0, π] (π: the
     /// legs in line; small: an acute, folded polygon); `NaN` at a collapsed leg.
+    ///
+    /// ```
+    /// use design::Bezier;
+    /// use std::f64::consts::PI;
+    /// let line = Bezier { p: [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]] };
+    /// assert_eq!(line.polygon_angles(), [PI, PI]);
+    /// let b = Bezier { p: [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]] }; // an arch
+    /// let a = (-1.0 / 5f64.sqrt()).acos(); // between the legs (−1, −2) and (2, 0)
+    /// assert!(b.polygon_angles().iter().all(|x| (x - a).abs() < 1e-12));
+    /// ```
     pub fn polygon_angles(&self) -> [f64; 2] {
         let [a, b, c, d] = self.p;
         let angle = |u: [f64; 2], v: [f64; 2]| {

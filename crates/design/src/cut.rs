@@ -2,7 +2,7 @@
 //! §3.2–§3.4, §5): design curves across the cut at stations along it (at least the
 //! entry and exit faces), one cubic piece per block — Béziers joined G¹ or one C² spline
 //! — lofted along the cut ([`crate::loft`]). On every station and every cutting plane each
-//! piece is replaced by its elastica ([`crate::proxy`]), which is extended to the blade's
+//! piece is replaced by its elastica ([`crate::proxy`](mod@crate::proxy)), which is extended to the blade's
 //! length by its closed form and posed in 3D for the robots.
 //!
 //! The curves are lofted in a form that keeps their construction on every plane: a G¹
@@ -58,6 +58,18 @@ impl DesignCurve {
     }
 
     /// The pieces, one Bézier per block.
+    ///
+    /// ```
+    /// use design::cut::{DesignCurve, Form};
+    /// use design::spline::BSpline;
+    /// let spline = BSpline::new(vec![0.0, 1.0, 2.0], vec![[0.0, 0.0], [0.5, 1.0], [1.0, 1.0], [1.5, 1.0], [2.0, 0.0]])?;
+    /// let curve = DesignCurve::Spline(spline);
+    /// assert_eq!(curve.form(), Form::Spline);
+    /// let pieces = curve.pieces();
+    /// assert_eq!(pieces.len(), 2);
+    /// assert_eq!((pieces[0].p[0], pieces[1].p[3]), ([0.0, 0.0], [2.0, 0.0]));
+    /// # Ok::<(), design::DesignError>(())
+    /// ```
     pub fn pieces(&self) -> Vec<Bezier> {
         match self {
             Self::Bezier(p) => p.clone(),
@@ -67,6 +79,17 @@ impl DesignCurve {
 
     /// Where the curve breaks its construction on `faces` (the blocks' faces across the
     /// cut, increasing): one message per problem, naming the face. Empty when it holds.
+    ///
+    /// ```
+    /// use design::cut::DesignCurve;
+    /// use design::Bezier;
+    /// let first = Bezier { p: [[0.0, 0.0], [1.0, 1.0], [2.0, 1.0], [3.0, 1.0]] };
+    /// let second = Bezier { p: [[3.0, 1.0], [4.0, 1.0], [5.0, 0.0], [6.0, 0.0]] };
+    /// let curve = DesignCurve::Bezier(vec![first, second]);
+    /// assert!(curve.problems(&[0.0, 3.0, 6.0]).is_empty());
+    /// assert_eq!(curve.problems(&[0.0, 2.0, 6.0]).len(), 2); // the joint is off face 1
+    /// assert_eq!(curve.problems(&[0.0, 6.0]).len(), 1); // two pieces for one block
+    /// ```
     pub fn problems(&self, faces: &[f64]) -> Vec<String> {
         let width = faces.last().unwrap_or(&0.0) - faces.first().unwrap_or(&0.0);
         let tol = FACE_TOLERANCE * width.abs();
@@ -441,6 +464,40 @@ fn solve_curve(curve: &DesignCurve, offset: f64, p: &CutParams) -> Result<CurveR
 /// The problems of a cut's parameters, one message each: everything [`solve`] checks
 /// before it solves (faces, stations, one construction, each curve, straight pieces, the
 /// loft). Empty when it can be run.
+///
+/// ```
+/// use design::cut::{CutParams, DesignCurve, Station};
+/// use design::Bezier;
+/// use elastica::blade::BladeParams;
+/// use geom::slice::PlaneFrame;
+/// use nalgebra::Vector3;
+///
+/// // one block 600 across and 400 along the cut (x); an arch over it at the entry face,
+/// // a higher one at the exit face
+/// let arch = |h: f64| DesignCurve::Bezier(vec![Bezier {
+///     p: [[0.0, 200.0], [200.0, 200.0 + h], [400.0, 200.0 + h], [600.0, 200.0]],
+/// }]);
+/// let params = CutParams {
+///     frame: PlaneFrame::from_direction(Vector3::x())?,
+///     faces: vec![0.0, 600.0],
+///     stations: vec![
+///         Station { offset: 0.0, curve: arch(60.0) },
+///         Station { offset: 400.0, curve: arch(90.0) },
+///     ],
+///     blade: BladeParams::new(800.0),
+///     planes: 3,
+///     offset: 0.0,
+///     heights: Vec::new(),
+/// };
+/// assert!(design::cut::problems(&params).is_empty());
+/// // the exit station's arch ending off the exit face
+/// let mut off = params.clone();
+/// off.stations[1].curve = DesignCurve::Bezier(vec![Bezier {
+///     p: [[0.0, 200.0], [200.0, 290.0], [400.0, 290.0], [590.0, 200.0]],
+/// }]);
+/// assert!(!design::cut::problems(&off).is_empty());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn problems(p: &CutParams) -> Vec<String> {
     let mut out = Vec::new();
     if p.planes < 2 {
@@ -507,6 +564,40 @@ fn piece_problems(curve: &DesignCurve, blade: Option<f64>) -> Vec<String> {
 
 /// The design curves lofted on every cutting plane [`solve`] solves, with their offsets
 /// along the cut, without solving their elastica: a preview of the loft.
+///
+/// ```
+/// use design::cut::{CutParams, DesignCurve, Station};
+/// use design::Bezier;
+/// use elastica::blade::BladeParams;
+/// use geom::slice::PlaneFrame;
+/// use nalgebra::Vector3;
+///
+/// // one block 600 across and 400 along the cut (x); an arch over it at the entry face,
+/// // a higher one at the exit face
+/// let arch = |h: f64| DesignCurve::Bezier(vec![Bezier {
+///     p: [[0.0, 200.0], [200.0, 200.0 + h], [400.0, 200.0 + h], [600.0, 200.0]],
+/// }]);
+/// let params = CutParams {
+///     frame: PlaneFrame::from_direction(Vector3::x())?,
+///     faces: vec![0.0, 600.0],
+///     stations: vec![
+///         Station { offset: 0.0, curve: arch(60.0) },
+///         Station { offset: 400.0, curve: arch(90.0) },
+///     ],
+///     blade: BladeParams::new(800.0),
+///     planes: 3,
+///     offset: 0.0,
+///     heights: Vec::new(),
+/// };
+/// let curves = design::cut::plane_curves(&params)?;
+/// let offsets: Vec<f64> = curves.iter().map(|c| c.0).collect();
+/// assert_eq!(offsets, [0.0, 200.0, 400.0]);
+/// // on the entry face, the entry station's curve (rebuilt from its lofted form)
+/// let (lofted, given) = (curves[0].1.pieces(), params.stations[0].curve.pieces());
+/// let near = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]) < 1e-9;
+/// assert!(lofted[0].p.iter().zip(&given[0].p).all(|(a, b)| near(*a, *b)));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 ///
 /// # Errors
 /// [`DesignError::Invalid`] with the first of [`problems`] before the loft (faces,
@@ -605,6 +696,44 @@ fn loft(stations: &[Station]) -> Result<Loft> {
 
 /// The elastica of a designed cut on its stations and on every cutting plane, with the
 /// blade poses; `tick` is called once per curve solved.
+///
+/// ```
+/// use design::cut::{CutParams, DesignCurve, Station};
+/// use design::Bezier;
+/// use elastica::blade::BladeParams;
+/// use geom::slice::PlaneFrame;
+/// use nalgebra::Vector3;
+///
+/// // one block 600 across and 400 along the cut (x); an arch over it at the entry face,
+/// // a higher one at the exit face
+/// let arch = |h: f64| DesignCurve::Bezier(vec![Bezier {
+///     p: [[0.0, 200.0], [200.0, 200.0 + h], [400.0, 200.0 + h], [600.0, 200.0]],
+/// }]);
+/// let params = CutParams {
+///     frame: PlaneFrame::from_direction(Vector3::x())?,
+///     faces: vec![0.0, 600.0],
+///     stations: vec![
+///         Station { offset: 0.0, curve: arch(60.0) },
+///         Station { offset: 400.0, curve: arch(90.0) },
+///     ],
+///     blade: BladeParams::new(800.0),
+///     planes: 3,
+///     offset: 0.0,
+///     heights: Vec::new(),
+/// };
+/// let r = design::cut::solve(&params, &|| {})?;
+/// assert_eq!((r.stations.len(), r.planes.len()), (2, 3));
+/// for curve in r.stations.iter().chain(&r.planes) {
+///     let x = &curve.pieces[0].proxy;
+///     assert!(x.end_point_error < 1e-9 * x.length && x.end_angle_error < 1e-9);
+///     assert!(x.max_deviation < 0.01 * x.length);
+/// }
+/// // the middle plane's arch lies between the stations'
+/// let top = |k: usize| r.planes[k].pieces[0].design.p[1][1];
+/// assert_eq!(r.planes[1].offset, 200.0);
+/// assert!(top(0) < top(1) && top(1) < top(2));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 ///
 /// # Errors
 /// [`DesignError::Invalid`] with the first of [`problems`], or naming the station or

@@ -56,6 +56,25 @@ fn polyline_height(p: &[[f64; 2]], u: f64) -> Option<f64> {
 impl CutSurface {
     /// The surface's height over the world point `(x, y)`: the design's, or with
     /// `elastica` the elastica's (linear between planes, clamped to the first and last).
+    ///
+    /// ```
+    /// use design::envelope::{envelope, CutSurface};
+    /// use geom::slice::PlaneFrame;
+    /// use nalgebra::Vector3;
+    ///
+    /// // cuts along x over a 1 × 1 block; each plane's curve a line across it
+    /// let frame = PlaneFrame::from_direction(Vector3::x())?;
+    /// let line = |h: f64| vec![[-10.0, h], [10.0, h]];
+    /// let plane = |x: f64, h: f64| (x, line(h), line(h));
+    /// // a level cut at height 1, and one rising along the cut from 0.5 to 2.5
+    /// let level = CutSurface { frame, planes: vec![plane(0.0, 1.0), plane(1.0, 1.0)] };
+    /// let rising = CutSurface { frame, planes: vec![plane(0.0, 0.5), plane(1.0, 2.5)] };
+    /// // linear between the planes, clamped beyond them
+    /// assert!((rising.height(0.5, 0.3, false).ok_or("no height")? - 1.5).abs() < 1e-12);
+    /// assert_eq!(rising.height(2.0, 0.3, true), Some(2.5));
+    /// assert_eq!(level.height(0.7, 0.0, false), Some(1.0));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn height(&self, x: f64, y: f64, elastica: bool) -> Option<f64> {
         let p = Vector3::new(x, y, 0.0);
         let (s, u) = (self.frame.normal.dot(&p), self.frame.u.dot(&p));
@@ -110,6 +129,32 @@ pub struct Envelope {
 /// The envelope of `cuts` over the footprint `[lo, hi]` (x, y), on a `grid × grid` grid
 /// (≥ 2). `tolerance` is how far below what is left a cut must dip to count as touching
 /// it.
+///
+/// ```
+/// use design::envelope::{envelope, CutSurface};
+/// use geom::slice::PlaneFrame;
+/// use nalgebra::Vector3;
+///
+/// // cuts along x over a 1 × 1 block; each plane's curve a line across it
+/// let frame = PlaneFrame::from_direction(Vector3::x())?;
+/// let line = |h: f64| vec![[-10.0, h], [10.0, h]];
+/// let plane = |x: f64, h: f64| (x, line(h), line(h));
+/// // a level cut at height 1, and one rising along the cut from 0.5 to 2.5
+/// let level = CutSurface { frame, planes: vec![plane(0.0, 1.0), plane(1.0, 1.0)] };
+/// let rising = CutSurface { frame, planes: vec![plane(0.0, 0.5), plane(1.0, 2.5)] };
+/// let e = envelope(&[rising.clone(), level.clone()], [0.0, 0.0], [1.0, 1.0], 5, 1e-9);
+/// // the level cut is lower on average: the primary; the rising one still dips below it
+/// assert_eq!((e.order.as_slice(), e.dropped.as_slice()), (&[1, 0][..], &[][..]));
+/// // the crease where they cross, at x = 0.25 and height 1
+/// assert!(!e.design_crease.is_empty());
+/// assert!(e.design_crease.iter().all(|c| (c[0] - 0.25).abs() < 1e-12 && (c[2] - 1.0).abs() < 1e-12));
+/// assert_eq!(e.max_deviation, 0.0); // the "elastica" here are the design
+/// // a cut above the level one everywhere touches nothing: dropped
+/// let high = CutSurface { frame, planes: vec![plane(0.0, 2.0), plane(1.0, 3.0)] };
+/// let e = envelope(&[level, high], [0.0, 0.0], [1.0, 1.0], 5, 1e-9);
+/// assert_eq!((e.order, e.dropped), (vec![0], vec![1]));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn envelope(
     cuts: &[CutSurface],
     lo: [f64; 2],

@@ -11,6 +11,22 @@
 use crate::error::{DesignError, Result};
 
 /// Curves (as parameter vectors of one length) lofted through stations along the cut.
+///
+/// ```
+/// use design::loft::Loft;
+/// // three stations along the cut, each curve by two parameters: a height and a constant
+/// let stations = [(0.0, vec![0.0, 1.0]), (100.0, vec![10.0, 1.0]), (300.0, vec![0.0, 1.0])];
+/// // the distance between neighbouring stations' curves: here their offsets' difference
+/// let loft = Loft::new(&stations, |i| stations[i].0 - stations[i - 1].0)?;
+/// for (offset, curve) in &stations {
+///     let at = loft.at_offset(*offset);
+///     assert!(at.iter().zip(curve).all(|(a, b)| (a - b).abs() < 1e-9));
+/// }
+/// // between stations: a smooth curve through them, the constant kept
+/// let mid = loft.at_offset(50.0);
+/// assert!(mid[0] > 0.0 && mid[0] < 12.0 && (mid[1] - 1.0).abs() < 1e-12);
+/// # Ok::<(), design::DesignError>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Loft {
     /// Loft parameter of each station: 0, then growing by √chord.
@@ -29,6 +45,18 @@ impl Loft {
     /// increasing) and its curve parameters (all of one length); `chord(i)` is the
     /// distance between the curves of stations `i − 1` and `i`, of which the loft's
     /// parameter steps are the square roots.
+    ///
+    /// ```
+    /// use design::loft::Loft;
+    /// // two stations: a linear (ruled) loft
+    /// let stations = [(0.0, vec![1.0, 2.0]), (100.0, vec![3.0, 6.0])];
+    /// let loft = Loft::new(&stations, |_| 4.0)?;
+    /// let mid = loft.at_offset(50.0);
+    /// assert!((mid[0] - 2.0).abs() < 1e-9 && (mid[1] - 4.0).abs() < 1e-9);
+    /// // offsets that do not increase are refused
+    /// assert!(Loft::new(&[(0.0, vec![1.0]), (0.0, vec![2.0])], |_| 1.0).is_err());
+    /// # Ok::<(), design::DesignError>(())
+    /// ```
     ///
     /// # Errors
     /// [`DesignError::Invalid`] for fewer than two stations, offsets not increasing,
@@ -115,6 +143,15 @@ impl Loft {
 
     /// The curve parameters on the cutting plane at `offset` (clamped to the stations'
     /// range), found by bisection of the loft's monotone offset.
+    ///
+    /// ```
+    /// use design::loft::Loft;
+    /// let stations = [(0.0, vec![1.0]), (100.0, vec![3.0])];
+    /// let loft = Loft::new(&stations, |_| 4.0)?;
+    /// assert!((loft.at_offset(25.0)[0] - 1.5).abs() < 1e-9);
+    /// assert!((loft.at_offset(500.0)[0] - 3.0).abs() < 1e-12); // clamped to the last station
+    /// # Ok::<(), design::DesignError>(())
+    /// ```
     pub fn at_offset(&self, offset: f64) -> Vec<f64> {
         let n = self.v.len();
         let s = offset.clamp(self.y[0][0], self.y[n - 1][0]);

@@ -48,6 +48,15 @@ pub struct Proxy {
 
 /// The Bézier's end data.
 ///
+/// ```
+/// use design::{end_data, Bezier};
+/// let b = Bezier { p: [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]] }; // an arch
+/// let d = end_data(&b)?;
+/// assert_eq!((d.start, d.end, d.length), (b.p[0], b.p[3], b.length()));
+/// assert_eq!((d.start_angle, d.end_angle), (b.start_angle()?, b.end_angle_unwrapped()?));
+/// # Ok::<(), design::DesignError>(())
+/// ```
+///
 /// # Errors
 /// [`DesignError::Invalid`] for coincident control points.
 pub fn end_data(b: &Bezier) -> Result<EndData> {
@@ -63,6 +72,18 @@ pub fn end_data(b: &Bezier) -> Result<EndData> {
 /// The eq. (11) residual of `b`: κ fitted by λ₂x − λ₁y + α over [`SAMPLES`] points evenly
 /// spaced in arc length (coordinates about their centroid), the RMS residual times the
 /// length.
+///
+/// ```
+/// use design::proxy::eq11_residual;
+/// use design::{proxy, Bezier};
+/// // a gentle arch and a steep one over the same chord: the steep one is further from
+/// // the curvature law of an elastica, and further from its elastica
+/// let gentle = Bezier { p: [[0.0, 0.0], [200.0, 60.0], [400.0, 60.0], [600.0, 0.0]] };
+/// let steep = Bezier { p: [[0.0, 0.0], [100.0, 300.0], [500.0, 300.0], [600.0, 0.0]] };
+/// assert!(eq11_residual(&gentle) < eq11_residual(&steep));
+/// assert!(proxy(&gentle)?.max_deviation < proxy(&steep)?.max_deviation);
+/// # Ok::<(), design::DesignError>(())
+/// ```
 pub fn eq11_residual(b: &Bezier) -> f64 {
     let table = b.arc_table();
     let length = table.length();
@@ -79,6 +100,19 @@ pub fn eq11_residual(b: &Bezier) -> f64 {
 /// evenly along it: κ fitted by λ₂x − λ₁y + α by least squares (coordinates about their
 /// centroid), the RMS residual times the length (the least-norm fit where it is singular:
 /// 0 for a straight curve). NaN only for non-finite samples.
+///
+/// ```
+/// use design::proxy::affine_curvature_residual;
+/// // a circle's curvature is constant: the law fits it exactly (α = κ)
+/// let circle: Vec<([f64; 2], f64)> = (0..=40)
+///     .map(|i| { let a = 0.05 * i as f64; ([2.0 * a.sin(), 2.0 - 2.0 * a.cos()], 0.5) })
+///     .collect();
+/// assert!(affine_curvature_residual(&circle, 4.0) < 1e-12);
+/// // κ = x² along a line is not affine in the position
+/// let bent: Vec<([f64; 2], f64)> =
+///     (0..=40).map(|i| { let x = 0.05 * i as f64; ([x, 0.0], x * x) }).collect();
+/// assert!(affine_curvature_residual(&bent, 2.0) > 0.01);
+/// ```
 pub fn affine_curvature_residual(rows: &[([f64; 2], f64)], length: f64) -> f64 {
     let n = rows.len() as f64;
     let c = rows
@@ -112,8 +146,27 @@ pub fn affine_curvature_residual(rows: &[([f64; 2], f64)], length: f64) -> f64 {
 
 /// The Bézier `b` against its elastica.
 ///
+/// ```
+/// use design::{proxy, Bezier};
+/// let b = Bezier { p: [[0.0, 0.0], [200.0, 60.0], [400.0, 60.0], [600.0, 0.0]] };
+/// let r = proxy(&b)?;
+/// assert!(r.end_point_error < 1e-9 * r.length && r.end_angle_error < 1e-9);
+/// assert!(r.relative_length_error.abs() < 1e-9);
+/// assert!(r.max_deviation < 0.01 * r.length && r.rms_deviation <= r.max_deviation);
+/// assert_eq!(r.inflections, 0); // a symmetric arch
+/// // a straight Bézier: its elastica is the line
+/// let line = Bezier { p: [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]] };
+/// let r = proxy(&line)?;
+/// assert_eq!(r.elastica.kind(), "line");
+/// assert!(r.max_deviation < 1e-9);
+/// // a collapsed one has none
+/// assert!(proxy(&Bezier { p: [[1.0, 1.0]; 4] }).is_err());
+/// # Ok::<(), design::DesignError>(())
+/// ```
+///
 /// # Errors
-/// [`DesignError::Invalid`] for a degenerate Bézier (collapsed, straight); the errors of
+/// [`DesignError::Invalid`] for a degenerate Bézier (collapsed: its control points coincide;
+/// a straight one is fine, its elastica the line); the errors of
 /// [`solve`].
 pub fn proxy(b: &Bezier) -> Result<Proxy> {
     proxy_offset(b, 0.0)
@@ -124,6 +177,20 @@ pub fn proxy(b: &Bezier) -> Result<Proxy> {
 /// that curve's end points, end tangents (the design's) and length (`L − offset·Δθ`, `Δθ`
 /// the design's turning). Deviations are measured between the moved design and the
 /// elastica at equal arc length of the moved design. `offset = 0` is [`proxy`].
+///
+/// ```
+/// use design::proxy::proxy_offset;
+/// use design::{proxy, Bezier};
+/// let b = Bezier { p: [[0.0, 0.0], [200.0, 60.0], [400.0, 60.0], [600.0, 0.0]] };
+/// let (on, off) = (proxy(&b)?, proxy_offset(&b, 2.0)?);
+/// assert_eq!(proxy_offset(&b, 0.0)?, on);
+/// // the arch turns right by Δθ = −2 atan(0.3): 2 mm to its left (above it) is longer by
+/// // 2·|Δθ|
+/// let turn = 2.0 * 0.3f64.atan();
+/// assert!((off.length - (on.length + 2.0 * turn)).abs() < 1e-9 * on.length);
+/// assert!(off.end_point_error < 1e-9 * off.length);
+/// # Ok::<(), design::DesignError>(())
+/// ```
 ///
 /// # Errors
 /// As [`proxy`]; [`DesignError::Invalid`] where the design bends tighter than the offset
@@ -179,6 +246,21 @@ pub fn proxy_offset(b: &Bezier, offset: f64) -> Result<Proxy> {
 
 /// `n ≥ 2` points of `b` moved `offset` along its left normal, at equal fractions of the
 /// moved curve's arc length (the design as the blade must follow it).
+///
+/// ```
+/// use design::proxy::moved_samples;
+/// use design::Bezier;
+/// let b = Bezier { p: [[0.0, 0.0], [200.0, 60.0], [400.0, 60.0], [600.0, 0.0]] };
+/// let on = moved_samples(&b, 0.0, 11)?;
+/// assert_eq!(on.len(), 11);
+/// assert_eq!((on[0], on[10]), (b.p[0], b.p[3]));
+/// assert!((on[5][0] - 300.0).abs() < 1e-9); // half the length: the middle of the arch
+/// // 2 above: the start moved along the start's left normal
+/// let up = moved_samples(&b, 2.0, 11)?;
+/// let a = 0.3f64.atan();
+/// assert!((up[0][0] + 2.0 * a.sin()).abs() < 1e-12 && (up[0][1] - 2.0 * a.cos()).abs() < 1e-12);
+/// # Ok::<(), design::DesignError>(())
+/// ```
 ///
 /// # Errors
 /// As [`proxy_offset`].

@@ -14,6 +14,26 @@ use crate::bezier::Bezier;
 use crate::error::{DesignError, Result};
 
 /// A clamped planar cubic B-spline whose interior knots are the block faces.
+///
+/// ```
+/// use design::spline::{greville, BSpline};
+/// // three blocks between the faces 0, 300, 700, 1000; control points at the Greville
+/// // abscissae, so the knot images lie on the faces whatever the heights
+/// let faces = vec![0.0, 300.0, 700.0, 1000.0];
+/// let heights = [0.0, 80.0, -40.0, 120.0, 60.0, 10.0];
+/// let control = greville(&faces).into_iter().zip(heights).map(|(u, h)| [u, h]).collect();
+/// let s = BSpline::new(faces, control)?;
+/// assert_eq!(s.pieces_len(), 3);
+/// assert!(s.off_faces(1e-9).is_empty());
+/// // one Bézier per block, joined end to end on the faces
+/// let pieces = s.pieces();
+/// assert_eq!(pieces.len(), 3);
+/// assert_eq!(pieces[0].p[0], [0.0, 0.0]);
+/// for (a, b) in pieces.iter().zip(&pieces[1..]) {
+///     assert!((a.p[3][0] - b.p[0][0]).abs() < 1e-9 && (a.p[3][1] - b.p[0][1]).abs() < 1e-9);
+/// }
+/// # Ok::<(), design::DesignError>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct BSpline {
@@ -26,6 +46,14 @@ pub struct BSpline {
 /// The Greville abscissae of the clamped cubic knot vector on `faces`: control points
 /// there make the spline's first coordinate equal its parameter, so that every knot image
 /// lies on its face.
+///
+/// ```
+/// use design::spline::greville;
+/// let g = greville(&[0.0, 300.0, 700.0, 1000.0]);
+/// assert_eq!(g.len(), 6); // one per control point: faces + 2
+/// assert_eq!((g[0], g[1], g[4], g[5]), (0.0, 100.0, 900.0, 1000.0));
+/// assert!((g[2] - 1000.0 / 3.0).abs() < 1e-12); // (0 + 300 + 700) / 3
+/// ```
 pub fn greville(faces: &[f64]) -> Vec<f64> {
     let t = knots(faces);
     (0..faces.len() + 2)
@@ -47,6 +75,17 @@ fn knots(faces: &[f64]) -> Vec<f64> {
 
 impl BSpline {
     /// A spline on `faces` with `control` points.
+    ///
+    /// ```
+    /// use design::spline::BSpline;
+    /// // one block: the spline is one cubic, its control points the Bézier's
+    /// let p = vec![[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]];
+    /// let s = BSpline::new(vec![0.0, 4.0], p.clone())?;
+    /// assert_eq!(s.pieces()[0].p.to_vec(), p);
+    /// assert!(BSpline::new(vec![0.0, 4.0], p[..3].to_vec()).is_err()); // one point short
+    /// assert!(BSpline::new(vec![4.0, 0.0], p).is_err()); // faces decreasing
+    /// # Ok::<(), design::DesignError>(())
+    /// ```
     ///
     /// # Errors
     /// [`DesignError::Invalid`] unless there are at least two faces, strictly increasing
@@ -101,16 +140,47 @@ impl BSpline {
     }
 
     /// Number of pieces (blocks).
+    ///
+    /// ```
+    /// use design::spline::BSpline;
+    /// let s = BSpline::new(vec![0.0, 1.0, 2.0], vec![[0.0, 0.0]; 5])?;
+    /// assert_eq!(s.pieces_len(), 2);
+    /// # Ok::<(), design::DesignError>(())
+    /// ```
     pub fn pieces_len(&self) -> usize {
         self.faces.len() - 1
     }
 
     /// The point at parameter `u` in piece `i`.
+    ///
+    /// ```
+    /// use design::spline::{greville, BSpline};
+    /// let faces = vec![0.0, 300.0, 700.0, 1000.0];
+    /// let control = greville(&faces).into_iter().map(|u| [u, 0.5 * u]).collect();
+    /// let s = BSpline::new(faces, control)?;
+    /// // control points on a line give that line, at the parameter's abscissa
+    /// let p = s.point(1, 500.0);
+    /// assert!((p[0] - 500.0).abs() < 1e-9 && (p[1] - 250.0).abs() < 1e-9);
+    /// # Ok::<(), design::DesignError>(())
+    /// ```
     pub fn point(&self, i: usize, u: f64) -> [f64; 2] {
         self.blossom(i, [u, u, u])
     }
 
     /// The knot images `S(uᵢ)`, one per face.
+    ///
+    /// ```
+    /// use design::spline::{greville, BSpline};
+    /// let faces = vec![0.0, 300.0, 700.0, 1000.0];
+    /// let heights = [0.0, 80.0, -40.0, 120.0, 60.0, 10.0];
+    /// let control = greville(&faces).into_iter().zip(heights).map(|(u, h)| [u, h]).collect();
+    /// let s = BSpline::new(faces.clone(), control)?;
+    /// let images = s.knot_images();
+    /// assert_eq!(images.len(), 4);
+    /// assert!(images.iter().zip(&faces).all(|(p, u)| (p[0] - u).abs() < 1e-9));
+    /// assert_eq!(images[3], [1000.0, 10.0]); // clamped: the last control point
+    /// # Ok::<(), design::DesignError>(())
+    /// ```
     pub fn knot_images(&self) -> Vec<[f64; 2]> {
         let n = self.pieces_len();
         (0..=n)
@@ -126,6 +196,20 @@ impl BSpline {
     }
 
     /// Every piece as the Bézier with the same points.
+    ///
+    /// ```
+    /// use design::spline::{greville, BSpline};
+    /// let faces = vec![0.0, 300.0, 700.0, 1000.0];
+    /// let heights = [0.0, 80.0, -40.0, 120.0, 60.0, 10.0];
+    /// let control = greville(&faces).into_iter().zip(heights).map(|(u, h)| [u, h]).collect();
+    /// let s = BSpline::new(faces, control)?;
+    /// let pieces = s.pieces();
+    /// // each piece has the spline's points: here at a quarter of the second block
+    /// let (u, t) = (300.0 + 0.25 * 400.0, 0.25);
+    /// let (a, b) = (s.point(1, u), pieces[1].point(t));
+    /// assert!((a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9);
+    /// # Ok::<(), design::DesignError>(())
+    /// ```
     pub fn pieces(&self) -> Vec<Bezier> {
         (0..self.pieces_len())
             .map(|i| {
@@ -144,6 +228,18 @@ impl BSpline {
 
     /// Faces whose knot image is off the face by more than `tolerance` across (first
     /// coordinate): `(face, offset)`.
+    ///
+    /// ```
+    /// use design::spline::{greville, BSpline};
+    /// let faces = vec![0.0, 300.0, 700.0, 1000.0];
+    /// let control = greville(&faces).into_iter().map(|u| [u, 0.0]).collect();
+    /// let mut s = BSpline::new(faces, control)?;
+    /// assert!(s.off_faces(1e-9).is_empty());
+    /// s.control[2][0] += 30.0; // off its Greville abscissa: the inner knot images move
+    /// let off = s.off_faces(1e-9);
+    /// assert!(!off.is_empty() && off.iter().all(|&(face, _)| face == 1 || face == 2));
+    /// # Ok::<(), design::DesignError>(())
+    /// ```
     pub fn off_faces(&self, tolerance: f64) -> Vec<(usize, f64)> {
         self.knot_images()
             .iter()
