@@ -40,7 +40,7 @@ fn example(name: &str) -> PathBuf {
     };
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let mut build = Command::new(cargo);
-    build.args(["build", "-q", "-p", "elastica", "--example", name]);
+    build.args(["build", "-q", "-p", "hotcut-elastica", "--example", name]);
     build.arg("--target-dir").arg(&target_dir);
     match profile.as_str() {
         "debug" => {}

@@ -19,11 +19,12 @@ pub mod html;
 pub mod json;
 /// Wavefront OBJ writer for meshes and polylines.
 pub mod obj;
-/// ABB RAPID modules and program files for a two-robot MultiMove hot-blade cell.
+/// ABB RAPID modules and program files for a MultiMove hot-blade cell (two robots hold
+/// the blade; a third may carry the block).
 pub mod rapid;
 /// The identifiers a user may give a RAPID program: not reserved, predefined or ours.
 pub mod rapid_names;
-/// Robot files of a two-robot hot-blade cell: targets (JSON, CSV) and RAPID modules.
+/// Robot files of a hot-blade cell: targets (JSON, CSV) and one RAPID module per robot.
 pub mod robot;
 /// A small SVG builder with a world-to-page viewport.
 pub mod svg;

@@ -1,7 +1,7 @@
 //! The `FacadeSegmentation` task (thesis ch. 5): the job's sections handed to one of the
 //! [`facade_seg`] algorithms, then every piece rationalized
 //! ([`facade_seg::rationalize`]: an elastica per section part, warm-started sweeps,
-//! extended to the blade, posed for the two robots), and the report, drawings and robot
+//! extended to the blade, posed for the robots that hold it), and the report, drawings and robot
 //! files.
 //!
 //! ```

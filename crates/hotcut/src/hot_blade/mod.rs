@@ -1,6 +1,6 @@
 //! The `HotBlade` task: the surface inside a grid of blocks, every block's sections fitted
 //! by elastica ("Hot Blade Cuttings" §6–7), the surface swept between them, the blade poses
-//! for the two robots ("Robotic Hot-Blade Cutting" §4), and the checks of every production
+//! for the robots that hold the blade ("Robotic Hot-Blade Cutting" §4), and the checks of every production
 //! constraint — the [`hotblade`] pipeline, with the job's settings, report and files.
 
 /// Its files: robot targets, RAPID, OBJ, glTF, SVG, CSV.
@@ -28,8 +28,8 @@ use report::{HotBladeReport, HotBladeSettings};
 
 /// Hot-blade rationalization ("Hot Blade Cuttings" §6–7, "Robotic Hot-Blade Cutting"
 /// §4): the surface inside a grid of blocks, every block's sections fitted by elastica,
-/// the swept surface between them, the blade poses for the two robots, and a RAPID
-/// program. Write `HotBlade(targets_per_block: 51)`.
+/// the swept surface between them, the blade poses for the robots that hold the blade,
+/// and the cell's RAPID programs (two robots, or three when one carries the block). Write `HotBlade(targets_per_block: 51)`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct HotBlade {

@@ -101,7 +101,8 @@ pub struct CellReport {
     pub preheat_s: f64,
     /// Synchronized moves of the program.
     pub moves: usize,
-    /// Every move reached by both robots with no configuration change and no joint jump.
+    /// Every move reached by every robot of the cell (the blade's two, and a carrier's)
+    /// with no configuration change and no joint jump.
     pub clean: bool,
     /// Per block.
     pub blocks: Vec<BlockCheck>,
