@@ -36,6 +36,32 @@ pub struct Clearance {
 pub const HOLDER_MARGIN: f64 = 0.01;
 
 impl Clearance {
+    /// The worst of `items` that is not clean: the deepest gouge, then the smallest holder
+    /// clearance; the first of equals. `None` when every one is clean.
+    ///
+    /// ```
+    /// use elastica::clearance::Clearance;
+    /// let clean = Clearance { holders_clear: true, holder_clearance: 50.0, ..Clearance::default() };
+    /// let touching = Clearance { holders_clear: false, holder_clearance: 1.0, ..clean };
+    /// let gouging = Clearance { gouge_depth: 2.0, gouge_length: 30.0, ..clean };
+    /// let items = [("a", clean), ("b", touching), ("c", gouging)];
+    /// assert_eq!(Clearance::worst(items).map(|w| w.0), Some("c"));
+    /// assert_eq!(Clearance::worst([("a", clean)]), None);
+    /// ```
+    pub fn worst<T>(items: impl IntoIterator<Item = (T, Clearance)>) -> Option<(T, Clearance)> {
+        let mut worst: Option<(T, Clearance)> = None;
+        for (item, c) in items.into_iter().filter(|(_, c)| !c.is_clean()) {
+            let worse = worst.as_ref().is_none_or(|(_, w)| {
+                c.gouge_depth > w.gouge_depth
+                    || (c.gouge_depth == w.gouge_depth && c.holder_clearance < w.holder_clearance)
+            });
+            if worse {
+                worst = Some((item, c));
+            }
+        }
+        worst
+    }
+
     /// No gouge and both held ends clear of the block.
     pub fn is_clean(&self) -> bool {
         self.gouge_depth == 0.0 && self.holders_clear

@@ -526,35 +526,26 @@ fn first_gouge(r: &DesignReport) -> Option<String> {
 /// For `strict`: the worst plane whose blade outside its piece enters what a block keeps,
 /// or whose held end touches a block.
 fn gouge_message(cuts: &[(ResolvedCut, CutResult)], blocks: &[Block]) -> Option<String> {
-    let mut worst: Option<(f64, f64, String)> = None;
-    for (r, res) in cuts {
-        for (j, c) in res.planes.iter().enumerate() {
-            for (k, p) in c.pieces.iter().enumerate() {
-                let Some(g) = p.clearance.filter(|g| !g.is_clean()) else {
-                    continue;
-                };
-                let worse = worst.as_ref().is_none_or(|w| {
-                    g.gouge_depth > w.0 || (g.gouge_depth == w.0 && g.holder_clearance < w.1)
-                });
-                if worse {
-                    let block = r
-                        .blocks
-                        .get(k)
-                        .and_then(|&b| blocks.get(b))
-                        .map_or(String::new(), |b| {
-                            geom::text::terminal(&geom::text::clip(&b.id, 40))
-                        });
-                    let what = format!(
-                        "runs {} deep into what block `{block}` keeps (holder clearance {}) on plane {j} (of 0–{}) of cut `{}`",
-                        short(g.gouge_depth),
-                        short(g.holder_clearance),
-                        res.planes.len().saturating_sub(1),
-                        geom::text::terminal(&geom::text::clip(&r.id, 40))
-                    );
-                    worst = Some((g.gouge_depth, g.holder_clearance, what));
-                }
-            }
-        }
-    }
-    worst.map(|w| w.2)
+    let pieces = cuts.iter().flat_map(|(r, res)| {
+        res.planes.iter().enumerate().flat_map(move |(j, c)| {
+            c.pieces
+                .iter()
+                .enumerate()
+                .filter_map(move |(k, p)| Some(((r, res, j, k), p.clearance?)))
+        })
+    });
+    let ((r, res, j, k), g) = elastica::clearance::Clearance::worst(pieces)?;
+    let shown = |s: &str| geom::text::terminal(&geom::text::clip(s, 40));
+    let block = r
+        .blocks
+        .get(k)
+        .and_then(|&b| blocks.get(b))
+        .map_or(String::new(), |b| shown(&b.id));
+    Some(format!(
+        "runs {} deep into what block `{block}` keeps (holder clearance {}) on plane {j} (of 0–{}) of cut `{}`",
+        short(g.gouge_depth),
+        short(g.holder_clearance),
+        res.planes.len().saturating_sub(1),
+        shown(&r.id)
+    ))
 }

@@ -32,6 +32,7 @@ mod page;
 /// Its report.
 pub mod report;
 
+use elastica::clearance::Clearance;
 use facade_seg::inflection::{inflection_points, InflectionParams};
 use facade_seg::longest::{longest_elastica, LongestParams};
 use facade_seg::rationalize::{pose_pieces, PosedPiece, RationalizeParams};
@@ -580,23 +581,14 @@ impl SegAlgorithmSpec {
 /// For `strict`: the worst part whose blade outside it enters what its block keeps, or
 /// whose held end touches its block (the deepest gouge, then the smallest clearance).
 fn worst_clearance(posed: &[PosedPiece]) -> Option<String> {
-    posed
+    let parts = posed
         .iter()
-        .flat_map(|p| p.parts.iter().map(move |x| (p.id, x)))
-        .filter(|(_, x)| !x.clearance.is_clean())
-        .max_by(|a, b| {
-            let (g, h) = (&a.1.clearance, &b.1.clearance);
-            g.gouge_depth
-                .total_cmp(&h.gouge_depth)
-                .then(h.holder_clearance.total_cmp(&g.holder_clearance))
-        })
-        .map(|(id, x)| {
-            let c = &x.clearance;
-            format!(
-                "runs {:.4e} deep into what block {id} keeps (holder clearance {:.4e}) at the piece's section {} (report.json's index)",
-                c.gouge_depth, c.holder_clearance, x.part
-            )
-        })
+        .flat_map(|p| p.parts.iter().map(move |x| ((p.id, x.part), x.clearance)));
+    let ((id, part), c) = Clearance::worst(parts)?;
+    Some(format!(
+        "runs {:.4e} deep into what block {id} keeps (holder clearance {:.4e}) at the piece's section {part} (report.json's index)",
+        c.gouge_depth, c.holder_clearance
+    ))
 }
 
 /// Runs the job's segmentation algorithm on the facade.

@@ -405,7 +405,7 @@ impl Task for HotBlade {
 /// How the deepest gouging blade of `cut` runs into its block (after "a blade that"), if
 /// any blade gouges or has a holder inside a block.
 fn worst_gouge(cut: &hotblade::Rationalization) -> Option<String> {
-    let (block, section, c) = cut
+    let sections = cut
         .blocks
         .iter()
         .filter(|b| b.report.flags.gouge)
@@ -413,10 +413,9 @@ fn worst_gouge(cut: &hotblade::Rationalization) -> Option<String> {
             b.sections
                 .iter()
                 .enumerate()
-                .filter_map(move |(i, s)| Some((b.report.block, i, s.clearance?)))
-        })
-        .filter(|(_, _, c)| !c.is_clean())
-        .max_by(|a, b| a.2.gouge_depth.total_cmp(&b.2.gouge_depth))?;
+                .filter_map(move |(i, s)| Some(((b.report.block, i), s.clearance?)))
+        });
+    let ((block, section), c) = elastica::clearance::Clearance::worst(sections)?;
     Some(format!(
         "runs {:.4e} deep into what block {block} keeps (holder clearance {:.4e}) at its section {section} (report.json's index)",
         c.gouge_depth, c.holder_clearance
