@@ -1,0 +1,32 @@
+//! # ruled_blocks — segmentation versus rationalization (thesis ch. 4)
+//!
+//! A model that is not ruled, larger than one block, made of blocks a hot wire can cut
+//! with no milling, as close to the model as possible and C⁰ between blocks. The thesis'
+//! strategy: rationalize the whole model by piecewise ruled surfaces first, then segment
+//! the rationalized model into blocks, so that the look does not depend on where the
+//! blocks fall.
+//!
+//! This crate is being built up (issue 39). It has so far:
+//! - [`fit`]: eq. (4.1), the least-squares piecewise ruled surface through a region's
+//!   samples on a `(u, v)` grid — rails in `u`, straight rulings between neighbouring
+//!   rails — with its RMS and largest distance.
+//!
+//! Like the other algorithm crates it does no I/O and prints nothing. It is unit-free:
+//! every length of a result scales with the input.
+//!
+//! ```
+//! use ruled_blocks::fit::{fit_piecewise_ruled, GridSamples, RuledFitParams};
+//!
+//! // a hyperbolic paraboloid z = x·y is ruled: its fit is exact
+//! let (nu, nv) = (12, 9);
+//! let u: Vec<f64> = (0..nu).map(|i| i as f64 / (nu - 1) as f64).collect();
+//! let v: Vec<f64> = (0..nv).map(|j| j as f64 / (nv - 1) as f64).collect();
+//! let points = v.iter().flat_map(|&y| u.iter().map(move |&x| [x, y, x * y])).collect();
+//! let samples = GridSamples { u, v, points };
+//! let fit = fit_piecewise_ruled(&samples, &RuledFitParams { strips: 1, degree: 3, controls: 4 })?;
+//! assert!(fit.max_residual < 1e-12);
+//! # Ok::<(), ruled_blocks::fit::FitError>(())
+//! ```
+
+/// Eq. (4.1): the least-squares piecewise ruled surface through gridded samples.
+pub mod fit;
