@@ -64,6 +64,75 @@ pub struct RuledFit {
     pub rms: f64,
     /// The largest residual.
     pub max_residual: f64,
+    /// Each sample's distance to the surface (its closest point, found from the sample's
+    /// own parameters; never more than its residual), in the samples' order.
+    pub distances: Vec<f64>,
+    /// Root mean square of the distances.
+    pub rms_distance: f64,
+    /// The largest distance.
+    pub max_distance: f64,
+}
+
+/// Most Gauss–Newton steps of a closest-point search.
+pub const MAX_PROJECTION_STEPS: usize = 60;
+
+/// The distance from `p` to `surface` and the parameters of its closest point, searched
+/// by Gauss–Newton steps from `start` within the surface's domain (at most
+/// [`MAX_PROJECTION_STEPS`]; a step that does not bring the point closer is halved, so the
+/// distance never exceeds `|p − s(start)|`).
+///
+/// ```
+/// use geom::{BSplineCurve, BSplineSurface};
+/// use nalgebra::Vector3;
+/// use ruled_blocks::fit::closest_point;
+/// // the unit square in z = 0 as a ruled surface
+/// let line = |y: f64| BSplineCurve::clamped_uniform(1, vec![Vector3::new(0.0, y, 0.0), Vector3::new(1.0, y, 0.0)]);
+/// let square = BSplineSurface::ruled(&line(1.0)?, &line(0.0)?)?;
+/// let (d, (u, v)) = closest_point(&square, Vector3::new(0.25, 0.5, 0.75), (0.9, 0.1));
+/// assert!((d - 0.75).abs() < 1e-12 && (u - 0.25).abs() < 1e-12 && (v - 0.5).abs() < 1e-12);
+/// // beyond the edge: the distance to the edge
+/// let (d, _) = closest_point(&square, Vector3::new(2.0, 0.5, 0.0), (0.5, 0.5));
+/// assert!((d - 1.0).abs() < 1e-12);
+/// # Ok::<(), geom::GeomError>(())
+/// ```
+pub fn closest_point(
+    surface: &BSplineSurface,
+    p: Vector3<f64>,
+    start: (f64, f64),
+) -> (f64, (f64, f64)) {
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    let clamp = |(u, v): (f64, f64)| (u.clamp(u0, u1), v.clamp(v0, v1));
+    let mut at = clamp(start);
+    let mut best = (p - surface.eval(at.0, at.1)).norm();
+    let small = 1e-14 * ((u1 - u0) + (v1 - v0));
+    for _ in 0..MAX_PROJECTION_STEPS {
+        let (s, su, sv) = surface.partials(at.0, at.1);
+        let r = p - s;
+        // the normal equations of min |r − J δ|², J = [s_u s_v]
+        let (a, b, c) = (su.dot(&su), su.dot(&sv), sv.dot(&sv));
+        let (gu, gv) = (su.dot(&r), sv.dot(&r));
+        let det = a * c - b * b;
+        if !(det > 1e-300) {
+            break;
+        }
+        let mut step = ((c * gu - b * gv) / det, (a * gv - b * gu) / det);
+        let mut moved = false;
+        for _ in 0..30 {
+            let next = clamp((at.0 + step.0, at.1 + step.1));
+            let d = (p - surface.eval(next.0, next.1)).norm();
+            if d < best {
+                moved = (next.0 - at.0).abs() + (next.1 - at.1).abs() > small;
+                best = d;
+                at = next;
+                break;
+            }
+            step = (0.5 * step.0, 0.5 * step.1);
+        }
+        if !moved {
+            break;
+        }
+    }
+    (best, at)
 }
 
 /// Why a fit cannot be made.
@@ -282,12 +351,28 @@ pub fn fit_piecewise_ruled(
             })
         })
         .collect();
-    let rms = (residuals.iter().map(|r| r * r).sum::<f64>() / residuals.len() as f64).sqrt();
-    let max_residual = residuals.iter().copied().fold(0.0, f64::max);
+    let distances: Vec<f64> = samples
+        .v
+        .iter()
+        .flat_map(|&v| samples.u.iter().map(move |&u| (u, v)))
+        .zip(&samples.points)
+        .map(|(at, q)| closest_point(&surface, Vector3::from(*q), at).0)
+        .collect();
+    let (rms, max_residual) = rms_and_max(&residuals);
+    let (rms_distance, max_distance) = rms_and_max(&distances);
     Ok(RuledFit {
         surface,
         residuals,
         rms,
         max_residual,
+        distances,
+        rms_distance,
+        max_distance,
     })
+}
+
+/// Root mean square and largest of `values` (not empty).
+fn rms_and_max(values: &[f64]) -> (f64, f64) {
+    let rms = (values.iter().map(|r| r * r).sum::<f64>() / values.len() as f64).sqrt();
+    (rms, values.iter().copied().fold(0.0, f64::max))
 }

@@ -9,7 +9,8 @@
 //! This crate is being built up (issue 39). It has so far:
 //! - [`fit`]: eq. (4.1), the least-squares piecewise ruled surface through a region's
 //!   samples on a `(u, v)` grid — rails in `u`, straight rulings between neighbouring
-//!   rails — with its RMS and largest distance.
+//!   rails — with each sample's residual and its distance to the surface (closest point,
+//!   [`fit::closest_point`]), their RMS and largest.
 //!
 //! Like the other algorithm crates it does no I/O and prints nothing. It is unit-free:
 //! every length of a result scales with the input.

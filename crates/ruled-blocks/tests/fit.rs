@@ -70,6 +70,32 @@ fn rails_converge_at_the_fourth_order_and_strips_at_the_second() {
 }
 
 #[test]
+fn distances_are_to_the_closest_point() {
+    // a paraboloid is fitted exactly; points moved δ along its unit normal lie δ from it
+    // (δ far below its radius of curvature, ≥ 1/6 here)
+    let f = |x: f64, y: f64| [x, y, 3.0 * x * y];
+    let fit = fit_piecewise_ruled(&grid(20, 6, f), &params(1, 4)).unwrap();
+    let delta = 1e-3;
+    for &(x, y) in &[(0.2, 0.3), (0.5, 0.5), (0.9, 0.1), (0.35, 0.8)] {
+        let n = Vector3::new(-3.0 * y, -3.0 * x, 1.0).normalize();
+        let q = Vector3::from(f(x, y)) + n * delta;
+        // searched from a point well off the foot
+        let (d, (u, v)) = ruled_blocks::fit::closest_point(&fit.surface, q, (x + 0.1, y - 0.1));
+        assert!((d - delta).abs() < 1e-9, "{d} at ({x}, {y})");
+        assert!((u - x).abs() < 1e-6 && (v - y).abs() < 1e-6, "({u}, {v})");
+    }
+    // on a curved model the distances are at most the residuals, and some are less
+    let s = grid(40, 17, cap);
+    let fit = fit_piecewise_ruled(&s, &params(2, 6)).unwrap();
+    assert!(fit
+        .distances
+        .iter()
+        .zip(&fit.residuals)
+        .all(|(d, r)| *d <= *r));
+    assert!(fit.rms_distance < fit.rms && fit.max_distance <= fit.max_residual);
+}
+
+#[test]
 fn bad_input_is_refused_with_its_field() {
     let s = grid(10, 5, cap);
     let field = |p: RuledFitParams| match fit_piecewise_ruled(&s, &p) {
@@ -153,6 +179,7 @@ proptest! {
         let tol = 1e-12 * size;
         prop_assert!((fit.rms - scale * base.rms).abs() <= tol);
         prop_assert!((fit.max_residual - scale * base.max_residual).abs() <= tol);
+        prop_assert!((fit.rms_distance - scale * base.rms_distance).abs() <= 1e-9 * scale);
         for &(u, v) in &[(0.0, 0.0), (0.3, 0.7), (1.0, 0.5), (0.77, 1.0)] {
             let d = (fit.surface.eval(u, v) - map(base.surface.eval(u, v))).norm();
             prop_assert!(d <= tol, "{d:e} at ({u}, {v})");
