@@ -145,6 +145,16 @@ impl BSplineSurface {
         )
     }
 
+    /// Knot vector along `u`.
+    pub fn knots_u(&self) -> &[f64] {
+        &self.knots_u
+    }
+
+    /// Knot vector along `v`.
+    pub fn knots_v(&self) -> &[f64] {
+        &self.knots_v
+    }
+
     /// Degrees `(p, q)`.
     pub fn degrees(&self) -> (usize, usize) {
         (self.degree_u, self.degree_v)

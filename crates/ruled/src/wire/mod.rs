@@ -28,7 +28,7 @@ use nalgebra::Vector3;
 use crate::error::{PreCutError, Result};
 use crate::DirectionCut;
 pub use machine::{DwellUnit, FeedMode, Machine};
-pub use program::{check_program, program, Program, ProgramSummary};
+pub use program::{check_program, program, program_labelled, Labels, Program, ProgramSummary};
 
 /// The machine and the cut's settings (lengths in the job's unit, `mm_per_unit` to mm).
 #[derive(Debug, Clone, PartialEq)]

@@ -137,6 +137,65 @@ pub fn program(
     floor: f64,
     name: &str,
 ) -> Result<Program> {
+    program_labelled(path, p, m, top, floor, &Labels::pre_cut(path, p, name))
+}
+
+/// What a program's header says of its cut: a title line, the cut's name (also in error
+/// messages) and the lines that tell how the block lies between the towers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Labels {
+    /// First comment line.
+    pub title: String,
+    /// The cut's name, e.g. `direction 1 cut 2`.
+    pub cut: String,
+    /// How the block stands on the machine.
+    pub frame: Vec<String>,
+}
+
+impl Labels {
+    /// A pre-cut's labels: the cut's direction and which side each tower stands on.
+    pub fn pre_cut(path: &WirePath, p: &WireParams, name: &str) -> Self {
+        let n = |v: f64| num(v, 3);
+        let (cx, cy) = (path.across[0], path.across[1]);
+        Self {
+            title: format!(
+                "hotcut pre-cut {}: direction {} cut {}",
+                name.chars().take(30).collect::<String>(),
+                path.direction + 1,
+                path.leg + 1
+            ),
+            cut: format!("direction {} cut {}", path.direction + 1, path.leg + 1),
+            frame: vec![
+                format!(
+                    "cut along ({}, {}); tower A on the side of ({}, {})",
+                    n(path.along[0]),
+                    n(path.along[1]),
+                    n(-cx),
+                    n(-cy)
+                ),
+                format!(
+                    "tower B on the side of ({}, {}), {} mm apart",
+                    n(cx),
+                    n(cy),
+                    n(p.tower_distance * p.mm_per_unit)
+                ),
+            ],
+        }
+    }
+}
+
+/// [`program`] with the header's labels given: for cuts other than a pre-cut's.
+///
+/// # Errors
+/// As [`program`].
+pub fn program_labelled(
+    path: &WirePath,
+    p: &WireParams,
+    m: &Machine,
+    top: f64,
+    floor: f64,
+    labels: &Labels,
+) -> Result<Program> {
     m.check()?;
     let mm = p.mm_per_unit;
     let dec = m.decimals;
@@ -198,9 +257,8 @@ pub fn program(
         return Err(PreCutError::InvalidParameter {
             name: "steps",
             reason: format!(
-                "direction {} cut {}: no move of {} mm or more",
-                path.direction + 1,
-                path.leg + 1,
+                "{}: no move of {} mm or more",
+                labels.cut,
                 min_move_mm(dec)
             ),
         });
@@ -222,7 +280,7 @@ pub fn program(
             })
             .collect()
     };
-    check_travel(path, m, &extents(&all))?;
+    check_travel(&labels.cut, m, &extents(&all))?;
     let mut g = String::new();
     let line = |g: &mut String, s: &str| {
         g.push_str(s);
@@ -231,7 +289,7 @@ pub fn program(
     if m.percent {
         line(&mut g, "%");
     }
-    for c in header_comments(path, p, m, name) {
+    for c in header_comments(labels, p, m) {
         line(&mut g, &comment(&c));
     }
     for h in &m.header {
@@ -287,7 +345,7 @@ pub fn program(
 }
 
 /// Every axis's range within the machine's travel (to half the last digit).
-fn check_travel(path: &WirePath, m: &Machine, extents: &[AxisExtent]) -> Result<()> {
+fn check_travel(cut: &str, m: &Machine, extents: &[AxisExtent]) -> Result<()> {
     let Some(travel) = &m.travel else {
         return Ok(());
     };
@@ -302,7 +360,7 @@ fn check_travel(path: &WirePath, m: &Machine, extents: &[AxisExtent]) -> Result<
         };
         if let Some(value) = out {
             return Err(PreCutError::OutOfTravel {
-                program: format!("direction {} cut {}", path.direction + 1, path.leg + 1),
+                program: cut.to_string(),
                 axis: e.axis,
                 value,
                 min: lo,
@@ -316,35 +374,19 @@ fn check_travel(path: &WirePath, m: &Machine, extents: &[AxisExtent]) -> Result<
 
 /// The header's comment texts: the cut, the profile and its axes, the towers' sides, the
 /// frame, the travel, the heat, the operator's notes.
-fn header_comments(path: &WirePath, p: &WireParams, m: &Machine, name: &str) -> Vec<String> {
+fn header_comments(labels: &Labels, p: &WireParams, m: &Machine) -> Vec<String> {
     let mm = p.mm_per_unit;
     let [a0, a1, b0, b1] = m.axes;
     let n = |v: f64| num(v, 3);
-    let (cx, cy) = (path.across[0], path.across[1]);
     let mut c = vec![
-        format!(
-            "hotcut pre-cut {}: direction {} cut {}",
-            name.chars().take(30).collect::<String>(),
-            path.direction + 1,
-            path.leg + 1
-        ),
+        labels.title.clone(),
         format!(
             "profile {}: tower A {a0} along {a1} up, tower B {b0} along {b1} up",
             m.profile
         ),
-        format!(
-            "cut along ({}, {}); tower A on the side of ({}, {})",
-            n(path.along[0]),
-            n(path.along[1]),
-            n(-cx),
-            n(-cy)
-        ),
-        format!(
-            "tower B on the side of ({}, {}), {} mm apart",
-            n(cx),
-            n(cy),
-            n(p.tower_distance * mm)
-        ),
+    ];
+    c.extend(labels.frame.iter().cloned());
+    c.extend([
         format!(
             "{a0} {b0} = {} at the block's start, {a1} {b1} = {} at its floor",
             n(p.origin[0] * mm),
@@ -360,7 +402,7 @@ fn header_comments(path: &WirePath, p: &WireParams, m: &Machine, name: &str) -> 
             },
             n(p.speed * mm)
         ),
-    ];
+    ]);
     match &m.travel {
         Some(t) => {
             for (tower, k) in [("A", 0), ("B", 2)] {

@@ -1,0 +1,376 @@
+//! Cuttability per block (thesis §4.2): a block is cut strip by strip, the wire following
+//! each strip's rulings extended across the whole block; it can be cut when no wire
+//! position enters the material the block keeps (the rationalized solid inside the block)
+//! deeper than the tolerance. Where it cannot, the block is cut to the convex hull of what
+//! it keeps, by planar cuts on the hull's faces, and the material this adds is measured.
+
+use blocks::Cuboid;
+use geom::bbox::Aabb;
+use nalgebra::Vector3;
+
+use crate::machine::{leads, MachineFrame};
+use crate::solid::{Probe, Solid};
+
+/// Largest angle between a wire and the machine's across axis (60°): a wire flatter than
+/// this to the tower planes would need towers far beyond the block.
+pub const MIN_WIRE_COS: f64 = 0.5;
+/// Most planar cuts of a block cut to its hull.
+pub const MAX_PLANES: usize = 16;
+/// Lattice points per block edge for the hull's added material.
+pub const LATTICE: usize = 20;
+
+/// A wire position: a line through `point` along the unit `dir` (model coordinates).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WireLine {
+    /// A point of the wire.
+    pub point: Vector3<f64>,
+    /// Its unit direction.
+    pub dir: Vector3<f64>,
+}
+
+/// How a block lies on the cutter for one cut: unit model vectors of the block's axes
+/// (signed) along the cut, towards tower B (across), and up.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mount {
+    /// Block axis index and sign along the cut.
+    pub along: (usize, f64),
+    /// Across, towards tower B.
+    pub across: (usize, f64),
+    /// Up.
+    pub up: (usize, f64),
+}
+
+impl Mount {
+    /// The model vector of a signed block axis.
+    pub fn vector(b: &Cuboid, (k, s): (usize, f64)) -> Vector3<f64> {
+        b.axes().column(k) * s
+    }
+}
+
+/// What a cut follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CutKind {
+    /// A strip of a region.
+    Strip {
+        /// The region.
+        region: usize,
+        /// The strip.
+        strip: usize,
+    },
+    /// A face of the block's hull.
+    Plane,
+}
+
+/// One 4-axis cut: the wire's positions in order, from the lead-in to the lead-out, and
+/// the block's mount.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cut {
+    /// What it follows.
+    pub kind: CutKind,
+    /// Wire positions, kerf applied.
+    pub lines: Vec<WireLine>,
+    /// The mount.
+    pub mount: Mount,
+}
+
+/// A block's plan.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockPlan {
+    /// The block.
+    pub block: Cuboid,
+    /// Whether the strips cut it (else: its hull).
+    pub cuttable: bool,
+    /// Why it is not, when it is not.
+    pub reason: Option<String>,
+    /// Deepest that a strip's wire would enter the kept material (0 when none does).
+    pub deepest: f64,
+    /// The cuts.
+    pub cuts: Vec<Cut>,
+    /// Material the hull adds (0 for a cuttable block), estimated on a lattice.
+    pub added_volume: f64,
+    /// Largest depth of the added material over the rationalized surface.
+    pub added_depth: f64,
+    /// Volume of the rationalized solid in the block, on the same lattice.
+    pub kept_volume: f64,
+}
+
+/// What the planner needs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanSettings {
+    /// Depth beyond which a wire position counts as entering the kept material.
+    pub tolerance: f64,
+    /// Kerf of the wire: each wire position lies half of it outside the cut surface.
+    pub kerf: f64,
+    /// Lead-in and lead-out beyond the block.
+    pub lead: f64,
+}
+
+/// Whether a model point lies in the block (boundary included).
+fn in_box(b: &Cuboid, p: &Vector3<f64>) -> bool {
+    b.contains(p, -1e-12 * b.half.norm())
+}
+
+/// The part `[s0, s1]` of the line `p + s·d` inside the block, if any.
+pub fn clip(b: &Cuboid, p: &Vector3<f64>, d: &Vector3<f64>) -> Option<(f64, f64)> {
+    let (lp, ld) = (b.to_local(p), b.axes().tr_mul(d));
+    let (mut s0, mut s1) = (f64::NEG_INFINITY, f64::INFINITY);
+    for k in 0..3 {
+        if ld[k].abs() < 1e-15 {
+            if lp[k].abs() > b.half[k] {
+                return None;
+            }
+            continue;
+        }
+        let (a, c) = ((-b.half[k] - lp[k]) / ld[k], (b.half[k] - lp[k]) / ld[k]);
+        s0 = s0.max(a.min(c));
+        s1 = s1.min(a.max(c));
+    }
+    (s1 > s0).then_some((s0, s1))
+}
+
+/// How deep the wire line enters the kept material (the solid inside the block): the
+/// largest over points every `step` along its part in the block of the depth below the
+/// solid's surface, counted only where the point is inside the solid and farther than
+/// the depth from the block's faces; 0 when it never enters.
+pub fn penetration(b: &Cuboid, probe: &Probe<'_>, l: &WireLine, step: f64) -> f64 {
+    let Some((s0, s1)) = clip(b, &l.point, &l.dir) else {
+        return 0.0;
+    };
+    let n = (((s1 - s0) / step).ceil() as usize).clamp(1, 400);
+    let mut deepest: f64 = 0.0;
+    for i in 0..=n {
+        let p = l.point + l.dir * (s0 + (s1 - s0) * i as f64 / n as f64);
+        let d = probe.distance(&p);
+        if d <= deepest.max(step / 4.0) {
+            continue;
+        }
+        let local = b.to_local(&p);
+        let face = (0..3).map(|k| b.half[k] - local[k].abs()).fold(f64::INFINITY, f64::min);
+        let depth = d.min(face);
+        if depth > deepest && probe.inside(&p) {
+            deepest = depth;
+        }
+    }
+    deepest
+}
+
+/// The mount for a cut whose wire directions are `dirs` and which progresses along `prog`:
+/// across the block axis most parallel to the wires, along the one (of the other two) most
+/// parallel to `prog`; `None` when a wire is flatter than [`MIN_WIRE_COS`] to it.
+pub fn mount(b: &Cuboid, dirs: &[Vector3<f64>], prog: &Vector3<f64>) -> Option<Mount> {
+    let ax = |k: usize| b.axes().column(k).into_owned();
+    let score = |k: usize| dirs.iter().map(|d| d.dot(&ax(k)).abs()).sum::<f64>();
+    let across = (0..3).max_by(|&i, &j| score(i).total_cmp(&score(j)).then(j.cmp(&i)))?;
+    let sign = |v: f64| if v < 0.0 { -1.0 } else { 1.0 };
+    let s_across = sign(dirs.iter().map(|d| d.dot(&ax(across))).sum());
+    if dirs.iter().any(|d| d.dot(&ax(across)).abs() < MIN_WIRE_COS) {
+        return None;
+    }
+    let others: Vec<usize> = (0..3).filter(|&k| k != across).collect();
+    let along = if prog.dot(&ax(others[0])).abs() >= prog.dot(&ax(others[1])).abs() {
+        others[0]
+    } else {
+        others[1]
+    };
+    let s_along = sign(prog.dot(&ax(along)));
+    let up = 3 - across - along;
+    // right-handed (along, across, up) seen from the machine: up = along × across
+    let upv = (ax(along) * s_along).cross(&(ax(across) * s_across));
+    Some(Mount {
+        along: (along, s_along),
+        across: (across, s_across),
+        up: (up, sign(upv.dot(&ax(up)))),
+    })
+}
+
+/// `lines` with the lead-in before and the lead-out after them (see
+/// [`crate::machine::leads`]), and the positions every move into and out of them passes
+/// (`n` between), for the check.
+pub fn with_leads(b: &Cuboid, m: &Mount, lines: &[WireLine], lead: f64, n: usize) -> (Vec<WireLine>, Vec<WireLine>) {
+    let (Some(first), Some(last)) = (lines.first(), lines.last()) else {
+        return (Vec::new(), Vec::new());
+    };
+    let f = MachineFrame::new(b, m);
+    let (lin, lout) = leads(&f, first, last, lead);
+    let mut all = vec![lin];
+    all.extend(lines.iter().copied());
+    all.push(lout);
+    let mut passed = Vec::new();
+    for (a, z) in [(&lin, first), (last, &lout)] {
+        for i in 1..n {
+            let s = i as f64 / n as f64;
+            passed.push(WireLine {
+                point: a.point + (z.point - a.point) * s,
+                dir: a.dir,
+            });
+        }
+    }
+    (all, passed)
+}
+
+/// The strip cuts of a block: every strip with a ruling in it, its rulings from the first
+/// to the last whose line crosses the block, offset by half the kerf; with the deepest any of its
+/// wire positions (the sweeps in and out included) enters the kept material, and why the
+/// block cannot be cut this way (`None`: it can).
+pub fn strip_cuts(
+    b: &Cuboid,
+    solid: &Solid,
+    probe: &Probe<'_>,
+    s: &PlanSettings,
+) -> (Vec<Cut>, f64, Option<String>) {
+    let mut cuts = Vec::new();
+    let mut deepest: f64 = 0.0;
+    let mut reason = None;
+    let step = s.tolerance;
+    for st in &solid.strips {
+        let meets = |r: &crate::solid::Ruling| {
+            let d = r.b - r.a;
+            let len = d.norm();
+            if len <= 0.0 {
+                return in_box(b, &r.a);
+            }
+            clip(b, &r.a, &(d / len)).is_some_and(|(s0, s1)| s1 > 0.0 && s0 < len && s1.min(len) - s0.max(0.0) > s.tolerance.min(len))
+        };
+        if !st.rulings.iter().any(meets) {
+            continue;
+        }
+        // the wire follows every ruling whose line crosses the block
+        let crosses = |r: &crate::solid::Ruling| clip(b, &r.a, &r.dir).is_some();
+        let Some(k0) = st.rulings.iter().position(crosses) else {
+            continue;
+        };
+        let k1 = st.rulings.iter().rposition(crosses).unwrap_or(k0);
+        // and one more on either side, whose line misses the block: the wire enters and
+        // leaves along the strip itself
+        let (k0, k1) = (k0.saturating_sub(1), (k1 + 1).min(st.rulings.len() - 1));
+        let lines: Vec<WireLine> = st.rulings[k0..=k1]
+            .iter()
+            .map(|r| WireLine {
+                point: (r.a + r.b) / 2.0 + r.normal * (s.kerf / 2.0),
+                dir: r.dir,
+            })
+            .collect();
+        let dirs: Vec<Vector3<f64>> = lines.iter().map(|l| l.dir).collect();
+        let Some(m) = mount(b, &dirs, &solid.axis) else {
+            reason.get_or_insert_with(|| {
+                format!(
+                    "strip {} of region {}: its rulings turn more than 60° from any one block axis",
+                    st.index + 1,
+                    st.region + 1
+                )
+            });
+            continue;
+        };
+        let (lines, passed) = with_leads(b, &m, &lines, s.lead, 8);
+        let mut deep: f64 = 0.0;
+        for l in lines.iter().chain(&passed) {
+            deep = deep.max(penetration(b, probe, l, step));
+        }
+        if deep > s.tolerance {
+            reason.get_or_insert_with(|| {
+                format!(
+                    "strip {} of region {}: extended as the wire it enters the kept material {:.3} deep",
+                    st.index + 1,
+                    st.region + 1,
+                    deep
+                )
+            });
+        }
+        deepest = deepest.max(deep);
+        cuts.push(Cut {
+            kind: CutKind::Strip {
+                region: st.region,
+                strip: st.index,
+            },
+            lines,
+            mount: m,
+        });
+    }
+    (cuts, deepest, reason)
+}
+
+/// The corners of the polyhedron `solid ∩ block`: the solid's vertices in the block, its
+/// edges' crossings of the block's faces, the block's edges' crossings of its faces and
+/// the block's corners inside it.
+pub fn kept_points(b: &Cuboid, solid: &Solid, probe: &Probe<'_>) -> Vec<Vector3<f64>> {
+    let mut pts = Vec::new();
+    let (lo, hi) = b.aabb();
+    let faces = solid_faces_in(solid, &Aabb { min: lo, max: hi });
+    for &f in &faces {
+        let t = solid.mesh.triangle(f);
+        for k in 0..3 {
+            let (p, q) = (t[k], t[(k + 1) % 3]);
+            let d = q - p;
+            let len = d.norm();
+            if len <= 0.0 {
+                continue;
+            }
+            if let Some((s0, s1)) = clip(b, &p, &(d / len)) {
+                let (a, c) = (s0.max(0.0), s1.min(len));
+                if c >= a {
+                    pts.push(p + d / len * a);
+                    pts.push(p + d / len * c);
+                }
+            }
+        }
+    }
+    let corners = b.corners();
+    for c in &corners {
+        if probe.inside(c) {
+            pts.push(*c);
+        }
+    }
+    // block edges against the faces
+    for i in 0..8 {
+        for j in (i + 1)..8 {
+            let (p, q) = (corners[i], corners[j]);
+            let (li, lj) = (b.to_local(&p), b.to_local(&q));
+            let differs = (0..3).filter(|&k| (li[k] - lj[k]).abs() > b.half[k]).count();
+            if differs != 1 {
+                continue;
+            }
+            for &f in &faces {
+                let [a, bb, c] = solid.mesh.triangle(f);
+                if let Some(x) = segment_triangle(&p, &q, &a, &bb, &c) {
+                    pts.push(x);
+                }
+            }
+        }
+    }
+    pts
+}
+
+fn solid_faces_in(solid: &Solid, b: &Aabb) -> Vec<usize> {
+    (0..solid.mesh.faces().len())
+        .filter(|&f| {
+            let t = solid.mesh.triangle(f);
+            let lo = t[0].inf(&t[1]).inf(&t[2]);
+            let hi = t[0].sup(&t[1]).sup(&t[2]);
+            (0..3).all(|k| lo[k] <= b.max[k] && hi[k] >= b.min[k])
+        })
+        .collect()
+}
+
+/// Where segment `pq` crosses triangle `abc`.
+fn segment_triangle(
+    p: &Vector3<f64>,
+    q: &Vector3<f64>,
+    a: &Vector3<f64>,
+    b: &Vector3<f64>,
+    c: &Vector3<f64>,
+) -> Option<Vector3<f64>> {
+    let d = q - p;
+    let (e1, e2) = (b - a, c - a);
+    let h = d.cross(&e2);
+    let det = e1.dot(&h);
+    if det.abs() < 1e-300 {
+        return None;
+    }
+    let s = p - a;
+    let u = s.dot(&h) / det;
+    let qv = s.cross(&e1);
+    let v = d.dot(&qv) / det;
+    let t = e2.dot(&qv) / det;
+    ((0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && (0.0..=1.0).contains(&t))
+        .then(|| p + d * t)
+}

@@ -1,0 +1,225 @@
+//! Regions: runs of consecutive sections whose loops keep their number and their corners,
+//! each a tube the piecewise ruled fit (eq. 4.1) approximates with rails along the axis and
+//! straight rulings in the section planes — a Polar-Annular-Mesh-like split by a height
+//! field along the axis (see the crate's front page for what it does not do).
+
+use geom::surface_spline::BSplineSurface;
+use nalgebra::{Vector2, Vector3};
+
+use crate::error::{Error, Result};
+use crate::fit::{fit_piecewise_ruled, GridSamples, RuledFitParams};
+use crate::sections::{at_share, length, max_curvature, Loop, Sections};
+
+/// A tube of the model: one loop in each of a run of consecutive sections.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tube {
+    /// Index of its first section.
+    pub first: usize,
+    /// Its loop in each section of the run.
+    pub loops: Vec<Loop>,
+}
+
+/// Splits the sections into tubes: a loop continues the tube of the previous section's
+/// loop nearest to it when both sections have as many loops, the nearest is mutual, and
+/// both loops have as many corners; otherwise it starts a tube.
+pub fn tubes(s: &Sections) -> Vec<Tube> {
+    let mut done: Vec<Tube> = Vec::new();
+    let mut open: Vec<Tube> = Vec::new();
+    for (k, here) in s.loops.iter().enumerate() {
+        let prev: Vec<Vector2<f64>> = open
+            .iter()
+            .map(|t| t.loops[t.loops.len() - 1].centroid())
+            .collect();
+        let cur: Vec<Vector2<f64>> = here.iter().map(Loop::centroid).collect();
+        let nearest = |p: &Vector2<f64>, set: &[Vector2<f64>]| {
+            (0..set.len()).min_by(|&a, &b| {
+                (set[a] - p)
+                    .norm()
+                    .total_cmp(&(set[b] - p).norm())
+                    .then(a.cmp(&b))
+            })
+        };
+        let mut next: Vec<Option<Tube>> = vec![None; here.len()];
+        let same_count = prev.len() == cur.len();
+        let mut taken = vec![false; open.len()];
+        if same_count {
+            for (i, c) in cur.iter().enumerate() {
+                let Some(j) = nearest(c, &prev) else { continue };
+                let mutual = nearest(&prev[j], &cur) == Some(i);
+                let last = &open[j].loops[open[j].loops.len() - 1];
+                if mutual && !taken[j] && last.corners.len() == here[i].corners.len() {
+                    taken[j] = true;
+                    let mut t = open[j].clone();
+                    t.loops.push(here[i].clone());
+                    next[i] = Some(t);
+                }
+            }
+        }
+        for (j, t) in open.into_iter().enumerate() {
+            if !taken[j] {
+                done.push(t);
+            }
+        }
+        open = next
+            .into_iter()
+            .enumerate()
+            .map(|(i, t)| {
+                t.unwrap_or_else(|| Tube {
+                    first: k,
+                    loops: vec![here[i].clone()],
+                })
+            })
+            .collect();
+    }
+    done.extend(open);
+    done.sort_by_key(|t| (t.first, t.loops.len()));
+    done
+}
+
+/// How finely to fit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitSettings {
+    /// Target largest distance of a region's samples from its ruled surface.
+    pub tolerance: f64,
+    /// Most strips around one loop.
+    pub max_strips: usize,
+    /// Samples per strip across (≥ 2).
+    pub samples_per_strip: usize,
+}
+
+/// A fitted region: a tube's piecewise ruled surface.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Region {
+    /// Index of its first section.
+    pub first: usize,
+    /// Its sections' offsets along the axis.
+    pub offsets: Vec<f64>,
+    /// The surface: `u` the offset along the axis, `v ∈ [0, strips]` around the loop (rails
+    /// at whole `v`; rail `strips` is rail 0).
+    pub surface: BSplineSurface,
+    /// Strips around.
+    pub strips: usize,
+    /// Strips per side (between corners).
+    pub side_strips: Vec<usize>,
+    /// The fit's sample distances: RMS and largest.
+    pub fit_rms: f64,
+    /// Largest.
+    pub fit_max: f64,
+    /// Control points per rail.
+    pub controls: usize,
+}
+
+impl Region {
+    /// Rail `j`'s point at offset `u` (`j` taken modulo the strips).
+    pub fn rail(&self, u: f64, j: usize) -> Vector3<f64> {
+        let (a, b) = (self.offsets[0], self.offsets[self.offsets.len() - 1]);
+        self.surface.eval(u.clamp(a, b), (j % self.strips) as f64)
+    }
+}
+
+/// Strips per side for a tube: a side of length `L` whose section bends at most by `κ`
+/// needs `L·√(κ / (8·tol))` strips for a chord to stay within `tol` of it (the sagitta
+/// `κ h² / 8`), at least one; scaled down together when they exceed `max`.
+pub fn side_strips(t: &Tube, tol: f64, max: usize) -> Vec<usize> {
+    let nsides = t.loops[0].sides().len();
+    let mut need = vec![1usize; nsides];
+    for l in &t.loops {
+        for (k, side) in l.sides().iter().enumerate() {
+            let n = length(side) * (max_curvature(side) / (8.0 * tol)).sqrt();
+            if n.is_finite() {
+                need[k] = need[k].max(n.ceil().min(max as f64) as usize);
+            }
+        }
+    }
+    let total: usize = need.iter().sum();
+    if total > max && max >= nsides {
+        let f = max as f64 / total as f64;
+        need = need.iter().map(|&n| ((n as f64 * f).floor() as usize).max(1)).collect();
+    }
+    need
+}
+
+/// The tube's samples on the fit's grid: `u` the sections' offsets, `v = j / k` around the
+/// loop (`k` samples per strip), each side's samples spread by arclength over its strips.
+fn grid(t: &Tube, s: &Sections, sides: &[usize], k: usize) -> GridSamples {
+    let u: Vec<f64> = (0..t.loops.len()).map(|i| s.offsets[t.first + i]).collect();
+    let total: usize = sides.iter().sum();
+    let v: Vec<f64> = (0..=total * k).map(|j| j as f64 / k as f64).collect();
+    let mut points = Vec::with_capacity(u.len() * v.len());
+    // which side and share each v falls on
+    let mut at: Vec<(usize, f64)> = Vec::with_capacity(v.len());
+    let mut start = 0usize;
+    for (side, &n) in sides.iter().enumerate() {
+        let first = if side == 0 { 0 } else { 1 };
+        for m in first..=n * k {
+            at.push((side, m as f64 / (n * k) as f64));
+        }
+        start += n;
+    }
+    debug_assert_eq!(start, total);
+    for &(side, f) in &at {
+        for (i, l) in t.loops.iter().enumerate() {
+            let _ = i;
+            let q = at_share(&l.sides()[side], f);
+            let p = s.frame.to_world(u[i], &q);
+            points.push([p.x, p.y, p.z]);
+        }
+    }
+    GridSamples { u, v, points }
+}
+
+/// Fits one tube: strips from the curvature, then control points per rail doubled from
+/// a quarter of the sections until the samples lie within the tolerance (or every
+/// section has its own); the closing rail is the mean of the first and last fitted rails,
+/// so the loop closes exactly.
+///
+/// # Errors
+/// [`Error::Fit`] when no fit can be made (too few sections for a cubic rail).
+pub fn fit_tube(index: usize, t: &Tube, s: &Sections, f: &FitSettings) -> Result<Region> {
+    let sides = side_strips(t, f.tolerance / 2.0, f.max_strips);
+    let strips: usize = sides.iter().sum();
+    let k = f.samples_per_strip.max(2);
+    let g = grid(t, s, &sides, k);
+    let nu = g.u.len();
+    let degree = 3.min(nu - 1).max(1);
+    let mut controls = (nu / 4).max(degree + 1).min(nu);
+    let fit = loop {
+        let fit = fit_piecewise_ruled(&g, &RuledFitParams { strips, degree, controls })
+            .map_err(|source| Error::Fit { region: index, source })?;
+        if fit.max_distance <= f.tolerance || controls >= nu {
+            break fit;
+        }
+        controls = (controls * 2).min(nu);
+    };
+    let surface = close_loop(&fit.surface, strips)?;
+    Ok(Region {
+        first: t.first,
+        offsets: g.u,
+        surface,
+        strips,
+        side_strips: sides,
+        fit_rms: fit.rms_distance,
+        fit_max: fit.max_distance,
+        controls,
+    })
+}
+
+/// The surface with its last rail (`v = strips`) and first rail replaced by their mean.
+fn close_loop(s: &BSplineSurface, strips: usize) -> Result<BSplineSurface> {
+    let (nc, nr) = s.grid_size();
+    debug_assert_eq!(nr, strips + 1);
+    let mut ctrl = s.control_points().to_vec();
+    for i in 0..nc {
+        let m = (ctrl[i * nr] + ctrl[i * nr + nr - 1]) / 2.0;
+        ctrl[i * nr] = m;
+        ctrl[i * nr + nr - 1] = m;
+    }
+    BSplineSurface::try_new(
+        s.degrees(),
+        s.knots_u().to_vec(),
+        s.knots_v().to_vec(),
+        (nc, nr),
+        ctrl,
+    )
+    .map_err(|e| Error::Model(e.to_string()))
+}
