@@ -18,6 +18,7 @@ use crate::facade_segmentation::FacadeSegmentation;
 use crate::fit_curves::FitCurves;
 use crate::hot_blade::HotBlade;
 use crate::pre_cut::PreCut;
+use crate::ruled_blocks::RuledBlocks;
 use crate::spec::{BladeSpec, BlockSpec, CuttingSpec, OutputSpec, SurfaceSpec, ToleranceSpec};
 use crate::spec::{CellSpec, Units, WireSpec};
 use crate::task::{Name, Visit, VisitType};
@@ -95,6 +96,8 @@ pub enum TaskSpec {
     PreCut(PreCut),
     /// A surface designed for the hot blade: design curves per block, their elastica.
     Design(Design),
+    /// A model rationalized by piecewise ruled strips, segmented into blocks a hot wire cuts.
+    RuledBlocks(RuledBlocks),
 }
 
 impl TaskSpec {
@@ -108,6 +111,7 @@ impl TaskSpec {
             Self::BlockSegmentation(t) => v.visit(t),
             Self::PreCut(t) => v.visit(t),
             Self::Design(t) => v.visit(t),
+            Self::RuledBlocks(t) => v.visit(t),
         }
     }
 
@@ -121,6 +125,7 @@ impl TaskSpec {
         v.visit::<BlockSegmentation>();
         v.visit::<PreCut>();
         v.visit::<Design>();
+        v.visit::<RuledBlocks>();
     }
 
     /// Name as written in job files.

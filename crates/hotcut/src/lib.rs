@@ -56,12 +56,16 @@ pub mod progress;
 pub mod report;
 /// The robot cell of the blade-posing tasks: `cell:` checked and resolved, the program planned.
 pub mod robot_cell;
+/// The `RuledBlocks` task: a model rationalized by ruled strips, then cut into blocks.
+pub mod ruled_blocks;
 /// Running a job and writing its outputs as a whole.
 pub mod run;
 /// Job-file types shared by every task (units, surface, block, blade, outputs, ...).
 pub mod spec;
 /// The `Task` trait, output declarations, and visiting a job's task.
 pub mod task;
+/// The job's `wire` as the wire-cutting tasks' machine: path settings, controller, checks.
+pub mod wire_machine;
 
 pub use error::{HotcutError, JobError, Result};
 pub use progress::{NoProgress, Progress};

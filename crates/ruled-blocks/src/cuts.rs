@@ -145,7 +145,9 @@ pub fn penetration(b: &Cuboid, probe: &Probe<'_>, l: &WireLine, step: f64) -> f6
             continue;
         }
         let local = b.to_local(&p);
-        let face = (0..3).map(|k| b.half[k] - local[k].abs()).fold(f64::INFINITY, f64::min);
+        let face = (0..3)
+            .map(|k| b.half[k] - local[k].abs())
+            .fold(f64::INFINITY, f64::min);
         let depth = d.min(face);
         if depth > deepest && probe.inside(&p) {
             deepest = depth;
@@ -186,7 +188,13 @@ pub fn mount(b: &Cuboid, dirs: &[Vector3<f64>], prog: &Vector3<f64>) -> Option<M
 /// `lines` with the lead-in before and the lead-out after them (see
 /// [`crate::machine::leads`]), and the positions every move into and out of them passes
 /// (`n` between), for the check.
-pub fn with_leads(b: &Cuboid, m: &Mount, lines: &[WireLine], lead: f64, n: usize) -> (Vec<WireLine>, Vec<WireLine>) {
+pub fn with_leads(
+    b: &Cuboid,
+    m: &Mount,
+    lines: &[WireLine],
+    lead: f64,
+    n: usize,
+) -> (Vec<WireLine>, Vec<WireLine>) {
     let (Some(first), Some(last)) = (lines.first(), lines.last()) else {
         return (Vec::new(), Vec::new());
     };
@@ -229,7 +237,9 @@ pub fn strip_cuts(
             if len <= 0.0 {
                 return in_box(b, &r.a);
             }
-            clip(b, &r.a, &(d / len)).is_some_and(|(s0, s1)| s1 > 0.0 && s0 < len && s1.min(len) - s0.max(0.0) > s.tolerance.min(len))
+            clip(b, &r.a, &(d / len)).is_some_and(|(s0, s1)| {
+                s1 > 0.0 && s0 < len && s1.min(len) - s0.max(0.0) > s.tolerance.min(len)
+            })
         };
         if !st.rulings.iter().any(meets) {
             continue;
@@ -325,7 +335,9 @@ pub fn kept_points(b: &Cuboid, solid: &Solid, probe: &Probe<'_>) -> Vec<Vector3<
         for j in (i + 1)..8 {
             let (p, q) = (corners[i], corners[j]);
             let (li, lj) = (b.to_local(&p), b.to_local(&q));
-            let differs = (0..3).filter(|&k| (li[k] - lj[k]).abs() > b.half[k]).count();
+            let differs = (0..3)
+                .filter(|&k| (li[k] - lj[k]).abs() > b.half[k])
+                .count();
             if differs != 1 {
                 continue;
             }

@@ -64,7 +64,13 @@ pub struct HullCut {
 
 /// Cuts block `b` to the hull of `points` (the corners of what it keeps); `kerf` moves each
 /// wire half of it outward; `lead` is the lead-in and lead-out.
-pub fn hull_cut(b: &Cuboid, points: &[Vector3<f64>], probe: &Probe<'_>, kerf: f64, lead: f64) -> HullCut {
+pub fn hull_cut(
+    b: &Cuboid,
+    points: &[Vector3<f64>],
+    probe: &Probe<'_>,
+    kerf: f64,
+    lead: f64,
+) -> HullCut {
     let scale = b.half.norm();
     let lattice = lattice(b);
     let inside: Vec<bool> = lattice.iter().map(|p| probe.inside(p)).collect();
@@ -78,7 +84,12 @@ pub fn hull_cut(b: &Cuboid, points: &[Vector3<f64>], probe: &Probe<'_>, kerf: f6
         .collect();
     let mut chosen: Vec<Plane> = Vec::new();
     while !remaining.is_empty() && chosen.len() < MAX_PLANES {
-        let count = |pl: &Plane| remaining.iter().filter(|&&i| outside(&lattice[i], pl)).count();
+        let count = |pl: &Plane| {
+            remaining
+                .iter()
+                .filter(|&&i| outside(&lattice[i], pl))
+                .count()
+        };
         let Some(best) = planes
             .iter()
             .filter(|pl| !chosen.contains(pl))
@@ -133,7 +144,10 @@ pub fn lattice(b: &Cuboid) -> Vec<Vector3<f64>> {
 fn plane_cut(b: &Cuboid, pl: &Plane, kerf: f64, lead: f64) -> Option<Cut> {
     let ax = |k: usize| b.axes().column(k).into_owned();
     let k = (0..3).min_by(|&i, &j| {
-        pl.n.dot(&ax(i)).abs().total_cmp(&pl.n.dot(&ax(j)).abs()).then(i.cmp(&j))
+        pl.n.dot(&ax(i))
+            .abs()
+            .total_cmp(&pl.n.dot(&ax(j)).abs())
+            .then(i.cmp(&j))
     })?;
     let w = (ax(k) - pl.n * pl.n.dot(&ax(k))).normalize();
     let m = pl.n.cross(&w);
@@ -143,7 +157,9 @@ fn plane_cut(b: &Cuboid, pl: &Plane, kerf: f64, lead: f64) -> Option<Cut> {
         .corners()
         .iter()
         .map(|c| m.dot(&(c - q0)))
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, z), s| (a.min(s), z.max(s)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, z), s| {
+            (a.min(s), z.max(s))
+        });
     let steps = 4;
     let lines: Vec<WireLine> = (0..=steps)
         .map(|i| WireLine {

@@ -29,26 +29,26 @@
 //! # Ok::<(), ruled_blocks::fit::FitError>(())
 //! ```
 
+/// Cuttability per block and the strip cuts.
+pub mod cuts;
 /// Errors.
 pub mod error;
 /// Eq. (4.1): the least-squares piecewise ruled surface through gridded samples.
 pub mod fit;
-/// The model as a closed solid (height fields closed into slabs).
-pub mod model;
-/// Sections of the model: loops with their corners.
-pub mod sections;
-/// Regions (tubes of loops) and their ruled fits.
-pub mod regions;
-/// The rationalized solid, its strips' rulings, inside and depth queries.
-pub mod solid;
-/// Cuttability per block and the strip cuts.
-pub mod cuts;
 /// Blocks cut to their hulls: planar cuts, added material.
 pub mod hull;
-/// The whole chain: rationalize, segment, plan the cuts.
-pub mod plan;
 /// Wire paths of the cuts on a 4-axis hot-wire machine, the block mounted in its frame.
 pub mod machine;
+/// The model as a closed solid (height fields closed into slabs).
+pub mod model;
+/// The whole chain: rationalize, segment, plan the cuts.
+pub mod plan;
+/// Regions (tubes of loops) and their ruled fits.
+pub mod regions;
+/// Sections of the model: loops with their corners.
+pub mod sections;
+/// The rationalized solid, its strips' rulings, inside and depth queries.
+pub mod solid;
 
 pub use error::{Error, Result};
-pub use plan::{run, Deviation, Params, Progress, RuledBlocks, Strategy};
+pub use plan::{run, Deviation, Params, Progress, RegionResult, RuledBlocks};

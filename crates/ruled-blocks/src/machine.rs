@@ -58,7 +58,12 @@ impl MachineFrame {
 /// The lead-in and lead-out: the first and last wire positions moved along the cut until
 /// the wire's part between the block's sides lies `lead` before the block's start, and
 /// `lead` after its end.
-pub fn leads(f: &MachineFrame, first: &WireLine, last: &WireLine, lead: f64) -> (WireLine, WireLine) {
+pub fn leads(
+    f: &MachineFrame,
+    first: &WireLine,
+    last: &WireLine,
+    lead: f64,
+) -> (WireLine, WireLine) {
     let w = f.half[1];
     let along_at = |l: &WireLine, s: f64| f.local(&f.at_across(l, s * w))[0];
     let reach_in = along_at(first, -1.0).max(along_at(first, 1.0)) + lead;
@@ -116,7 +121,13 @@ pub fn axis_name((k, s): (usize, f64)) -> String {
 }
 
 /// How to mount the block, for a program's header.
-pub fn mount_lines(block: usize, m: &Mount, b: &Cuboid, mm_per_unit: f64, tower_distance: f64) -> Vec<String> {
+pub fn mount_lines(
+    block: usize,
+    m: &Mount,
+    b: &Cuboid,
+    mm_per_unit: f64,
+    tower_distance: f64,
+) -> Vec<String> {
     let f = MachineFrame::new(b, m);
     let mm = |v: f64| format!("{:.1}", v * mm_per_unit);
     vec![

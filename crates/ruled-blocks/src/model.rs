@@ -27,7 +27,9 @@ use crate::error::{Error, Result};
 /// ```
 pub fn slab(hf: &HeightField, nx: usize, ny: usize, base: f64) -> Result<TriMesh> {
     if nx == 0 || ny == 0 {
-        return Err(Error::Model("a height field needs at least one cell per side".into()));
+        return Err(Error::Model(
+            "a height field needs at least one cell per side".into(),
+        ));
     }
     let (x, y) = (hf.x_range(), hf.y_range());
     let at = |i: usize, j: usize| {

@@ -13,16 +13,6 @@ use crate::regions::{fit_tube, tubes, FitSettings, Region};
 use crate::sections::section;
 use crate::solid::{build, End, Probe, Solid};
 
-/// Which comes first.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Strategy {
-    /// Rationalize the whole model, then segment it into blocks (the thesis' choice).
-    #[default]
-    WholeModel,
-    /// Segment the model into blocks, then rationalize each block's part on its own.
-    PerBlock,
-}
-
 /// What to do.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Params {
@@ -40,8 +30,6 @@ pub struct Params {
     pub kerf: f64,
     /// Lead-in and lead-out of every cut beyond its block (≥ 0).
     pub lead: f64,
-    /// Which comes first.
-    pub strategy: Strategy,
 }
 
 /// Deviation of the rationalized surface from the model, at the model's samples.
@@ -86,6 +74,8 @@ pub struct RuledBlocks {
     pub deviation: Deviation,
     /// The model's bounding-box diagonal.
     pub diagonal: f64,
+    /// Sections, the refined ones included.
+    pub sections: usize,
     /// The block segmentation of the rationalized solid.
     pub segmentation: Segmentation,
     /// Each block's plan, in the segmentation's order.
@@ -107,7 +97,10 @@ impl Params {
             out.push(("tolerance", format!("{} must be positive", self.tolerance)));
         }
         if !(1..=1000).contains(&self.max_strips) {
-            out.push(("max_strips", format!("{} must be in 1..=1000", self.max_strips)));
+            out.push((
+                "max_strips",
+                format!("{} must be in 1..=1000", self.max_strips),
+            ));
         }
         if !(self.lead.is_finite() && self.lead >= 0.0) {
             out.push(("lead", format!("{} must be ≥ 0", self.lead)));
@@ -115,7 +108,12 @@ impl Params {
         if !(self.kerf.is_finite() && self.kerf >= 0.0) {
             out.push(("kerf", format!("{} must be ≥ 0", self.kerf)));
         }
-        let small = self.blocks.block_size.iter().copied().fold(f64::INFINITY, f64::min);
+        let small = self
+            .blocks
+            .block_size
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
         if small <= self.tolerance {
             out.push((
                 "block_size",
@@ -149,7 +147,11 @@ pub fn run(
         .validate(true)
         .map_err(|e| Error::Model(e.to_string()))?;
     let axis = Vector3::from(params.axis).normalize();
-    progress(Progress { phase: "sections", done: 0, total: 1 });
+    progress(Progress {
+        phase: "sections",
+        done: 0,
+        total: 1,
+    });
     let s = section(model, axis, params.sections, 1e-3, params.tolerance)?;
     let ts = tubes(&s);
     if ts.is_empty() {
@@ -162,7 +164,11 @@ pub fn run(
     };
     let mut regions = Vec::with_capacity(ts.len());
     for (i, t) in ts.iter().enumerate() {
-        progress(Progress { phase: "fit", done: i, total: ts.len() });
+        progress(Progress {
+            phase: "fit",
+            done: i,
+            total: ts.len(),
+        });
         if t.loops.len() < 2 {
             continue;
         }
@@ -182,9 +188,17 @@ pub fn run(
         .zip(per_region)
         .map(|(region, deviation)| RegionResult { region, deviation })
         .collect();
-    progress(Progress { phase: "blocks", done: 0, total: 1 });
+    progress(Progress {
+        phase: "blocks",
+        done: 0,
+        total: 1,
+    });
     let segmentation = blocks::segment(&solid.mesh, &params.blocks, &|p| {
-        progress(Progress { phase: "blocks", done: p.iteration, total: params.blocks.max_iterations as usize });
+        progress(Progress {
+            phase: "blocks",
+            done: p.iteration,
+            total: params.blocks.max_iterations as usize,
+        });
     })
     .map_err(|e| Error::Blocks(e.to_string()))?;
     let plan = PlanSettings {
@@ -197,6 +211,7 @@ pub fn run(
     Ok(RuledBlocks {
         regions,
         diagonal: model.aabb().size().norm(),
+        sections: s.offsets.len(),
         deviation,
         segmentation,
         blocks,
@@ -213,7 +228,11 @@ fn plan_blocks(
     progress: &(dyn Fn(Progress) + Sync),
 ) -> Vec<BlockPlan> {
     let one = |(i, b): (usize, &Cuboid)| {
-        progress(Progress { phase: "cuts", done: i, total: cuboids.len() });
+        progress(Progress {
+            phase: "cuts",
+            done: i,
+            total: cuboids.len(),
+        });
         plan_block(b, solid, probe, s)
     };
     #[cfg(feature = "parallel")]
@@ -231,9 +250,11 @@ fn plan_blocks(
 pub fn plan_block(b: &Cuboid, solid: &Solid, probe: &Probe<'_>, s: &PlanSettings) -> BlockPlan {
     let (cuts, deepest, reason) = strip_cuts(b, solid, probe, s);
     if reason.is_none() {
-        let kept = crate::hull::lattice(b).iter().filter(|p| probe.inside(p)).count();
-        let cell = 8.0 * b.half.x * b.half.y * b.half.z
-            / crate::cuts::LATTICE.pow(3) as f64;
+        let kept = crate::hull::lattice(b)
+            .iter()
+            .filter(|p| probe.inside(p))
+            .count();
+        let cell = 8.0 * b.half.x * b.half.y * b.half.z / crate::cuts::LATTICE.pow(3) as f64;
         return BlockPlan {
             block: *b,
             cuttable: true,
@@ -285,7 +306,11 @@ fn region_ends(r: &Region, s: &crate::sections::Sections, model: &TriMesh) -> (E
             .iter()
             .filter(|p| {
                 let q = s.frame.to_plane(p);
-                sign * (d.dot(p) - u) > 0.0 && q.x >= lo.x && q.x <= hi.x && q.y >= lo.y && q.y <= hi.y
+                sign * (d.dot(p) - u) > 0.0
+                    && q.x >= lo.x
+                    && q.x <= hi.x
+                    && q.y >= lo.y
+                    && q.y <= hi.y
             })
             .collect();
         if beyond.is_empty() {
@@ -296,7 +321,10 @@ fn region_ends(r: &Region, s: &crate::sections::Sections, model: &TriMesh) -> (E
             .map(|p| sign * d.dot(p))
             .fold(f64::NEG_INFINITY, f64::max)
             * sign;
-        let mean = beyond.iter().map(|p| s.frame.to_plane(p)).sum::<nalgebra::Vector2<f64>>()
+        let mean = beyond
+            .iter()
+            .map(|p| s.frame.to_plane(p))
+            .sum::<nalgebra::Vector2<f64>>()
             / beyond.len() as f64;
         Some(s.frame.to_world(far, &mean))
     };
@@ -316,12 +344,19 @@ fn region_ends(r: &Region, s: &crate::sections::Sections, model: &TriMesh) -> (E
 
 /// Distances from the model's vertices and face centroids to the rationalized surface:
 /// whole and per region (a sample counts for the region of its closest face).
-fn deviation(model: &TriMesh, solid: &Solid, probe: &Probe<'_>, n: usize) -> (Deviation, Vec<Deviation>) {
+fn deviation(
+    model: &TriMesh,
+    solid: &Solid,
+    probe: &Probe<'_>,
+    n: usize,
+) -> (Deviation, Vec<Deviation>) {
     let samples = model_samples(model);
     let mut whole = (0usize, 0.0f64, 0.0f64);
     let mut per = vec![(0usize, 0.0f64, 0.0f64); n];
     for p in &samples {
-        let Some((f, d)) = probe.closest(p) else { continue };
+        let Some((f, d)) = probe.closest(p) else {
+            continue;
+        };
         for acc in [&mut whole, &mut per[solid.face_region[f]]] {
             acc.0 += 1;
             acc.1 += d * d;

@@ -134,7 +134,10 @@ pub fn side_strips(t: &Tube, tol: f64, max: usize) -> Vec<usize> {
     let total: usize = need.iter().sum();
     if total > max && max >= nsides {
         let f = max as f64 / total as f64;
-        need = need.iter().map(|&n| ((n as f64 * f).floor() as usize).max(1)).collect();
+        need = need
+            .iter()
+            .map(|&n| ((n as f64 * f).floor() as usize).max(1))
+            .collect();
     }
     need
 }
@@ -184,8 +187,18 @@ pub fn fit_tube(index: usize, t: &Tube, s: &Sections, f: &FitSettings) -> Result
     let degree = 3.min(nu - 1).max(1);
     let mut controls = (nu / 4).max(degree + 1).min(nu);
     let fit = loop {
-        let fit = fit_piecewise_ruled(&g, &RuledFitParams { strips, degree, controls })
-            .map_err(|source| Error::Fit { region: index, source })?;
+        let fit = fit_piecewise_ruled(
+            &g,
+            &RuledFitParams {
+                strips,
+                degree,
+                controls,
+            },
+        )
+        .map_err(|source| Error::Fit {
+            region: index,
+            source,
+        })?;
         if fit.max_distance <= f.tolerance || controls >= nu {
             break fit;
         }

@@ -97,7 +97,9 @@ pub fn section(
         });
     let len = hi - lo;
     if !(len > 0.0) || n < 2 {
-        return Err(Error::Model("the model has no extent along the axis".into()));
+        return Err(Error::Model(
+            "the model has no extent along the axis".into(),
+        ));
     }
     let scale = mesh.aabb().size().norm();
     let (a, b) = (lo + end_gap * len, hi - end_gap * len);
@@ -158,7 +160,11 @@ fn loops_at(mesh: &TriMesh, frame: &PlaneFrame, t: f64, eps: f64) -> Result<Vec<
                 "the section at {t} along the axis is open: the mesh must be closed"
             )));
         }
-        let pts: Vec<Vector2<f64>> = chain.points(mesh).iter().map(|p| frame.to_plane(p)).collect();
+        let pts: Vec<Vector2<f64>> = chain
+            .points(mesh)
+            .iter()
+            .map(|p| frame.to_plane(p))
+            .collect();
         if let Some(l) = make_loop(pts, eps) {
             here.push(l);
         }
@@ -173,7 +179,10 @@ fn loops_at(mesh: &TriMesh, frame: &PlaneFrame, t: f64, eps: f64) -> Result<Vec<
 pub fn make_loop(raw: Vec<Vector2<f64>>, eps: f64) -> Option<Loop> {
     let mut pts: Vec<Vector2<f64>> = Vec::with_capacity(raw.len());
     for p in raw {
-        if pts.last().is_none_or(|q: &Vector2<f64>| (p - q).norm() > eps) {
+        if pts
+            .last()
+            .is_none_or(|q: &Vector2<f64>| (p - q).norm() > eps)
+        {
             pts.push(p);
         }
     }

@@ -146,7 +146,10 @@ fn strip_rulings(
     axis: Vector3<f64>,
 ) -> Strip {
     let n = rows[0].len();
-    let (a, b) = (|row: usize| rows[row][j], |row: usize| rows[row][(j + 1) % n]);
+    let (a, b) = (
+        |row: usize| rows[row][j],
+        |row: usize| rows[row][(j + 1) % n],
+    );
     let last = rows.len() - 1;
     let unit = |w: Vector3<f64>, fallback: Vector3<f64>| {
         let l = w.norm();
@@ -242,7 +245,9 @@ impl<'m> Probe<'m> {
 
     /// The distance from `p` to the surface.
     pub fn distance(&self, p: &Vector3<f64>) -> f64 {
-        self.index.closest_point(p).map_or(f64::INFINITY, |c| c.distance)
+        self.index
+            .closest_point(p)
+            .map_or(f64::INFINITY, |c| c.distance)
     }
 
     /// The closest face to `p` and its distance.
@@ -277,7 +282,13 @@ impl<'m> Probe<'m> {
 
 /// Whether the ray from `p` along axis `k` crosses triangle `abc` (half-open edge rules so
 /// that a ray through a shared edge counts once).
-fn crosses(p: &Vector3<f64>, k: usize, a: &Vector3<f64>, b: &Vector3<f64>, c: &Vector3<f64>) -> bool {
+fn crosses(
+    p: &Vector3<f64>,
+    k: usize,
+    a: &Vector3<f64>,
+    b: &Vector3<f64>,
+    c: &Vector3<f64>,
+) -> bool {
     let (i, j) = ((k + 1) % 3, (k + 2) % 3);
     // 2D point-in-triangle in the plane of the other two axes, by edge functions with a
     // tie rule

@@ -2,7 +2,7 @@
 
 mod common;
 
-use ruled_blocks::{run, Params, Strategy};
+use ruled_blocks::{run, Params};
 
 fn params(tol: f64, block: f64) -> Params {
     Params {
@@ -19,7 +19,6 @@ fn params(tol: f64, block: f64) -> Params {
         },
         kerf: 0.0,
         lead: 20.0,
-        strategy: Strategy::WholeModel,
     }
 }
 
@@ -29,12 +28,27 @@ fn half_sphere_report() {
     let r = run(&m, &params(5.0, 600.0), &|_| {}).unwrap();
     eprintln!("regions {}", r.regions.len());
     for g in &r.regions {
-        eprintln!("  strips {} sides {:?} controls {} fit max {:.3} dev {:?}", g.region.strips, g.region.side_strips, g.region.controls, g.region.fit_max, g.deviation);
+        eprintln!(
+            "  strips {} sides {:?} controls {} fit max {:.3} dev {:?}",
+            g.region.strips, g.region.side_strips, g.region.controls, g.region.fit_max, g.deviation
+        );
     }
     eprintln!("dev {:?} diag {}", r.deviation, r.diagonal);
-    eprintln!("solid volume {} model {}", r.solid.mesh.volume(), m.volume());
+    eprintln!(
+        "solid volume {} model {}",
+        r.solid.mesh.volume(),
+        m.volume()
+    );
     for b in &r.blocks {
-        eprintln!("block cuttable {} cuts {} deepest {:.3} added {:.0} depth {:.2} reason {:?}", b.cuttable, b.cuts.len(), b.deepest, b.added_volume, b.added_depth, b.reason);
+        eprintln!(
+            "block cuttable {} cuts {} deepest {:.3} added {:.0} depth {:.2} reason {:?}",
+            b.cuttable,
+            b.cuts.len(),
+            b.deepest,
+            b.added_volume,
+            b.added_depth,
+            b.reason
+        );
     }
 }
 
@@ -44,11 +58,32 @@ fn torus_report() {
     let r = run(&m, &params(10.0, 550.0), &|_| {}).unwrap();
     eprintln!("regions {}", r.regions.len());
     for g in &r.regions {
-        eprintln!("  first {} n {} strips {} sides {:?} controls {} fit max {:.3} dev {:?}", g.region.first, g.region.offsets.len(), g.region.strips, g.region.side_strips, g.region.controls, g.region.fit_max, g.deviation);
+        eprintln!(
+            "  first {} n {} strips {} sides {:?} controls {} fit max {:.3} dev {:?}",
+            g.region.first,
+            g.region.offsets.len(),
+            g.region.strips,
+            g.region.side_strips,
+            g.region.controls,
+            g.region.fit_max,
+            g.deviation
+        );
     }
     eprintln!("dev {:?} diag {}", r.deviation, r.diagonal);
-    eprintln!("solid volume {} model {}", r.solid.mesh.volume(), m.volume());
+    eprintln!(
+        "solid volume {} model {}",
+        r.solid.mesh.volume(),
+        m.volume()
+    );
     for b in &r.blocks {
-        eprintln!("block cuttable {} cuts {} deepest {:.3} added {:.0} depth {:.2} reason {:?}", b.cuttable, b.cuts.len(), b.deepest, b.added_volume, b.added_depth, b.reason);
+        eprintln!(
+            "block cuttable {} cuts {} deepest {:.3} added {:.0} depth {:.2} reason {:?}",
+            b.cuttable,
+            b.cuts.len(),
+            b.deepest,
+            b.added_volume,
+            b.added_depth,
+            b.reason
+        );
     }
 }

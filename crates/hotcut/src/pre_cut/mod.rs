@@ -14,8 +14,6 @@
 //! # Ok(()) }
 //! ```
 
-/// The job's `wire` as path settings and a controller dialect.
-mod machine;
 /// Its files: `precut.json`, `sections.svg`, `precut.obj`, `model.gltf`, wire G-code with
 /// its preview, and CSV.
 mod outputs;
@@ -34,7 +32,8 @@ pub struct PreCutFile<'a> {
 /// The drawing of one wire program: both towers' paths, the block, the travel.
 mod preview;
 
-pub use machine::{machine, wire_params};
+use crate::wire_machine as machine;
+pub use crate::wire_machine::{machine, wire_params};
 
 use geom::surface::Surface;
 use schemars::JsonSchema;

@@ -473,6 +473,9 @@ pub mod defaults {
     pub const WIRE_PREHEAT_S: f64 = 2.0;
     /// `LongestElastica(precision)`, mm.
     pub const PRECISION_MM: f64 = 1.0;
+    /// `RuledBlocks(floor)`: depth of the slab under a height field below its lowest
+    /// point, mm.
+    pub const RULED_FLOOR_MM: f64 = 50.0;
 }
 
 /// The fit constraint of a blade that keeps its length: the default of the tasks that

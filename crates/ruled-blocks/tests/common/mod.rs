@@ -13,7 +13,11 @@ pub fn half_sphere(r: f64, n: usize) -> TriMesh {
         let phi = PI / 2.0 * i as f64 / rings as f64;
         for k in 0..n {
             let th = 2.0 * PI * k as f64 / n as f64;
-            v.push(Vector3::new(r * phi.sin() * th.cos(), r * phi.sin() * th.sin(), r * phi.cos()));
+            v.push(Vector3::new(
+                r * phi.sin() * th.cos(),
+                r * phi.sin() * th.sin(),
+                r * phi.cos(),
+            ));
         }
     }
     let centre = v.len() as u32;

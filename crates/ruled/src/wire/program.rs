@@ -256,11 +256,7 @@ pub fn program_labelled(
     if cuts.is_empty() {
         return Err(PreCutError::InvalidParameter {
             name: "steps",
-            reason: format!(
-                "{}: no move of {} mm or more",
-                labels.cut,
-                min_move_mm(dec)
-            ),
+            reason: format!("{}: no move of {} mm or more", labels.cut, min_move_mm(dec)),
         });
     }
     let end = [at[0], written(safe), at[2], written(safe)];

@@ -103,7 +103,7 @@ pub fn pointer(name: &str) -> String {
 /// The checks of `wire` that need neither the block nor the units: signs, the kerf given
 /// once, a `Custom` profile's axes. The dialect's own checks ([`Machine::check`]) and the
 /// machine's fit come with the block, in the task's estimate.
-pub(super) fn check(job: &JobFields<'_>, w: &WireSpec, errors: &mut Vec<JobError>) {
+pub fn check(job: &JobFields<'_>, w: &WireSpec, errors: &mut Vec<JobError>) {
     let positive = |v: Option<f64>| v.is_none_or(|v| v.is_finite() && v > 0.0);
     let mut bad = |field: &str, message: String| {
         errors.push(job.error(&format!("/wire/{field}"), message));

@@ -1,0 +1,386 @@
+//! The `RuledBlocks` task (thesis ch. 4): a model that is not ruled, larger than one
+//! block, rationalized as a whole by piecewise ruled strips, segmented into blocks (ch. 3)
+//! and each block cut by a 4-axis hot wire, by [`ruled_blocks::run`](::ruled_blocks::run).
+//!
+//! ```no_run
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let job = hotcut::load::load_job(std::path::Path::new("jobs/ruled-half-sphere.ron"))
+//!     .map_err(|errors| format!("{errors:?}"))?;
+//! let outcome = hotcut::run::run_job(&job, std::path::Path::new("out"), &hotcut::NoProgress)?;
+//! println!("{:?}", outcome.files);
+//! # Ok(()) }
+//! ```
+
+/// Its files: the rationalized model (OBJ, glTF), the drawing, G-code per cut.
+mod outputs;
+/// What `report.html` shows of it.
+mod page;
+/// `report.json`.
+mod report;
+
+use geom::surface::Surface;
+use geom::TriMesh;
+use ruled::wire::{Machine, Program, WireParams};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::context::{Context, JobFields};
+use crate::error::{JobError, Result};
+use crate::limits::Estimate;
+use crate::progress::Progress;
+use crate::spec::{defaults, OutputKind, SurfaceSpec};
+use crate::task::{Output, Task};
+pub use report::RuledBlocksReport;
+
+/// Segmentation versus rationalization (thesis ch. 4): the model — a closed mesh, or a
+/// height field closed into a slab — rationalized as a whole by piecewise ruled strips
+/// within `tolerance.max`, its regions cut along `cutting.direction`; the rationalized
+/// model segmented into blocks of `block.size` (ch. 3, the job's `seed`); each block cut
+/// strip by strip by the `wire`, or to its convex hull where a strip's wire would enter
+/// what the block keeps. Write `RuledBlocks(sections: 40)`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RuledBlocks {
+    /// Sections along `cutting.direction` (4–2000): the rails are fitted through them;
+    /// more are added where the model's sections split or merge. Default: 40.
+    #[serde(default = "default_sections")]
+    #[schemars(range(min = 4, max = 2000))]
+    pub sections: usize,
+    /// Most ruled strips around one section (1–1000). Default: 64.
+    #[serde(default = "default_max_strips")]
+    #[schemars(range(min = 1, max = 1000))]
+    pub max_strips: usize,
+    /// Height fields: depth of the slab's floor below the field's lowest point (> 0).
+    /// Default: 50 mm.
+    #[serde(default)]
+    pub floor: Option<f64>,
+    /// Height fields: cells of the grid the slab is meshed on, per side (2–2000).
+    /// Default: 96.
+    #[serde(default = "default_grid")]
+    #[schemars(range(min = 2, max = 2000))]
+    pub grid: usize,
+    /// Block segmentation runs (seeds derived from the job's `seed`). Default: 1.
+    #[serde(default = "default_restarts")]
+    #[schemars(range(min = 1, max = 64))]
+    pub restarts: u32,
+    /// Block segmentation iteration cap per run. Default: 50.
+    #[serde(default = "default_iterations")]
+    #[schemars(range(min = 1, max = 10000))]
+    pub max_iterations: u32,
+    /// Block segmentation sample spacing, a fraction of the shortest block edge in
+    /// (0, 0.25]. Default: 0.1.
+    #[serde(default = "default_spacing")]
+    #[schemars(extend("exclusiveMinimum" = 0), range(max = 0.25))]
+    pub sample_spacing: f64,
+}
+
+fn default_sections() -> usize {
+    40
+}
+fn default_max_strips() -> usize {
+    64
+}
+fn default_grid() -> usize {
+    96
+}
+fn default_restarts() -> u32 {
+    1
+}
+fn default_iterations() -> u32 {
+    50
+}
+fn default_spacing() -> f64 {
+    0.1
+}
+
+/// A run's parameters.
+#[derive(Debug, Clone)]
+pub struct RuledBlocksParams {
+    /// The algorithm's.
+    pub plan: ::ruled_blocks::Params,
+    /// The wire's path settings.
+    pub wire: Option<WireParams>,
+    /// The controller.
+    pub machine: Option<Machine>,
+    /// The slab's floor depth (height fields).
+    pub floor: f64,
+    /// The slab's grid cells per side (height fields).
+    pub grid: usize,
+}
+
+/// A finished run.
+#[derive(Debug, Clone)]
+pub struct RuledBlocksRun {
+    /// The model as a closed solid.
+    pub model: TriMesh,
+    /// The algorithm's result.
+    pub result: ::ruled_blocks::RuledBlocks,
+    /// Per block, per cut: its program (empty without a wire).
+    pub programs: Vec<Vec<Program>>,
+    /// `tolerance.max`.
+    pub tolerance: f64,
+}
+
+const PTR: &str = "/task/RuledBlocks";
+
+impl RuledBlocks {
+    fn plan_params(
+        &self,
+        job: &Context,
+        block_size: [f64; 3],
+        kerf: f64,
+        lead: f64,
+    ) -> ::ruled_blocks::Params {
+        ::ruled_blocks::Params {
+            axis: job.direction.into(),
+            sections: self.sections,
+            tolerance: job.tolerance.max,
+            max_strips: self.max_strips,
+            blocks: blocks::Params {
+                block_size,
+                restarts: self.restarts,
+                seed: job.seed,
+                max_iterations: self.max_iterations,
+                sample_spacing: self.sample_spacing,
+                ..blocks::Params::default()
+            },
+            kerf,
+            lead,
+        }
+    }
+}
+
+/// The job's model as a closed solid: a mesh as it is, a height field closed into a slab
+/// `floor` below its lowest point.
+fn model(job: &Context, p: &RuledBlocksParams) -> Result<TriMesh> {
+    let (grid, floor) = (p.grid, p.floor);
+    match job.surface(RuledBlocks::NAME)? {
+        Surface::Mesh(m) => Ok(m.clone()),
+        Surface::HeightField(hf) => {
+            let top = hf
+                .to_mesh(grid, grid)
+                .map_err(job.geom_err("the height field"))?;
+            let low = top
+                .vertices()
+                .iter()
+                .map(|p| p.z)
+                .fold(f64::INFINITY, f64::min);
+            ::ruled_blocks::model::slab(hf, grid, grid, low - floor)
+                .map_err(|e| job.fail(e.to_string()))
+        }
+        _ => Err(job.fail("RuledBlocks needs a closed mesh (`Mesh(path: ..)`) or a height field")),
+    }
+}
+
+impl Task for RuledBlocks {
+    const NAME: &'static str = "RuledBlocks";
+    const REPORT_SCHEMA: &'static str = "ruled-blocks-report.schema.json";
+    const OUTPUTS: &'static [Output<Self>] = &[
+        Output::new(OutputKind::Svg, outputs::svg),
+        Output::new(OutputKind::Obj, outputs::obj),
+        Output::new(OutputKind::Gltf, outputs::gltf),
+        Output::new(OutputKind::GCode, outputs::gcode),
+    ];
+    type Params = RuledBlocksParams;
+    type Run = RuledBlocksRun;
+    type Report = RuledBlocksReport;
+
+    fn check(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+        job.require_surface_and_block(
+            Self::NAME,
+            " (a closed mesh or a height field)",
+            "model is",
+            errors,
+        );
+        match job.surface {
+            Some(SurfaceSpec::Mesh { .. } | SurfaceSpec::HeightField { .. }) | None => {}
+            Some(_) => errors.push(job.error(
+                "/surface",
+                "RuledBlocks needs a closed triangle mesh (`Mesh(path: ..)`) or a height field",
+            )),
+        }
+        if job.block.is_some_and(|b| b.origin.is_some()) {
+            errors.push(job.error(
+                "/block/origin",
+                "RuledBlocks places its blocks itself: leave origin out",
+            ));
+        }
+        if let Some(w) = job.wire {
+            crate::wire_machine::check(job, w, errors);
+        }
+        if job.outputs.iter().any(|o| o.kind() == OutputKind::GCode) && job.wire.is_none() {
+            errors.push(job.error(
+                "/wire",
+                "GCode needs the machine: `wire: Wire(machine: LinuxCncXyuv, tower_distance: .., kerf: ..)`",
+            ));
+        }
+        if self.floor.is_some_and(|f| !(f.is_finite() && f > 0.0)) {
+            errors.push(job.error(&format!("{PTR}/floor"), "floor must be positive"));
+        }
+        if !(self.sample_spacing > 0.0 && self.sample_spacing <= 0.25) {
+            errors.push(job.error(
+                &format!("{PTR}/sample_spacing"),
+                "sample_spacing must be in (0, 0.25]",
+            ));
+        }
+    }
+
+    fn params(&self, job: &Context) -> Result<RuledBlocksParams> {
+        let b = job.block(Self::NAME)?;
+        let wire = crate::wire_machine::wire_params(job).map(|w| WireParams { steps: 2, ..w });
+        let (kerf, lead) = wire
+            .as_ref()
+            .map_or((0.0, 0.0), |w| (w.kerf_at(w.speed), w.lead));
+        Ok(RuledBlocksParams {
+            plan: self.plan_params(job, [b.size.0, b.size.1, b.size.2], kerf, lead),
+            wire,
+            machine: crate::wire_machine::machine(job),
+            floor: self
+                .floor
+                .unwrap_or(defaults::RULED_FLOOR_MM * job.per_mm()),
+            grid: self.grid,
+        })
+    }
+
+    fn estimate(p: &RuledBlocksParams, job: &Context) -> Estimate {
+        let faces = match &job.surface {
+            Some(Surface::Mesh(m)) => m.faces().len() as f64,
+            Some(_) => 4.0 * (p.grid * p.grid) as f64,
+            None => 0.0,
+        };
+        let strips = p.plan.max_strips as f64;
+        let sections = p.plan.sections as f64 + 2.0 * ::ruled_blocks::sections::MAX_REFINED as f64;
+        // slicing every face per section, the rationalized solid's faces, its blocks
+        let solid_faces = 2.0 * strips * sections * solid_rows();
+        let work = faces * sections + solid_faces * 200.0;
+        let mut e = Estimate::new(
+            faces * 200.0 + solid_faces * 300.0 + 5e7,
+            work,
+            "/task/RuledBlocks/sections",
+            "lower the task's sections or max_strips, or coarsen the model",
+        );
+        for problem in p.plan.problems() {
+            let pointer = match problem.0 {
+                "tolerance" => "/tolerance/max".to_string(),
+                "block_size" => "/block/size".to_string(),
+                "axis" => "/cutting/direction".to_string(),
+                "kerf" | "lead" => format!("/wire/{}", problem.0),
+                f => format!("{PTR}/{f}"),
+            };
+            e.checks.push((pointer, problem.1));
+        }
+        if let Some(Surface::Mesh(m)) = &job.surface {
+            let t = m.topology();
+            if t.boundary_edges > 0 {
+                e.checks.push((
+                    "/surface/Mesh/path".into(),
+                    format!(
+                        "RuledBlocks cuts a solid, but the mesh is open: {} boundary edges in {} loops; close it in the modeller",
+                        t.boundary_edges, t.boundary_loops
+                    ),
+                ));
+            } else if let Err(err) = m.validate(true) {
+                e.checks
+                    .push(("/surface/Mesh/path".into(), err.to_string()));
+            }
+        }
+        if let (Some(w), Some(m), Some(b)) = (&p.wire, &p.machine, &job.block) {
+            let widest = b.size.0.max(b.size.1).max(b.size.2);
+            if let Err(err) = m.check() {
+                e.checks.push(("/wire/machine".into(), err.to_string()));
+            }
+            if let Err(err) = ruled::wire::check(widest, w) {
+                e.checks.push((
+                    crate::wire_machine::pointer(err_name(&err)),
+                    err.to_string(),
+                ));
+            }
+        }
+        e
+    }
+
+    fn run(
+        params: &RuledBlocksParams,
+        job: &Context,
+        progress: &dyn Progress,
+    ) -> Result<RuledBlocksRun> {
+        let model = model(job, params)?;
+        progress.start("ruled blocks", 0);
+        let result = ::ruled_blocks::run(&model, &params.plan, &|p: ::ruled_blocks::Progress| {
+            progress.message(&format!("{} {}/{}", p.phase, p.done, p.total));
+        })
+        .map_err(|e| job.fail(e.to_string()))?;
+        progress.finish();
+        let programs = outputs::programs(&result, params, job)?;
+        Ok(RuledBlocksRun {
+            model,
+            result,
+            programs,
+            tolerance: params.plan.tolerance,
+        })
+    }
+
+    fn nothing_to_cut(run: &RuledBlocksRun) -> Option<String> {
+        let r = &run.result;
+        if r.deviation.max > run.tolerance {
+            let worst = r
+                .regions
+                .iter()
+                .enumerate()
+                .max_by(|a, b| a.1.deviation.max.total_cmp(&b.1.deviation.max))
+                .map_or(0, |(i, _)| i + 1);
+            return Some(format!(
+                "no piecewise ruled surface of these settings comes within the tolerance: deviation max {:.6} (RMS {:.6}, worst in region {worst}) > tolerance.max {}; add sections or max_strips, or raise tolerance.max",
+                r.deviation.max, r.deviation.rms, run.tolerance
+            ));
+        }
+        if r.blocks.iter().all(|b| b.cuts.is_empty()) {
+            return Some("no block has a cut".into());
+        }
+        None
+    }
+
+    fn report(
+        params: &RuledBlocksParams,
+        run: &RuledBlocksRun,
+        job: &Context,
+    ) -> RuledBlocksReport {
+        report::make(params, run, job)
+    }
+
+    fn page(r: &RuledBlocksReport, job: &Context) -> export::html::Body {
+        page::body(r, job)
+    }
+
+    fn summary(r: &RuledBlocksReport, job: &Context) -> String {
+        format!(
+            "{} (RuledBlocks): {} region(s), deviation RMS {:.4} max {:.4} {} ({:.3e} / {:.3e} of the diagonal, tolerance {}); {} block(s), {} cut by their strips, {} to their hulls (added {:.4e} {}³); {} cut(s)",
+            job.name,
+            r.regions.len(),
+            r.deviation.rms,
+            r.deviation.max,
+            job.units.symbol(),
+            r.deviation.rms_fraction,
+            r.deviation.max_fraction,
+            r.tolerance,
+            r.blocks.len(),
+            r.totals.cuttable,
+            r.blocks.len() - r.totals.cuttable,
+            r.totals.added_volume,
+            job.units.symbol(),
+            r.totals.cuts
+        )
+    }
+}
+
+/// Rows of the rationalized solid per section (its tessellation).
+fn solid_rows() -> f64 {
+    ::ruled_blocks::solid::ROWS_PER_GAP as f64
+}
+
+fn err_name(e: &ruled::PreCutError) -> &'static str {
+    match e {
+        ruled::PreCutError::InvalidParameter { name, .. } => name,
+        _ => "machine",
+    }
+}

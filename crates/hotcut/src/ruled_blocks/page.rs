@@ -1,0 +1,134 @@
+//! What `report.html` shows of a `RuledBlocks` run: the verdict, the deviation against the
+//! tolerance, a row per region and per block (cuttable, added volume, cuts).
+
+use export::html::{Body, Constraint, Row, Table, Verdict};
+
+use super::RuledBlocksReport;
+use crate::context::Context;
+use crate::output::page::{len, num};
+
+/// The page's body.
+pub fn body(r: &RuledBlocksReport, job: &Context) -> Body {
+    let u = job.units.symbol();
+    let d = &r.deviation;
+    let hulls = r.blocks.len() - r.totals.cuttable;
+    let ok = d.within_tolerance;
+    let text = if ok {
+        format!(
+            "Rationalized within the tolerance ({} regions, deviation max {}) and cut in {} block(s): {} by their ruled strips, {} to their convex hulls, adding {} {u}³.",
+            r.regions.len(),
+            len(d.max, job),
+            r.blocks.len(),
+            r.totals.cuttable,
+            hulls,
+            num(r.totals.added_volume)
+        )
+    } else {
+        format!(
+            "No piecewise ruled surface of these settings comes within the tolerance: deviation max {} > {}; add sections or max_strips, or raise tolerance.max.",
+            len(d.max, job),
+            len(r.tolerance, job)
+        )
+    };
+    let counts = vec![
+        ("regions".to_string(), r.regions.len().to_string()),
+        ("sections".into(), r.sections.to_string()),
+        ("blocks".into(), r.blocks.len().to_string()),
+        ("cut by their strips".into(), r.totals.cuttable.to_string()),
+        ("cuts".into(), r.totals.cuts.to_string()),
+        (
+            "cutting time".into(),
+            format!("{} min", num(r.totals.cut_minutes)),
+        ),
+    ];
+    let constraints = vec![
+        Constraint {
+            name: "deviation from the model (max)".into(),
+            limit: format!("≤ {}", len(r.tolerance, job)),
+            measured: format!(
+                "{} ({:.3e} of the diagonal)",
+                len(d.max, job),
+                d.max_fraction
+            ),
+            ok,
+        },
+        Constraint {
+            name: "deviation from the model (RMS)".into(),
+            limit: "reported".into(),
+            measured: format!(
+                "{} ({:.3e} of the diagonal)",
+                len(d.rms, job),
+                d.rms_fraction
+            ),
+            ok: true,
+        },
+    ];
+    let regions = Table {
+        title: "Regions".into(),
+        columns: ["region", "sections", "strips", "controls", "RMS", "max"]
+            .map(String::from)
+            .to_vec(),
+        rows: r
+            .regions
+            .iter()
+            .map(|g| {
+                Row::new(
+                    vec![
+                        g.index.to_string(),
+                        g.sections.to_string(),
+                        g.strips.to_string(),
+                        g.controls.to_string(),
+                        len(g.deviation.rms, job),
+                        len(g.deviation.max, job),
+                    ],
+                    if g.deviation.within_tolerance {
+                        vec![]
+                    } else {
+                        vec!["beyond the tolerance"]
+                    },
+                )
+            })
+            .collect(),
+    };
+    let blocks = Table {
+        title: "Blocks".into(),
+        columns: [
+            "block",
+            "cuttable",
+            "cuts",
+            &format!("added volume ({u}³)"),
+            "added depth",
+            "why not",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: r
+            .blocks
+            .iter()
+            .map(|b| {
+                Row::new(
+                    vec![
+                        b.index.to_string(),
+                        if b.cuttable { "yes" } else { "hull" }.into(),
+                        b.cuts.len().to_string(),
+                        num(b.added_volume),
+                        len(b.added_depth, job),
+                        b.reason.clone().unwrap_or_default(),
+                    ],
+                    if b.cuttable {
+                        vec![]
+                    } else {
+                        vec!["cut to its convex hull"]
+                    },
+                )
+            })
+            .collect(),
+    };
+    Body {
+        verdict: Verdict { ok, text },
+        counts,
+        constraints,
+        notes: Vec::new(),
+        tables: vec![regions, blocks],
+    }
+}

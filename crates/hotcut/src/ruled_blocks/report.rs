@@ -1,0 +1,294 @@
+//! `report.json` of a `RuledBlocks` run (schema `schemas/ruled-blocks-report.schema.json`).
+
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use super::{outputs, RuledBlocksParams, RuledBlocksRun};
+use crate::context::Context;
+use crate::spec::Units;
+
+/// The report of a `RuledBlocks` run.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RuledBlocksReport {
+    /// Job name.
+    pub job: String,
+    /// Task name, `RuledBlocks`.
+    pub task: String,
+    /// Length unit of every length.
+    pub units: Units,
+    /// The hotcut version that wrote it.
+    pub hotcut_version: String,
+    /// The model as a closed solid (a height field closed into its slab).
+    pub model: Solid,
+    /// The rationalized model.
+    pub rationalized: Solid,
+    /// The box of what `model.gltf` shows.
+    pub model_bounds: Option<crate::report::ModelBounds>,
+    /// `tolerance.max`: the largest deviation allowed.
+    pub tolerance: f64,
+    /// The axis the sections are normal to (`cutting.direction`, unit).
+    pub axis: [f64; 3],
+    /// Sections, the refined ones included.
+    pub sections: usize,
+    /// Deviation of the rationalized surface from the model, at the model's vertices and
+    /// face centroids (the distance from each to the rationalized surface).
+    pub deviation: DeviationReport,
+    /// The regions, each a piecewise ruled surface.
+    pub regions: Vec<RegionReport>,
+    /// The block segmentation of the rationalized model (ch. 3).
+    pub segmentation: SegmentationSummary,
+    /// Every block.
+    pub blocks: Vec<BlockReport>,
+    /// Sums over the blocks.
+    pub totals: Totals,
+}
+
+/// A closed solid's size.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Solid {
+    /// Vertices.
+    pub vertices: usize,
+    /// Triangles.
+    pub faces: usize,
+    /// Enclosed volume.
+    pub volume: f64,
+    /// Bounding-box diagonal.
+    pub diagonal: f64,
+}
+
+/// A deviation, in job units and as a share of the model's bounding-box diagonal.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DeviationReport {
+    /// Samples measured.
+    pub samples: usize,
+    /// Root mean square distance.
+    pub rms: f64,
+    /// Largest distance.
+    pub max: f64,
+    /// `rms` / diagonal.
+    pub rms_fraction: f64,
+    /// `max` / diagonal.
+    pub max_fraction: f64,
+    /// Whether `max` ≤ the tolerance.
+    pub within_tolerance: bool,
+}
+
+impl DeviationReport {
+    fn of(d: &::ruled_blocks::Deviation, diagonal: f64, tolerance: f64) -> Self {
+        Self {
+            samples: d.samples,
+            rms: d.rms,
+            max: d.max,
+            rms_fraction: d.rms / diagonal,
+            max_fraction: d.max / diagonal,
+            within_tolerance: d.max <= tolerance,
+        }
+    }
+}
+
+/// One region.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RegionReport {
+    /// Index (1-based, as drawings and programs name it).
+    pub index: usize,
+    /// Its sections.
+    pub sections: usize,
+    /// Offset of its first and last section along the axis.
+    pub along: (f64, f64),
+    /// Ruled strips around it.
+    pub strips: usize,
+    /// Strips per side (between the model's sharp edges).
+    pub side_strips: Vec<usize>,
+    /// Control points per rail.
+    pub controls: usize,
+    /// The fit's RMS and largest distance at its samples (eq. 4.1).
+    pub fit: (f64, f64),
+    /// Deviation of the model samples closest to it.
+    pub deviation: DeviationReport,
+}
+
+/// The block segmentation in brief (`blocks` has every block).
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SegmentationSummary {
+    /// Blocks of the initial grid.
+    pub initial_blocks: usize,
+    /// Blocks at the end.
+    pub final_blocks: usize,
+    /// ⌈volume / block volume⌉.
+    pub lower_bound: usize,
+    /// The job's seed.
+    pub seed: u64,
+}
+
+/// One block.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BlockReport {
+    /// Index (1-based).
+    pub index: usize,
+    /// Centre, rotation `[w, x, y, z]` (block axes to model axes) and edge lengths; the
+    /// block's axes `x`, `y`, `z` are the ones the programs' mounting lines name.
+    pub placement: blocks::Placement,
+    /// Whether its strips cut it (else: its convex hull).
+    pub cuttable: bool,
+    /// Why not.
+    pub reason: Option<String>,
+    /// Deepest a strip's wire would enter what it keeps.
+    pub deepest: f64,
+    /// Volume of the rationalized model in it (lattice estimate).
+    pub kept_volume: f64,
+    /// Material its hull adds beyond the rationalized model (lattice estimate; 0 when its
+    /// strips cut it).
+    pub added_volume: f64,
+    /// Largest depth of that material.
+    pub added_depth: f64,
+    /// Its cuts, in order.
+    pub cuts: Vec<CutReport>,
+}
+
+/// One cut.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CutReport {
+    /// `Strip` (a ruled strip of `region`) or `Plane` (a face of the block's hull).
+    pub kind: String,
+    /// The strip's region (1-based).
+    pub region: Option<usize>,
+    /// The strip (1-based around the region).
+    pub strip: Option<usize>,
+    /// The block's axes along the cut, towards tower B and up (`+x`, `-z`, …).
+    pub mount: [String; 3],
+    /// Wire positions, the lead-in and lead-out included.
+    pub positions: usize,
+    /// Its program, when G-code is written.
+    pub program: Option<String>,
+    /// The faster tower's path while cutting, mm (0 without a program).
+    pub cut_length_mm: f64,
+    /// Cutting time at the set speed, minutes (0 without a program).
+    pub cut_minutes: f64,
+}
+
+/// Sums.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Totals {
+    /// Blocks their strips cut.
+    pub cuttable: usize,
+    /// Cuts.
+    pub cuts: usize,
+    /// Material added by hulls.
+    pub added_volume: f64,
+    /// Largest added depth.
+    pub added_depth: f64,
+    /// Cutting minutes.
+    pub cut_minutes: f64,
+}
+
+/// The report of a run.
+pub fn make(p: &RuledBlocksParams, run: &RuledBlocksRun, job: &Context) -> RuledBlocksReport {
+    let r = &run.result;
+    let tol = p.plan.tolerance;
+    let diag = r.diagonal;
+    let solid = |m: &geom::TriMesh| Solid {
+        vertices: m.vertices().len(),
+        faces: m.faces().len(),
+        volume: m.volume(),
+        diagonal: m.aabb().size().norm(),
+    };
+    let regions = r
+        .regions
+        .iter()
+        .enumerate()
+        .map(|(i, g)| RegionReport {
+            index: i + 1,
+            sections: g.region.offsets.len(),
+            along: (
+                g.region.offsets[0],
+                g.region.offsets[g.region.offsets.len() - 1],
+            ),
+            strips: g.region.strips,
+            side_strips: g.region.side_strips.clone(),
+            controls: g.region.controls,
+            fit: (g.region.fit_rms, g.region.fit_max),
+            deviation: DeviationReport::of(&g.deviation, diag, tol),
+        })
+        .collect();
+    let blocks: Vec<BlockReport> = r
+        .blocks
+        .iter()
+        .enumerate()
+        .map(|(i, b)| BlockReport {
+            index: i + 1,
+            placement: blocks::Placement::of(&b.block),
+            cuttable: b.cuttable,
+            reason: b.reason.clone(),
+            deepest: b.deepest,
+            kept_volume: b.kept_volume,
+            added_volume: b.added_volume,
+            added_depth: b.added_depth,
+            cuts: b
+                .cuts
+                .iter()
+                .enumerate()
+                .map(|(k, c)| {
+                    let prog = run.programs.get(i).and_then(|v| v.get(k));
+                    let (region, strip) = match c.kind {
+                        ::ruled_blocks::cuts::CutKind::Strip { region, strip } => {
+                            (Some(region + 1), Some(strip + 1))
+                        }
+                        ::ruled_blocks::cuts::CutKind::Plane => (None, None),
+                    };
+                    CutReport {
+                        kind: if region.is_some() { "Strip" } else { "Plane" }.into(),
+                        region,
+                        strip,
+                        mount: [c.mount.along, c.mount.across, c.mount.up]
+                            .map(::ruled_blocks::machine::axis_name),
+                        positions: c.lines.len(),
+                        program: prog.map(|_| outputs::program_file(i, k)),
+                        cut_length_mm: prog.map_or(0.0, |p| p.summary.cut_length_mm),
+                        cut_minutes: prog.map_or(0.0, |p| p.summary.cut_minutes),
+                    }
+                })
+                .collect(),
+        })
+        .collect();
+    let totals = Totals {
+        cuttable: blocks.iter().filter(|b| b.cuttable).count(),
+        cuts: blocks.iter().map(|b| b.cuts.len()).sum(),
+        added_volume: blocks.iter().map(|b| b.added_volume).sum(),
+        added_depth: blocks.iter().map(|b| b.added_depth).fold(0.0, f64::max),
+        cut_minutes: blocks
+            .iter()
+            .flat_map(|b| &b.cuts)
+            .map(|c| c.cut_minutes)
+            .sum(),
+    };
+    RuledBlocksReport {
+        job: job.name.clone(),
+        task: "RuledBlocks".into(),
+        units: job.units,
+        hotcut_version: crate::report::VERSION.into(),
+        model: solid(&run.model),
+        rationalized: solid(&r.solid.mesh),
+        model_bounds: crate::report::ModelBounds::of(outputs::scene(run)),
+        tolerance: tol,
+        axis: r.solid.axis.into(),
+        sections: r.sections,
+        deviation: DeviationReport::of(&r.deviation, diag, tol),
+        regions,
+        segmentation: SegmentationSummary {
+            initial_blocks: r.segmentation.initial_blocks,
+            final_blocks: r.segmentation.final_blocks,
+            lower_bound: r.segmentation.lower_bound,
+            seed: r.segmentation.seed,
+        },
+        blocks,
+        totals,
+    }
+}
