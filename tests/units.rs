@@ -171,6 +171,9 @@ fn with_defaults(job: &Job) -> Job {
             t.speed.get_or_insert(d::BLADE_SPEED_MM_PER_S * u);
             t.approach.get_or_insert(d::APPROACH_MM * u);
         }
+        TaskSpec::RuledBlocks(r) => {
+            r.floor.get_or_insert(d::RULED_FLOOR_MM * u);
+        }
         _ => {}
     }
     j
@@ -285,6 +288,7 @@ fn convert(job: &Job, base: &Path, units: Units, f: f64, dir: &Path) -> Job {
                 .as_ref()
                 .map(|p| scale_file(&base.join(p), f, dir).display().to_string());
         }
+        TaskSpec::RuledBlocks(r) => r.floor = r.floor.map(|v| v * f),
         // no lengths: sample counts, fractions of the block, angles
         TaskSpec::Analyze(_) | TaskSpec::BlockSegmentation(_) | TaskSpec::PreCut(_) => {}
     }

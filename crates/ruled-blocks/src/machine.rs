@@ -139,7 +139,7 @@ pub fn mount_lines(
             axis_name(m.up)
         ),
         format!(
-            "block axes as in report.json; {} x {} x {} mm along x across x up",
+            "block {} x {} x {} mm (along, across, up)",
             mm(2.0 * f.half[0]),
             mm(2.0 * f.half[1]),
             mm(2.0 * f.half[2])

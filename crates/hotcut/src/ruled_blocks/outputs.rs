@@ -195,15 +195,23 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
     }
     let (lo, hi) = export::svg::bounds(pts.into_iter());
     let (w, h) = (760.0, 620.0);
-    let vp = Viewport::fit(lo, hi, (30.0, 60.0, w - 60.0, h - 130.0));
+    let vp = Viewport::fit(lo, hi, (30.0, 80.0, w - 60.0, h - 150.0));
     let mut doc = SvgDoc::new(w, h);
     doc.text(
         (10.0, 18.0),
         13.0,
         "#000",
         &format!(
-            "{} · {} region(s) of ruled strips and {} block(s), seen along the axis; deviation max {:.4} {}",
-            done.job.name,
+            "{} · ruled strips and blocks, seen along the axis",
+            done.job.name
+        ),
+    );
+    doc.text(
+        (10.0, 34.0),
+        11.0,
+        "#000",
+        &format!(
+            "{} region(s), {} block(s); deviation max {:.4} {}",
             r.regions.len(),
             r.blocks.len(),
             r.deviation.max,
@@ -259,7 +267,7 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
         "block cut by its strips",
     ));
     legend.push(Legend::new(Mark::Line, "#d02020", "block cut to its hull"));
-    doc.legend((10.0, 30.0), w - 20.0, &legend);
+    doc.legend((10.0, 44.0), w - 20.0, &legend);
     doc.scale_bar(&vp, (30.0, h - 30.0), w - 60.0, done.job.units.symbol());
     doc.axes_key((w - 80.0, h - 20.0), "u", "v");
     files.add("blocks.svg", |buf| doc.write(buf))
