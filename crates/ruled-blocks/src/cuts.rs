@@ -17,7 +17,7 @@ pub const MIN_WIRE_COS: f64 = 0.5;
 /// Most planar cuts of a block cut to its hull.
 pub const MAX_PLANES: usize = 16;
 /// Lattice points per block edge for the hull's added material.
-pub const LATTICE: usize = 20;
+pub const LATTICE: usize = 16;
 
 /// A wire position: a line through `point` along the unit `dir` (model coordinates).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -82,7 +82,8 @@ pub struct BlockPlan {
     pub cuttable: bool,
     /// Why it is not, when it is not.
     pub reason: Option<String>,
-    /// Deepest that a strip's wire would enter the kept material (0 when none does).
+    /// How deep a strip's wire would enter the kept material, where it first goes beyond
+    /// the tolerance (0 when none does).
     pub deepest: f64,
     /// The cuts.
     pub cuts: Vec<Cut>,
@@ -128,32 +129,43 @@ pub fn clip(b: &Cuboid, p: &Vector3<f64>, d: &Vector3<f64>) -> Option<(f64, f64)
     (s1 > s0).then_some((s0, s1))
 }
 
-/// How deep the wire line enters the kept material (the solid inside the block): the
-/// largest over points every `step` along its part in the block of the depth below the
-/// solid's surface, counted only where the point is inside the solid and farther than
-/// the depth from the block's faces; 0 when it never enters.
-pub fn penetration(b: &Cuboid, probe: &Probe<'_>, l: &WireLine, step: f64) -> f64 {
+/// Whether the wire line enters the kept material (the solid inside the block) deeper than
+/// `tol`: the depth of the first point found deeper (below the solid's surface and from the
+/// block's faces), else 0. The line's part in the block is walked by sphere tracing on the
+/// distance to the solid's surface `d`: a point outside stays more than `tol` away from
+/// any depth beyond `tol` for `d + tol` further on; within `tol` of the surface the walk
+/// goes on by `max(tol − d, tol / 2)`; a point farther than `tol` is tested for inside.
+pub fn penetration(b: &Cuboid, probe: &Probe<'_>, l: &WireLine, tol: f64) -> f64 {
     let Some((s0, s1)) = clip(b, &l.point, &l.dir) else {
         return 0.0;
     };
-    let n = (((s1 - s0) / step).ceil() as usize).clamp(1, 400);
-    let mut deepest: f64 = 0.0;
-    for i in 0..=n {
-        let p = l.point + l.dir * (s0 + (s1 - s0) * i as f64 / n as f64);
+    let mut s = s0;
+    // every step is at least tol / 2: the walk ends
+    let most = (2.0 * (s1 - s0) / tol).ceil() as usize + 2;
+    for _ in 0..most {
+        if s > s1 {
+            break;
+        }
+        let p = l.point + l.dir * s;
         let d = probe.distance(&p);
-        if d <= deepest.max(step / 4.0) {
-            continue;
-        }
-        let local = b.to_local(&p);
-        let face = (0..3)
-            .map(|k| b.half[k] - local[k].abs())
-            .fold(f64::INFINITY, f64::min);
-        let depth = d.min(face);
-        if depth > deepest && probe.inside(&p) {
-            deepest = depth;
-        }
+        let step = if d <= tol {
+            (tol - d).max(tol / 2.0)
+        } else if probe.inside(&p) {
+            let local = b.to_local(&p);
+            let face = (0..3)
+                .map(|k| b.half[k] - local[k].abs())
+                .fold(f64::INFINITY, f64::min);
+            let depth = d.min(face);
+            if depth > tol {
+                return depth;
+            }
+            tol / 2.0
+        } else {
+            d + tol
+        };
+        s += step;
     }
-    deepest
+    0.0
 }
 
 /// The mount for a cut whose wire directions are `dirs` and which progresses along `prog`:
@@ -216,6 +228,29 @@ pub fn with_leads(
     (all, passed)
 }
 
+/// Least move of a wire between two positions, a share of the model's diagonal (the unit
+/// frame's length): closer positions are one (a program would skip the move).
+pub const MIN_MOVE: f64 = 1e-4;
+
+/// `lines` without the positions that move the wire less than [`MIN_MOVE`] from the last
+/// one kept (measured at the wire's point and `reach` along it, both ways).
+pub fn distinct(lines: &[WireLine], reach: f64) -> Vec<WireLine> {
+    let mut out: Vec<WireLine> = Vec::with_capacity(lines.len());
+    for l in lines {
+        let moved = out.last().is_none_or(|k: &WireLine| {
+            [-reach, 0.0, reach]
+                .iter()
+                .map(|&s| ((l.point + l.dir * s) - (k.point + k.dir * s)).norm())
+                .fold(0.0, f64::max)
+                >= MIN_MOVE
+        });
+        if moved {
+            out.push(*l);
+        }
+    }
+    out
+}
+
 /// The strip cuts of a block: every strip with a ruling in it, its rulings from the first
 /// to the last whose line crosses the block, offset by half the kerf; with the deepest any of its
 /// wire positions (the sweeps in and out included) enters the kept material, and why the
@@ -229,7 +264,6 @@ pub fn strip_cuts(
     let mut cuts = Vec::new();
     let mut deepest: f64 = 0.0;
     let mut reason = None;
-    let step = s.tolerance;
     for st in &solid.strips {
         let meets = |r: &crate::solid::Ruling| {
             let d = r.b - r.a;
@@ -271,22 +305,29 @@ pub fn strip_cuts(
             });
             continue;
         };
+        let lines = distinct(&lines, b.half.norm());
         let (lines, passed) = with_leads(b, &m, &lines, s.lead, 8);
         let mut deep: f64 = 0.0;
         for l in lines.iter().chain(&passed) {
-            deep = deep.max(penetration(b, probe, l, step));
+            deep = penetration(b, probe, l, s.tolerance);
+            if deep > 0.0 {
+                break;
+            }
         }
         if deep > s.tolerance {
             reason.get_or_insert_with(|| {
                 format!(
-                    "strip {} of region {}: extended as the wire it enters the kept material {:.3} deep",
+                    "strip {} of region {}: extended as the wire it enters the kept material deeper than the tolerance",
                     st.index + 1,
-                    st.region + 1,
-                    deep
+                    st.region + 1
                 )
             });
         }
         deepest = deepest.max(deep);
+        if reason.is_some() {
+            // the block goes to its hull: its strips' cuts are not needed
+            break;
+        }
         cuts.push(Cut {
             kind: CutKind::Strip {
                 region: st.region,

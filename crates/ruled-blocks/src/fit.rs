@@ -303,6 +303,19 @@ pub fn fit_piecewise_ruled(
     samples: &GridSamples,
     params: &RuledFitParams,
 ) -> Result<RuledFit, FitError> {
+    let (surface, residuals) = fit_surface(samples, params)?;
+    Ok(measure(samples, surface, residuals))
+}
+
+/// The least-squares surface of [`fit_piecewise_ruled`] and each sample's residual,
+/// without the closest-point distances (the costly part).
+///
+/// # Errors
+/// As [`fit_piecewise_ruled`].
+pub fn fit_surface(
+    samples: &GridSamples,
+    params: &RuledFitParams,
+) -> Result<(BSplineSurface, Vec<f64>), FitError> {
     check(samples, params)?;
     let (nu, nv) = (samples.u.len(), samples.v.len());
     let (u0, u1) = (samples.u[0], samples.u[nu - 1]);
@@ -351,6 +364,12 @@ pub fn fit_piecewise_ruled(
             })
         })
         .collect();
+    Ok((surface, residuals))
+}
+
+/// The fit of `surface` to `samples` with their `residuals`: each sample's distance to the
+/// surface, RMS and largest of both.
+pub fn measure(samples: &GridSamples, surface: BSplineSurface, residuals: Vec<f64>) -> RuledFit {
     let distances: Vec<f64> = samples
         .v
         .iter()
@@ -360,7 +379,7 @@ pub fn fit_piecewise_ruled(
         .collect();
     let (rms, max_residual) = rms_and_max(&residuals);
     let (rms_distance, max_distance) = rms_and_max(&distances);
-    Ok(RuledFit {
+    RuledFit {
         surface,
         residuals,
         rms,
@@ -368,7 +387,7 @@ pub fn fit_piecewise_ruled(
         distances,
         rms_distance,
         max_distance,
-    })
+    }
 }
 
 /// Root mean square and largest of `values` (not empty).

@@ -29,6 +29,8 @@
 //! # Ok::<(), ruled_blocks::fit::FitError>(())
 //! ```
 
+/// The two strategies side by side: seams' gaps and ruling jumps, deviation, material, cuts.
+pub mod compare;
 /// Cuttability per block and the strip cuts.
 pub mod cuts;
 /// Errors.
@@ -41,6 +43,8 @@ pub mod hull;
 pub mod machine;
 /// The model as a closed solid (height fields closed into slabs).
 pub mod model;
+/// The per-block strategy: segment first, then rationalize each block on its own.
+pub mod per_block;
 /// The whole chain: rationalize, segment, plan the cuts.
 pub mod plan;
 /// Regions (tubes of loops) and their ruled fits.
@@ -49,6 +53,8 @@ pub mod regions;
 pub mod sections;
 /// The rationalized solid, its strips' rulings, inside and depth queries.
 pub mod solid;
+/// The unit frame every step computes in.
+pub mod unit;
 
 pub use error::{Error, Result};
-pub use plan::{run, Deviation, Params, Progress, RegionResult, RuledBlocks};
+pub use plan::{run, Deviation, Params, Progress, RegionResult, RuledBlocks, SegmentationSummary};

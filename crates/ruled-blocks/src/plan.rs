@@ -52,6 +52,31 @@ pub struct RegionResult {
     pub deviation: Deviation,
 }
 
+/// A block segmentation in brief.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SegmentationSummary {
+    /// Blocks of the initial grid.
+    pub initial_blocks: usize,
+    /// Blocks at the end.
+    pub final_blocks: usize,
+    /// ⌈volume / block volume⌉.
+    pub lower_bound: usize,
+    /// The seed.
+    pub seed: u64,
+}
+
+impl SegmentationSummary {
+    /// The summary of `s`.
+    pub fn of(s: &Segmentation) -> Self {
+        Self {
+            initial_blocks: s.initial_blocks,
+            final_blocks: s.final_blocks,
+            lower_bound: s.lower_bound,
+            seed: s.seed,
+        }
+    }
+}
+
 /// Progress: a phase and how far into it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Progress {
@@ -76,8 +101,8 @@ pub struct RuledBlocks {
     pub diagonal: f64,
     /// Sections, the refined ones included.
     pub sections: usize,
-    /// The block segmentation of the rationalized solid.
-    pub segmentation: Segmentation,
+    /// The block segmentation of the rationalized solid, in brief.
+    pub segmentation: SegmentationSummary,
     /// Each block's plan, in the segmentation's order.
     pub blocks: Vec<BlockPlan>,
 }
@@ -130,7 +155,8 @@ impl Params {
     }
 }
 
-/// Rationalizes `model` (a closed mesh) and plans its blocks.
+/// Rationalizes `model` (a closed mesh) and plans its blocks, computing in the model's
+/// unit frame ([`crate::unit`]).
 ///
 /// # Errors
 /// [`Error::Params`] for bad parameters, [`Error::Model`] for an open mesh or one without
@@ -146,6 +172,43 @@ pub fn run(
     model
         .validate(true)
         .map_err(|e| Error::Model(e.to_string()))?;
+    let f = crate::unit::frame(model);
+    let r = run_unit(
+        &crate::unit::mesh(&f, model)?,
+        &crate::unit::params(&f, params),
+        progress,
+    )?;
+    let axis = r.solid.axis;
+    Ok(RuledBlocks {
+        regions: r
+            .regions
+            .into_iter()
+            .map(|g| {
+                Ok(RegionResult {
+                    region: crate::unit::region(&f, &axis, g.region)?,
+                    deviation: crate::unit::deviation(&f, g.deviation),
+                })
+            })
+            .collect::<Result<_>>()?,
+        solid: crate::unit::solid(&f, r.solid)?,
+        deviation: crate::unit::deviation(&f, r.deviation),
+        diagonal: model.aabb().size().norm(),
+        sections: r.sections,
+        segmentation: r.segmentation,
+        blocks: r
+            .blocks
+            .into_iter()
+            .map(|b| crate::unit::plan(&f, b))
+            .collect(),
+    })
+}
+
+/// [`run`] in the unit frame.
+fn run_unit(
+    model: &TriMesh,
+    params: &Params,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> Result<RuledBlocks> {
     let axis = Vector3::from(params.axis).normalize();
     progress(Progress {
         phase: "sections",
@@ -213,7 +276,7 @@ pub fn run(
         diagonal: model.aabb().size().norm(),
         sections: s.offsets.len(),
         deviation,
-        segmentation,
+        segmentation: SegmentationSummary::of(&segmentation),
         blocks,
         solid,
     })

@@ -7,7 +7,7 @@ use geom::surface_spline::BSplineSurface;
 use nalgebra::{Vector2, Vector3};
 
 use crate::error::{Error, Result};
-use crate::fit::{fit_piecewise_ruled, GridSamples, RuledFitParams};
+use crate::fit::{fit_surface, GridSamples, RuledFitParams};
 use crate::sections::{at_share, length, max_curvature, Loop, Sections};
 
 /// A tube of the model: one loop in each of a run of consecutive sections.
@@ -101,9 +101,10 @@ pub struct Region {
     pub strips: usize,
     /// Strips per side (between corners).
     pub side_strips: Vec<usize>,
-    /// The fit's sample distances: RMS and largest.
+    /// The fit's residuals (eq. 4.1's terms: each sample's distance to the surface point of
+    /// its own parameters, an upper bound on its distance to the surface): RMS.
     pub fit_rms: f64,
-    /// Largest.
+    /// Largest residual.
     pub fit_max: f64,
     /// Control points per rail.
     pub controls: usize,
@@ -184,10 +185,8 @@ pub fn fit_tube(index: usize, t: &Tube, s: &Sections, f: &FitSettings) -> Result
     let k = f.samples_per_strip.max(2);
     let g = grid(t, s, &sides, k);
     let nu = g.u.len();
-    let degree = 3.min(nu - 1).max(1);
-    let mut controls = (nu / 4).max(degree + 1).min(nu);
-    let fit = loop {
-        let fit = fit_piecewise_ruled(
+    let try_fit = |degree: usize, controls: usize| {
+        fit_surface(
             &g,
             &RuledFitParams {
                 strips,
@@ -195,26 +194,75 @@ pub fn fit_tube(index: usize, t: &Tube, s: &Sections, f: &FitSettings) -> Result
                 controls,
             },
         )
-        .map_err(|source| Error::Fit {
-            region: index,
-            source,
-        })?;
-        if fit.max_distance <= f.tolerance || controls >= nu {
-            break fit;
+    };
+    let worst = |r: &[f64]| r.iter().copied().fold(0.0, f64::max);
+    // control points doubled from a quarter of the sections until every sample's residual
+    // is within the tolerance; where the sections leave a knot span empty (few, unevenly
+    // spread sections), fewer, then a lower degree
+    let degree = 3.min(nu - 1).max(1);
+    let first = (nu / 4).max(degree + 1).min(nu);
+    let mut best: Option<(BSplineSurface, Vec<f64>, usize)> = None;
+    let mut controls = first;
+    while let Ok((surface, residuals)) = try_fit(degree, controls) {
+        let done = worst(&residuals) <= f.tolerance;
+        if best
+            .as_ref()
+            .is_none_or(|b| worst(&residuals) < worst(&b.1))
+        {
+            best = Some((surface, residuals, controls));
+        }
+        if done || controls >= nu {
+            break;
         }
         controls = (controls * 2).min(nu);
+    }
+    if best.is_none() {
+        'lower: for d in (1..=degree).rev() {
+            for c in (d + 1..=first.min(nu)).rev() {
+                if let Ok((surface, residuals)) = try_fit(d, c) {
+                    best = Some((surface, residuals, c));
+                    break 'lower;
+                }
+            }
+        }
+    }
+    let Some((surface, _, controls)) = best else {
+        return Err(Error::Fit {
+            region: index,
+            source: try_fit(1, 2)
+                .err()
+                .unwrap_or(crate::fit::FitError::Samples("no fit".into())),
+        });
     };
-    let surface = close_loop(&fit.surface, strips)?;
+    let surface = close_loop(&surface, strips)?;
+    let residuals = residuals_of(&g, &surface);
+    let (fit_rms, fit_max) = (
+        (residuals.iter().map(|r| r * r).sum::<f64>() / residuals.len().max(1) as f64).sqrt(),
+        worst(&residuals),
+    );
     Ok(Region {
         first: t.first,
         offsets: g.u,
         surface,
         strips,
         side_strips: sides,
-        fit_rms: fit.rms_distance,
-        fit_max: fit.max_distance,
+        fit_rms,
+        fit_max,
         controls,
     })
+}
+
+/// Each sample's distance to the surface point of its own parameters.
+fn residuals_of(g: &GridSamples, s: &BSplineSurface) -> Vec<f64> {
+    let nu = g.u.len();
+    g.v.iter()
+        .enumerate()
+        .flat_map(|(j, &v)| {
+            g.u.iter()
+                .enumerate()
+                .map(move |(i, &u)| (Vector3::from(g.points[j * nu + i]) - s.eval(u, v)).norm())
+        })
+        .collect()
 }
 
 /// The surface with its last rail (`v = strips`) and first rail replaced by their mean.

@@ -95,6 +95,24 @@ pub fn section(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), t| {
             (a.min(t), b.max(t))
         });
+    section_window(mesh, &frame, (lo, hi), n, (end_gap, refine), None)
+}
+
+/// [`section`] over the offsets `(lo, hi)` along `frame.normal` only, each loop clipped to
+/// the convex polygon `clip` (plane coordinates, counter-clockwise) when given: the model's
+/// part in a block.
+///
+/// # Errors
+/// As [`section`].
+pub fn section_window(
+    mesh: &TriMesh,
+    frame: &PlaneFrame,
+    (lo, hi): (f64, f64),
+    n: usize,
+    (end_gap, refine): (f64, f64),
+    clip: Option<&[Vector2<f64>]>,
+) -> Result<Sections> {
+    let frame = *frame;
     let len = hi - lo;
     if !(len > 0.0) || n < 2 {
         return Err(Error::Model(
@@ -110,7 +128,7 @@ pub fn section(
             (a + b) / 2.0 - (b - a) / 2.0 * c
         })
         .collect();
-    let at = |t: f64| -> Result<Vec<Loop>> { loops_at(mesh, &frame, t, 1e-9 * scale) };
+    let at = |t: f64| -> Result<Vec<Loop>> { loops_at(mesh, &frame, t, 1e-9 * scale, clip) };
     let mut sections: Vec<(f64, Vec<Loop>)> = Vec::with_capacity(n);
     for &t in &offsets {
         sections.push((t, at(t)?));
@@ -152,7 +170,13 @@ fn signature(l: &[Loop]) -> Vec<usize> {
     l.iter().map(|l| l.corners.len()).collect()
 }
 
-fn loops_at(mesh: &TriMesh, frame: &PlaneFrame, t: f64, eps: f64) -> Result<Vec<Loop>> {
+fn loops_at(
+    mesh: &TriMesh,
+    frame: &PlaneFrame,
+    t: f64,
+    eps: f64,
+    clip: Option<&[Vector2<f64>]>,
+) -> Result<Vec<Loop>> {
     let mut here = Vec::new();
     for chain in slice_mesh(mesh, &frame.normal, t) {
         if !chain.closed {
@@ -160,11 +184,14 @@ fn loops_at(mesh: &TriMesh, frame: &PlaneFrame, t: f64, eps: f64) -> Result<Vec<
                 "the section at {t} along the axis is open: the mesh must be closed"
             )));
         }
-        let pts: Vec<Vector2<f64>> = chain
+        let mut pts: Vec<Vector2<f64>> = chain
             .points(mesh)
             .iter()
             .map(|p| frame.to_plane(p))
             .collect();
+        if let Some(c) = clip {
+            pts = clip_polygon(&pts, c);
+        }
         if let Some(l) = make_loop(pts, eps) {
             here.push(l);
         }
@@ -309,4 +336,29 @@ pub fn max_curvature(poly: &[Vector2<f64>]) -> f64 {
             }
         })
         .fold(0.0, f64::max)
+}
+
+/// The part of polygon `subject` inside the convex counter-clockwise polygon `clip`
+/// (Sutherland–Hodgman; a non-convex subject's pieces stay joined along the clip's edges).
+pub fn clip_polygon(subject: &[Vector2<f64>], clip: &[Vector2<f64>]) -> Vec<Vector2<f64>> {
+    let mut out: Vec<Vector2<f64>> = subject.to_vec();
+    for k in 0..clip.len() {
+        let (a, b) = (clip[k], clip[(k + 1) % clip.len()]);
+        let side = |p: &Vector2<f64>| (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+        let input = std::mem::take(&mut out);
+        for i in 0..input.len() {
+            let (p, q) = (input[i], input[(i + 1) % input.len()]);
+            let (sp, sq) = (side(&p), side(&q));
+            if sp >= 0.0 {
+                out.push(p);
+            }
+            if (sp >= 0.0) != (sq >= 0.0) {
+                out.push(p + (q - p) * (sp / (sp - sq)));
+            }
+        }
+        if out.is_empty() {
+            break;
+        }
+    }
+    out
 }

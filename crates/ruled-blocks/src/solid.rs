@@ -57,6 +57,9 @@ pub struct Solid {
     pub mesh: TriMesh,
     /// The region of each face.
     pub face_region: Vec<usize>,
+    /// The ruling direction on each face (unit): the rows' direction on a strip, the rim's
+    /// on a cap.
+    pub face_ruling: Vec<Vector3<f64>>,
     /// Every strip of every region.
     pub strips: Vec<Strip>,
     /// The axis.
@@ -71,7 +74,16 @@ pub fn build(regions: &[Region], ends: &[(End, End)], axis: Vector3<f64>) -> Res
     let mut v: Vec<Vector3<f64>> = Vec::new();
     let mut f: Vec<[u32; 3]> = Vec::new();
     let mut face_region = Vec::new();
+    let mut face_ruling = Vec::new();
     let mut strips = Vec::new();
+    let unit = |w: Vector3<f64>| {
+        let l = w.norm();
+        if l > 0.0 {
+            w / l
+        } else {
+            axis
+        }
+    };
     for (r, (reg, &(start, end))) in regions.iter().zip(ends).enumerate() {
         let n = reg.strips;
         let mut rows: Vec<Vec<Vector3<f64>>> = Vec::new();
@@ -116,12 +128,17 @@ pub fn build(regions: &[Region], ends: &[(End, End)], axis: Vector3<f64>) -> Res
                 f.push([idx(row, j), idx(row, j + 1), idx(row + 1, j + 1)]);
                 f.push([idx(row, j), idx(row + 1, j + 1), idx(row + 1, j)]);
                 face_region.extend([r, r]);
+                let d = (rows[row][(j + 1) % n] - rows[row][j])
+                    + (rows[row + 1][(j + 1) % n] - rows[row + 1][j]);
+                face_ruling.extend([unit(d), unit(d)]);
             }
         }
         for j in 0..n {
             f.push([i0, idx(0, j + 1), idx(0, j)]);
             f.push([i1, idx(last, j), idx(last, j + 1)]);
             face_region.extend([r, r]);
+            face_ruling.push(unit(rows[0][(j + 1) % n] - rows[0][j]));
+            face_ruling.push(unit(rows[last][(j + 1) % n] - rows[last][j]));
         }
         for j in 0..n {
             strips.push(strip_rulings(r, j, &rows, (t0, t1), axis));
@@ -131,6 +148,7 @@ pub fn build(regions: &[Region], ends: &[(End, End)], axis: Vector3<f64>) -> Res
     Ok(Solid {
         mesh,
         face_region,
+        face_ruling,
         strips,
         axis,
     })
@@ -253,6 +271,11 @@ impl<'m> Probe<'m> {
     /// The closest face to `p` and its distance.
     pub fn closest(&self, p: &Vector3<f64>) -> Option<(usize, f64)> {
         self.index.closest_point(p).map(|c| (c.face, c.distance))
+    }
+
+    /// The closest face to `p` and the closest point on it.
+    pub fn closest_point(&self, p: &Vector3<f64>) -> Option<(usize, Vector3<f64>)> {
+        self.index.closest_point(p).map(|c| (c.face, c.point))
     }
 
     /// How deep `p` lies inside (positive) or how far outside (negative).

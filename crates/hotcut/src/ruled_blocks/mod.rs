@@ -67,11 +67,27 @@ pub struct RuledBlocks {
     #[serde(default = "default_iterations")]
     #[schemars(range(min = 1, max = 10000))]
     pub max_iterations: u32,
+    /// Which comes first: `WholeModel` (rationalize the whole model, then segment it into
+    /// blocks: the thesis' choice) or `PerBlock` (segment the model, then rationalize each
+    /// block on its own). Both are run and compared in the report; this one is cut.
+    /// Default: `WholeModel`.
+    #[serde(default)]
+    pub strategy: Strategy,
     /// Block segmentation sample spacing, a fraction of the shortest block edge in
     /// (0, 0.25]. Default: 0.1.
     #[serde(default = "default_spacing")]
     #[schemars(extend("exclusiveMinimum" = 0), range(max = 0.25))]
     pub sample_spacing: f64,
+}
+
+/// Which comes first (§4.1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+pub enum Strategy {
+    /// Rationalize the whole model, then segment it into blocks.
+    #[default]
+    WholeModel,
+    /// Segment the model into blocks, then rationalize each block on its own.
+    PerBlock,
 }
 
 fn default_sections() -> usize {
@@ -106,15 +122,31 @@ pub struct RuledBlocksParams {
     pub floor: f64,
     /// The slab's grid cells per side (height fields).
     pub grid: usize,
+    /// The strategy cut.
+    pub strategy: Strategy,
 }
 
-/// A finished run.
+/// A finished run: both strategies, and the one cut.
 #[derive(Debug, Clone)]
 pub struct RuledBlocksRun {
     /// The model as a closed solid.
     pub model: TriMesh,
-    /// The algorithm's result.
-    pub result: ::ruled_blocks::RuledBlocks,
+    /// The whole-model strategy's result.
+    pub whole: ::ruled_blocks::RuledBlocks,
+    /// The per-block strategy's result.
+    pub per_block: ::ruled_blocks::per_block::PerBlock,
+    /// Both strategies' figures: whole model, then per block.
+    pub figures: [::ruled_blocks::compare::Figures; 2],
+    /// The strategy cut.
+    pub strategy: Strategy,
+    /// Its rationalized model (per block: every block's solid).
+    pub mesh: TriMesh,
+    /// Its strips.
+    pub strips: Vec<::ruled_blocks::solid::Strip>,
+    /// Its blocks' plans.
+    pub blocks: Vec<::ruled_blocks::cuts::BlockPlan>,
+    /// Its deviation from the model.
+    pub deviation: ::ruled_blocks::Deviation,
     /// Per block, per cut: its program (empty without a wire).
     pub programs: Vec<Vec<Program>>,
     /// `tolerance.max`.
@@ -239,6 +271,7 @@ impl Task for RuledBlocks {
                 .floor
                 .unwrap_or(defaults::RULED_FLOOR_MM * job.per_mm()),
             grid: self.grid,
+            strategy: self.strategy,
         })
     }
 
@@ -305,36 +338,81 @@ impl Task for RuledBlocks {
         progress: &dyn Progress,
     ) -> Result<RuledBlocksRun> {
         let model = model(job, params)?;
-        progress.start("ruled blocks", 0);
-        let result = ::ruled_blocks::run(&model, &params.plan, &|p: ::ruled_blocks::Progress| {
+        progress.start("ruled blocks: whole model", 0);
+        let whole = ::ruled_blocks::run(&model, &params.plan, &|p: ::ruled_blocks::Progress| {
             progress.message(&format!("{} {}/{}", p.phase, p.done, p.total));
         })
         .map_err(|e| job.fail(e.to_string()))?;
+        progress.message("per block");
+        let per_block = ::ruled_blocks::per_block::run(&model, &params.plan)
+            .map_err(|e| job.fail(e.to_string()))?;
         progress.finish();
-        let programs = outputs::programs(&result, params, job)?;
+        let solids: Vec<Option<&::ruled_blocks::solid::Solid>> =
+            whole.blocks.iter().map(|_| Some(&whole.solid)).collect();
+        let per_solids: Vec<Option<&::ruled_blocks::solid::Solid>> = per_block
+            .rational
+            .iter()
+            .map(|r| r.as_ref().map(|r| &r.solid))
+            .collect();
+        let figures = [
+            ::ruled_blocks::compare::figures(&model, &whole.blocks, &solids, whole.deviation),
+            ::ruled_blocks::compare::figures(
+                &model,
+                &per_block.blocks,
+                &per_solids,
+                per_block.deviation,
+            ),
+        ];
+        let (mesh, strips, blocks, deviation) = match params.strategy {
+            Strategy::WholeModel => (
+                whole.solid.mesh.clone(),
+                whole.solid.strips.clone(),
+                whole.blocks.clone(),
+                whole.deviation,
+            ),
+            Strategy::PerBlock => {
+                let solids: Vec<&::ruled_blocks::solid::Solid> = per_block
+                    .rational
+                    .iter()
+                    .flatten()
+                    .map(|r| &r.solid)
+                    .collect();
+                (
+                    union(&solids).map_err(|e| job.fail(e))?,
+                    solids
+                        .iter()
+                        .flat_map(|s| s.strips.iter().cloned())
+                        .collect(),
+                    per_block.blocks.clone(),
+                    per_block.deviation,
+                )
+            }
+        };
+        let programs = outputs::programs(&blocks, params, job)?;
         Ok(RuledBlocksRun {
             model,
-            result,
+            whole,
+            per_block,
+            figures,
+            strategy: params.strategy,
+            mesh,
+            strips,
+            blocks,
+            deviation,
             programs,
             tolerance: params.plan.tolerance,
         })
     }
 
     fn nothing_to_cut(run: &RuledBlocksRun) -> Option<String> {
-        let r = &run.result;
-        if r.deviation.max > run.tolerance {
-            let worst = r
-                .regions
-                .iter()
-                .enumerate()
-                .max_by(|a, b| a.1.deviation.max.total_cmp(&b.1.deviation.max))
-                .map_or(0, |(i, _)| i + 1);
+        let d = &run.deviation;
+        if d.max > run.tolerance {
             return Some(format!(
-                "no piecewise ruled surface of these settings comes within the tolerance: deviation max {:.6} (RMS {:.6}, worst in region {worst}) > tolerance.max {}; add sections or max_strips, or raise tolerance.max",
-                r.deviation.max, r.deviation.rms, run.tolerance
+                "no piecewise ruled surface of these settings comes within the tolerance ({:?}): deviation max {:.6} (RMS {:.6}) > tolerance.max {}; add sections or max_strips, or raise tolerance.max",
+                run.strategy, d.max, d.rms, run.tolerance
             ));
         }
-        if r.blocks.iter().all(|b| b.cuts.is_empty()) {
+        if run.blocks.iter().all(|b| b.cuts.is_empty()) {
             return Some("no block has a cut".into());
         }
         None
@@ -354,8 +432,9 @@ impl Task for RuledBlocks {
 
     fn summary(r: &RuledBlocksReport, job: &Context) -> String {
         format!(
-            "{} (RuledBlocks): {} region(s), deviation RMS {:.4} max {:.4} {} ({:.3e} / {:.3e} of the diagonal, tolerance {}); {} block(s), {} cut by their strips, {} to their hulls (added {:.4e} {}³); {} cut(s)",
+            "{} (RuledBlocks, {:?}): {} region(s), deviation RMS {:.4} max {:.4} {} ({:.3e} / {:.3e} of the diagonal, tolerance {}); {} block(s), {} cut by their strips, {} to their hulls (added {:.4e} {}³); {} cut(s)",
             job.name,
+            r.strategy,
             r.regions.len(),
             r.deviation.rms,
             r.deviation.max,
@@ -371,6 +450,17 @@ impl Task for RuledBlocks {
             r.totals.cuts
         )
     }
+}
+
+/// The meshes as one (their vertices and faces side by side).
+fn union(solids: &[&::ruled_blocks::solid::Solid]) -> std::result::Result<TriMesh, String> {
+    let (mut v, mut f) = (Vec::new(), Vec::new());
+    for s in solids {
+        let base = v.len() as u32;
+        v.extend_from_slice(s.mesh.vertices());
+        f.extend(s.mesh.faces().iter().map(|t| t.map(|i| i + base)));
+    }
+    TriMesh::try_new(v, f).map_err(|e| e.to_string())
 }
 
 /// Rows of the rationalized solid per section (its tessellation).

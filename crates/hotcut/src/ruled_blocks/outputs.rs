@@ -28,15 +28,15 @@ pub fn program_file(i: usize, k: usize) -> String {
 /// # Errors
 /// A program out of the machine's travel or speed, naming the block and the cut.
 pub fn programs(
-    r: &::ruled_blocks::RuledBlocks,
+    blocks: &[::ruled_blocks::cuts::BlockPlan],
     p: &RuledBlocksParams,
     job: &Context,
 ) -> Result<Vec<Vec<Program>>> {
     let (Some(w), Some(m)) = (&p.wire, &p.machine) else {
         return Ok(Vec::new());
     };
-    let mut all = Vec::with_capacity(r.blocks.len());
-    for (i, b) in r.blocks.iter().enumerate() {
+    let mut all = Vec::with_capacity(blocks.len());
+    for (i, b) in blocks.iter().enumerate() {
         let mut progs = Vec::with_capacity(b.cuts.len());
         for (k, c) in b.cuts.iter().enumerate() {
             // the block stands where every tower point of this cut is at or above the
@@ -109,8 +109,8 @@ pub(super) fn gcode(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> expor
 pub(super) fn obj(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
     files.add("rationalized.obj", |buf| {
         let mut w = crate::output::obj_writer(6, done.job.units, o);
-        w.mesh("rationalized", &done.run.result.solid.mesh);
-        for (i, b) in done.run.result.blocks.iter().enumerate() {
+        w.mesh("rationalized", &done.run.mesh);
+        for (i, b) in done.run.blocks.iter().enumerate() {
             w.mesh(
                 &format!("block_{}", i + 1),
                 &blocks::Placement::of(&b.block).mesh()?,
@@ -141,13 +141,12 @@ pub(super) fn gltf(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export
 /// The meshes of `model.gltf`: the rationalized model, each vertex coloured by its
 /// distance to the model (blue 0 → red at the largest deviation), and every block.
 pub(super) fn scene(run: &RuledBlocksRun) -> export::Result<Vec<Mesh>> {
-    let r = &run.result;
-    let mut m = Mesh::from_trimesh("rationalized", &r.solid.mesh, 0);
+    let r = run;
+    let mut m = Mesh::from_trimesh("rationalized", &r.mesh, 0);
     let index = TriangleIndex::new(&run.model);
     let top = r.deviation.max.max(1e-300);
     m.colors = Some(
-        r.solid
-            .mesh
+        r.mesh
             .vertices()
             .iter()
             .map(|p| {
@@ -182,14 +181,14 @@ const COLOURS: [&str; 6] = [
 /// (one colour per region) and the blocks' outlines (green: cut by their strips, red: to
 /// their hulls), with a legend, the axes and a scale bar.
 pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    let r = &done.run.result;
-    let frame = geom::slice::PlaneFrame::from_direction(r.solid.axis)
+    let r = done.run;
+    let frame = geom::slice::PlaneFrame::from_direction(r.whole.solid.axis)
         .map_err(|e| export::ExportError::Data(e.to_string()))?;
     let flat = |p: &nalgebra::Vector3<f64>| {
         let q = frame.to_plane(p);
         (q.x, q.y)
     };
-    let mut pts: Vec<(f64, f64)> = r.solid.mesh.vertices().iter().map(flat).collect();
+    let mut pts: Vec<(f64, f64)> = r.mesh.vertices().iter().map(flat).collect();
     for b in &r.blocks {
         pts.extend(b.block.corners().iter().map(flat));
     }
@@ -211,14 +210,15 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
         11.0,
         "#000",
         &format!(
-            "{} region(s), {} block(s); deviation max {:.4} {}",
-            r.regions.len(),
+            "{:?}: {} region(s), {} block(s); deviation max {:.4} {}",
+            r.strategy,
+            r.whole.regions.len(),
             r.blocks.len(),
             r.deviation.max,
             done.job.units.symbol()
         ),
     );
-    for st in &r.solid.strips {
+    for st in &r.strips {
         let colour = COLOURS[st.region % COLOURS.len()];
         for ru in st.rulings.iter().step_by(4) {
             doc.polyline(
@@ -251,7 +251,7 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
             }
         }
     }
-    let mut legend: Vec<Legend<'_>> = (0..r.regions.len().min(COLOURS.len()))
+    let mut legend: Vec<Legend<'_>> = (0..r.whole.regions.len().min(COLOURS.len()))
         .map(|k| {
             Legend::new(
                 Mark::Line,

@@ -124,11 +124,59 @@ pub fn body(r: &RuledBlocksReport, job: &Context) -> Body {
             })
             .collect(),
     };
+    let comparison = Table {
+        title: "Whole model or per block (§4.1): both strategies on this model".into(),
+        columns: [
+            "strategy",
+            "block pairs that meet",
+            "largest C⁰ gap",
+            "largest ruling jump (°)",
+            "mean ruling jump (°)",
+            "deviation max",
+            &format!("added ({u}³)"),
+            "cuts",
+            "cut by strips",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: r
+            .comparison
+            .iter()
+            .map(|c| {
+                Row::new(
+                    vec![
+                        format!(
+                            "{:?}{}",
+                            c.strategy,
+                            if c.strategy == r.strategy {
+                                " (cut)"
+                            } else {
+                                ""
+                            }
+                        ),
+                        c.seams.to_string(),
+                        len(c.max_gap, job),
+                        num(c.max_jump_deg),
+                        num(c.mean_jump_deg),
+                        len(c.deviation.max, job),
+                        num(c.added_volume),
+                        c.cuts.to_string(),
+                        format!("{} of {}", c.cuttable, c.blocks),
+                    ],
+                    if c.deviation.within_tolerance {
+                        vec![]
+                    } else {
+                        vec!["beyond the tolerance"]
+                    },
+                )
+            })
+            .collect(),
+    };
     Body {
         verdict: Verdict { ok, text },
         counts,
         constraints,
         notes: Vec::new(),
-        tables: vec![regions, blocks],
+        tables: vec![comparison, regions, blocks],
     }
 }

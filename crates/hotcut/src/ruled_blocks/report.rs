@@ -19,6 +19,10 @@ pub struct RuledBlocksReport {
     pub units: Units,
     /// The hotcut version that wrote it.
     pub hotcut_version: String,
+    /// The strategy cut (`blocks`, `deviation`, `rationalized` and the programs are its).
+    pub strategy: super::Strategy,
+    /// Both strategies side by side: whole model, then per block.
+    pub comparison: Vec<StrategyReport>,
     /// The model as a closed solid (a height field closed into its slab).
     pub model: Solid,
     /// The rationalized model.
@@ -34,14 +38,46 @@ pub struct RuledBlocksReport {
     /// Deviation of the rationalized surface from the model, at the model's vertices and
     /// face centroids (the distance from each to the rationalized surface).
     pub deviation: DeviationReport,
-    /// The regions, each a piecewise ruled surface.
+    /// The whole model's regions, each a piecewise ruled surface.
     pub regions: Vec<RegionReport>,
-    /// The block segmentation of the rationalized model (ch. 3).
+    /// The block segmentation (ch. 3) of the rationalized model (`WholeModel`) or of the
+    /// model (`PerBlock`).
     pub segmentation: SegmentationSummary,
     /// Every block.
     pub blocks: Vec<BlockReport>,
     /// Sums over the blocks.
     pub totals: Totals,
+}
+
+/// One strategy's figures (§4.1): across every pair of blocks that meet, at the model's
+/// samples both hold, the gap between their surfaces and the angle between their rulings.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct StrategyReport {
+    /// The strategy.
+    pub strategy: super::Strategy,
+    /// Pairs of blocks that meet.
+    pub seams: usize,
+    /// Model samples both blocks of a pair hold, summed.
+    pub seam_samples: usize,
+    /// Largest C⁰ gap between two blocks' surfaces.
+    pub max_gap: f64,
+    /// RMS gap.
+    pub rms_gap: f64,
+    /// Largest ruling-direction jump, degrees.
+    pub max_jump_deg: f64,
+    /// Mean jump, degrees.
+    pub mean_jump_deg: f64,
+    /// Deviation from the model.
+    pub deviation: DeviationReport,
+    /// Material the hulls add.
+    pub added_volume: f64,
+    /// Cuts.
+    pub cuts: usize,
+    /// Blocks.
+    pub blocks: usize,
+    /// Blocks cut by their strips.
+    pub cuttable: usize,
 }
 
 /// A closed solid's size.
@@ -105,7 +141,8 @@ pub struct RegionReport {
     pub side_strips: Vec<usize>,
     /// Control points per rail.
     pub controls: usize,
-    /// The fit's RMS and largest distance at its samples (eq. 4.1).
+    /// The fit's RMS and largest residual at its samples (eq. 4.1's terms: each sample's
+    /// distance to the surface point of its own parameters).
     pub fit: (f64, f64),
     /// Deviation of the model samples closest to it.
     pub deviation: DeviationReport,
@@ -134,6 +171,8 @@ pub struct BlockReport {
     /// Centre, rotation `[w, x, y, z]` (block axes to model axes) and edge lengths; the
     /// block's axes `x`, `y`, `z` are the ones the programs' mounting lines name.
     pub placement: blocks::Placement,
+    /// `PerBlock`: the block axis its own sections are normal to (`+x`, `+y`, `+z`).
+    pub axis: Option<String>,
     /// Whether its strips cut it (else: its convex hull).
     pub cuttable: bool,
     /// Why not.
@@ -191,7 +230,7 @@ pub struct Totals {
 
 /// The report of a run.
 pub fn make(p: &RuledBlocksParams, run: &RuledBlocksRun, job: &Context) -> RuledBlocksReport {
-    let r = &run.result;
+    let r = &run.whole;
     let tol = p.plan.tolerance;
     let diag = r.diagonal;
     let solid = |m: &geom::TriMesh| Solid {
@@ -218,12 +257,18 @@ pub fn make(p: &RuledBlocksParams, run: &RuledBlocksRun, job: &Context) -> Ruled
             deviation: DeviationReport::of(&g.deviation, diag, tol),
         })
         .collect();
-    let blocks: Vec<BlockReport> = r
+    let blocks: Vec<BlockReport> = run
         .blocks
         .iter()
         .enumerate()
         .map(|(i, b)| BlockReport {
             index: i + 1,
+            axis: match run.strategy {
+                super::Strategy::WholeModel => None,
+                super::Strategy::PerBlock => run.per_block.rational[i]
+                    .as_ref()
+                    .map(|x| ::ruled_blocks::machine::axis_name((x.axis, 1.0))),
+            },
             placement: blocks::Placement::of(&b.block),
             cuttable: b.cuttable,
             reason: b.reason.clone(),
@@ -274,19 +319,44 @@ pub fn make(p: &RuledBlocksParams, run: &RuledBlocksRun, job: &Context) -> Ruled
         task: "RuledBlocks".into(),
         units: job.units,
         hotcut_version: crate::report::VERSION.into(),
+        strategy: run.strategy,
+        comparison: [super::Strategy::WholeModel, super::Strategy::PerBlock]
+            .iter()
+            .zip(&run.figures)
+            .map(|(&strategy, f)| StrategyReport {
+                strategy,
+                seams: f.seams,
+                seam_samples: f.seam_samples,
+                max_gap: f.max_gap,
+                rms_gap: f.rms_gap,
+                max_jump_deg: f.max_jump_deg,
+                mean_jump_deg: f.mean_jump_deg,
+                deviation: DeviationReport::of(&f.deviation, diag, tol),
+                added_volume: f.added_volume,
+                cuts: f.cuts,
+                blocks: f.blocks,
+                cuttable: f.cuttable,
+            })
+            .collect(),
         model: solid(&run.model),
-        rationalized: solid(&r.solid.mesh),
+        rationalized: solid(&run.mesh),
         model_bounds: crate::report::ModelBounds::of(outputs::scene(run)),
         tolerance: tol,
         axis: r.solid.axis.into(),
         sections: r.sections,
-        deviation: DeviationReport::of(&r.deviation, diag, tol),
+        deviation: DeviationReport::of(&run.deviation, diag, tol),
         regions,
-        segmentation: SegmentationSummary {
-            initial_blocks: r.segmentation.initial_blocks,
-            final_blocks: r.segmentation.final_blocks,
-            lower_bound: r.segmentation.lower_bound,
-            seed: r.segmentation.seed,
+        segmentation: {
+            let seg = match run.strategy {
+                super::Strategy::WholeModel => &r.segmentation,
+                super::Strategy::PerBlock => &run.per_block.segmentation,
+            };
+            SegmentationSummary {
+                initial_blocks: seg.initial_blocks,
+                final_blocks: seg.final_blocks,
+                lower_bound: seg.lower_bound,
+                seed: seg.seed,
+            }
         },
         blocks,
         totals,
