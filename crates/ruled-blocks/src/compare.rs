@@ -23,8 +23,9 @@ pub struct Figures {
     pub rms_gap: f64,
     /// Largest angle between the two blocks' rulings at a seam sample, degrees.
     pub max_jump_deg: f64,
-    /// Mean angle, degrees.
-    pub mean_jump_deg: f64,
+    /// Median angle, degrees (robust: a sample whose closest point lies on an edge between
+    /// two faces may take either face's ruling).
+    pub median_jump_deg: f64,
     /// Deviation from the model.
     pub deviation: Deviation,
     /// Material added by hulls.
@@ -48,8 +49,9 @@ pub fn figures(
     let samples = model_samples(model);
     let probes: Vec<Option<Probe<'_>>> = solids.iter().map(|s| s.map(Probe::new)).collect();
     let cubes: Vec<&Cuboid> = plans.iter().map(|p| &p.block).collect();
-    let (mut seams, mut n, mut max_gap, mut sum_gap2, mut max_jump, mut sum_jump) =
-        (0usize, 0usize, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let (mut seams, mut n, mut max_gap, mut sum_gap2, mut max_jump) =
+        (0usize, 0usize, 0.0f64, 0.0f64, 0.0f64);
+    let mut jumps: Vec<f64> = Vec::new();
     for a in 0..cubes.len() {
         for b in (a + 1)..cubes.len() {
             let margin = 0.01 * cubes[a].half.min().min(cubes[b].half.min());
@@ -73,9 +75,10 @@ pub fn figures(
                 max_gap = max_gap.max(gap);
                 sum_gap2 += gap * gap;
                 let (da, db) = (sa.face_ruling[ca.0], sb.face_ruling[cb.0]);
-                let jump = da.dot(&db).abs().clamp(0.0, 1.0).acos().to_degrees();
+                // the angle between two lines, exact 0 for the same direction
+                let jump = da.cross(&db).norm().atan2(da.dot(&db).abs()).to_degrees();
                 max_jump = max_jump.max(jump);
-                sum_jump += jump;
+                jumps.push(jump);
             }
             if met {
                 seams += 1;
@@ -92,11 +95,25 @@ pub fn figures(
             0.0
         },
         max_jump_deg: max_jump,
-        mean_jump_deg: if n > 0 { sum_jump / n as f64 } else { 0.0 },
+        median_jump_deg: median(&mut jumps),
         deviation,
         added_volume: plans.iter().map(|p| p.added_volume).sum(),
         cuts: plans.iter().map(|p| p.cuts.len()).sum(),
         blocks: plans.len(),
         cuttable: plans.iter().filter(|p| p.cuttable).count(),
+    }
+}
+
+/// The median (0 for none).
+fn median(v: &mut [f64]) -> f64 {
+    if v.is_empty() {
+        return 0.0;
+    }
+    v.sort_by(f64::total_cmp);
+    let m = v.len() / 2;
+    if v.len() % 2 == 1 {
+        v[m]
+    } else {
+        (v[m - 1] + v[m]) / 2.0
     }
 }

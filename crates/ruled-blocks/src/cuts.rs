@@ -229,8 +229,11 @@ pub fn with_leads(
 }
 
 /// Least move of a wire between two positions, a share of the model's diagonal (the unit
-/// frame's length): closer positions are one (a program would skip the move).
-pub const MIN_MOVE: f64 = 1e-4;
+/// frame's length; 1.5 mm on a 1.5 m model): closer positions are one. A program skips
+/// moves shorter than its last digits allow (`ruled::wire::program::min_move_mm`, 0.05 mm);
+/// merged here, relative to the model, the positions a program keeps do not depend on the
+/// job's unit or scale.
+pub const MIN_MOVE: f64 = 1e-3;
 
 /// `lines` without the positions that move the wire less than [`MIN_MOVE`] from the last
 /// one kept (measured at the wire's point and `reach` along it, both ways).

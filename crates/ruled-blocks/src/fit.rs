@@ -318,10 +318,9 @@ pub fn fit_surface(
 ) -> Result<(BSplineSurface, Vec<f64>), FitError> {
     check(samples, params)?;
     let (nu, nv) = (samples.u.len(), samples.v.len());
-    let (u0, u1) = (samples.u[0], samples.u[nu - 1]);
     let (v0, v1) = (samples.v[0], samples.v[nv - 1]);
     let rails = params.strips + 1;
-    let knots_u = clamped_uniform_knots(params.degree, params.controls, u0, u1);
+    let knots_u = averaged_knots(&samples.u, params.degree, params.controls);
     let knots_v = clamped_uniform_knots(1, rails, v0, v1);
     let pu = pseudo_inverse(
         basis_matrix(&samples.u, params.degree, &knots_u, params.controls),
@@ -388,6 +387,25 @@ pub fn measure(samples: &GridSamples, surface: BSplineSurface, residuals: Vec<f6
         rms_distance,
         max_distance,
     }
+}
+
+/// Clamped knots for a least-squares fit of `n` control points of degree `p` through
+/// samples at `u` (increasing): the inner knots placed among the samples (Piegl & Tiller,
+/// *The NURBS Book*, eq. 9.69), so that every knot span holds samples (the
+/// Schoenberg–Whitney condition); evenly spread samples give evenly spread knots.
+fn averaged_knots(u: &[f64], p: usize, n: usize) -> Vec<f64> {
+    let m = u.len() - 1;
+    let (u0, u1) = (u[0], u[m]);
+    let mut k = vec![u0; p + 1];
+    let d = (m + 1) as f64 / (n - p) as f64;
+    for j in 1..(n - p) {
+        let x = j as f64 * d;
+        let i = (x.floor() as usize).clamp(1, m);
+        let a = x - i as f64;
+        k.push((1.0 - a) * u[i - 1] + a * u[i]);
+    }
+    k.extend(std::iter::repeat_n(u1, p + 1));
+    k
 }
 
 /// Root mean square and largest of `values` (not empty).

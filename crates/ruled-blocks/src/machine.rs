@@ -57,7 +57,7 @@ impl MachineFrame {
 
 /// The lead-in and lead-out: the first and last wire positions moved along the cut until
 /// the wire's part between the block's sides lies `lead` before the block's start, and
-/// `lead` after its end.
+/// `lead` after its end (and by `lead` at least).
 pub fn leads(
     f: &MachineFrame,
     first: &WireLine,
@@ -66,9 +66,11 @@ pub fn leads(
 ) -> (WireLine, WireLine) {
     let w = f.half[1];
     let along_at = |l: &WireLine, s: f64| f.local(&f.at_across(l, s * w))[0];
-    let reach_in = along_at(first, -1.0).max(along_at(first, 1.0)) + lead;
+    // at least `lead` away from the first and last positions, even where they already
+    // clear the block
+    let reach_in = (along_at(first, -1.0).max(along_at(first, 1.0)) + lead).max(lead);
     let length = 2.0 * f.half[0];
-    let reach_out = length - along_at(last, -1.0).min(along_at(last, 1.0)) + lead;
+    let reach_out = (length - along_at(last, -1.0).min(along_at(last, 1.0)) + lead).max(lead);
     (
         WireLine {
             point: first.point - f.along * reach_in.max(0.0),

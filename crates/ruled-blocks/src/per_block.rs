@@ -257,7 +257,7 @@ fn rationalize_in(
         samples_per_strip: 4,
     };
     let mut regions = Vec::new();
-    for t in tubes(&s).iter().filter(|t| t.loops.len() >= 2) {
+    for t in &tubes(&s) {
         regions.push(fit_tube(regions.len(), t, &s, &settings)?);
     }
     if regions.is_empty() {
@@ -267,17 +267,17 @@ fn rationalize_in(
     let ends: Vec<(End, End)> = regions
         .iter()
         .map(|r| {
-            let last = r.first + r.offsets.len() - 1;
+            let last = r.last;
             let gap = |a: usize, z: usize| (s.offsets[z] - s.offsets[a]) / 2.0;
             let start = if r.first == 0 {
                 End::Flat(window.0)
             } else {
-                End::Flat(r.offsets[0] - gap(r.first - 1, r.first))
+                End::Flat(s.offsets[r.first] - gap(r.first - 1, r.first))
             };
             let end = if last + 1 == n {
                 End::Flat(window.1)
             } else {
-                End::Flat(r.offsets[r.offsets.len() - 1] + gap(last, last + 1))
+                End::Flat(s.offsets[last] + gap(last, last + 1))
             };
             (start, end)
         })

@@ -232,9 +232,6 @@ fn run_unit(
             done: i,
             total: ts.len(),
         });
-        if t.loops.len() < 2 {
-            continue;
-        }
         regions.push(fit_tube(regions.len(), t, &s, &settings)?);
     }
     if regions.is_empty() {
@@ -347,12 +344,7 @@ pub fn plan_block(b: &Cuboid, solid: &Solid, probe: &Probe<'_>, s: &PlanSettings
 /// end section, else a flat cap halfway to the neighbouring section.
 fn region_ends(r: &Region, s: &crate::sections::Sections, model: &TriMesh) -> (End, End) {
     let d = s.frame.normal;
-    let gap = if s.offsets.len() > 1 {
-        s.offsets[1] - s.offsets[0]
-    } else {
-        0.0
-    };
-    let last = r.first + r.offsets.len() - 1;
+    let last = r.last;
     let row = |u: f64| -> Vec<Vector3<f64>> { (0..r.strips).map(|j| r.rail(u, j)).collect() };
     let tip = |u: f64, sign: f64| -> Option<Vector3<f64>> {
         let ring = row(u);
@@ -395,12 +387,12 @@ fn region_ends(r: &Region, s: &crate::sections::Sections, model: &TriMesh) -> (E
     let start = if r.first == 0 {
         tip(u0, -1.0).map_or(End::Flat(u0), End::Tip)
     } else {
-        End::Flat(u0 - gap / 2.0)
+        End::Flat(s.offsets[r.first] - (s.offsets[r.first] - s.offsets[r.first - 1]) / 2.0)
     };
     let end = if last + 1 == s.offsets.len() {
         tip(u1, 1.0).map_or(End::Flat(u1), End::Tip)
     } else {
-        End::Flat(u1 + gap / 2.0)
+        End::Flat(s.offsets[last] + (s.offsets[last + 1] - s.offsets[last]) / 2.0)
     };
     (start, end)
 }

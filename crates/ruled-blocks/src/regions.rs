@@ -20,8 +20,8 @@ pub struct Tube {
 }
 
 /// Splits the sections into tubes: a loop continues the tube of the previous section's
-/// loop nearest to it when both sections have as many loops, the nearest is mutual, and
-/// both loops have as many corners; otherwise it starts a tube.
+/// loop nearest to it when both sections have as many loops and the nearest is mutual;
+/// otherwise it starts a tube.
 pub fn tubes(s: &Sections) -> Vec<Tube> {
     let mut done: Vec<Tube> = Vec::new();
     let mut open: Vec<Tube> = Vec::new();
@@ -46,8 +46,7 @@ pub fn tubes(s: &Sections) -> Vec<Tube> {
             for (i, c) in cur.iter().enumerate() {
                 let Some(j) = nearest(c, &prev) else { continue };
                 let mutual = nearest(&prev[j], &cur) == Some(i);
-                let last = &open[j].loops[open[j].loops.len() - 1];
-                if mutual && !taken[j] && last.corners.len() == here[i].corners.len() {
+                if mutual && !taken[j] {
                     taken[j] = true;
                     let mut t = open[j].clone();
                     t.loops.push(here[i].clone());
@@ -92,6 +91,8 @@ pub struct FitSettings {
 pub struct Region {
     /// Index of its first section.
     pub first: usize,
+    /// Index of its last section.
+    pub last: usize,
     /// Its sections' offsets along the axis.
     pub offsets: Vec<f64>,
     /// The surface: `u` the offset along the axis, `v ∈ [0, strips]` around the loop (rails
@@ -132,13 +133,20 @@ pub fn side_strips(t: &Tube, tol: f64, max: usize) -> Vec<usize> {
             }
         }
     }
+    // a closed loop needs three strips at least
+    while need.iter().sum::<usize>() < 3 {
+        need[0] += 1;
+    }
     let total: usize = need.iter().sum();
-    if total > max && max >= nsides {
+    if total > max && max >= nsides.max(3) {
         let f = max as f64 / total as f64;
         need = need
             .iter()
             .map(|&n| ((n as f64 * f).floor() as usize).max(1))
             .collect();
+        while need.iter().sum::<usize>() < 3 {
+            need[0] += 1;
+        }
     }
     need
 }
@@ -146,30 +154,146 @@ pub fn side_strips(t: &Tube, tol: f64, max: usize) -> Vec<usize> {
 /// The tube's samples on the fit's grid: `u` the sections' offsets, `v = j / k` around the
 /// loop (`k` samples per strip), each side's samples spread by arclength over its strips.
 fn grid(t: &Tube, s: &Sections, sides: &[usize], k: usize) -> GridSamples {
-    let u: Vec<f64> = (0..t.loops.len()).map(|i| s.offsets[t.first + i]).collect();
+    let (u, loops) = stations(t, s);
     let total: usize = sides.iter().sum();
     let v: Vec<f64> = (0..=total * k).map(|j| j as f64 / k as f64).collect();
     let mut points = Vec::with_capacity(u.len() * v.len());
     // which side and share each v falls on
     let mut at: Vec<(usize, f64)> = Vec::with_capacity(v.len());
-    let mut start = 0usize;
     for (side, &n) in sides.iter().enumerate() {
         let first = if side == 0 { 0 } else { 1 };
         for m in first..=n * k {
             at.push((side, m as f64 / (n * k) as f64));
         }
-        start += n;
     }
-    debug_assert_eq!(start, total);
+    let sided: Vec<Vec<Vec<Vector2<f64>>>> = loops.iter().map(|l| l.sides()).collect();
     for &(side, f) in &at {
-        for (i, l) in t.loops.iter().enumerate() {
-            let _ = i;
-            let q = at_share(&l.sides()[side], f);
+        for (i, l) in sided.iter().enumerate() {
+            let q = at_share(&l[side], f);
             let p = s.frame.to_world(u[i], &q);
             points.push([p.x, p.y, p.z]);
         }
     }
     GridSamples { u, v, points }
+}
+
+/// The tube with corners its loops agree on: the most common corner count among its loops
+/// (more than half of them must have it, else none); a loop with another count (a tiny
+/// polygon near a tip, a facet's kink) takes the vertices nearest to the corners of the
+/// nearest loop that has it, mapped by the similarity of their centroids and areas. Loops
+/// without corners start where the ray from their centroid straight down leaves them.
+pub fn aligned(t: &Tube) -> Tube {
+    let counts: Vec<usize> = t.loops.iter().map(|l| l.corners.len()).collect();
+    let mut mode = (0usize, 0usize); // (how many, count)
+    for &c in &counts {
+        let k = counts.iter().filter(|&&x| x == c).count();
+        if k > mode.0 || (k == mode.0 && c < mode.1) {
+            mode = (k, c);
+        }
+    }
+    let smooth = || Tube {
+        first: t.first,
+        loops: t
+            .loops
+            .iter()
+            .map(|l| Loop {
+                points: crate::sections::smooth_start(&l.points),
+                corners: Vec::new(),
+            })
+            .collect(),
+    };
+    let n = mode.1;
+    if n == 0 || 2 * mode.0 <= counts.len() {
+        return smooth();
+    }
+    let mut loops = Vec::with_capacity(t.loops.len());
+    for (i, l) in t.loops.iter().enumerate() {
+        if counts[i] == n {
+            loops.push(l.clone());
+            continue;
+        }
+        let Some(j) = (0..counts.len())
+            .filter(|&j| counts[j] == n)
+            .min_by_key(|&j| (j.abs_diff(i), j))
+        else {
+            return smooth();
+        };
+        match corners_like(l, &t.loops[j]) {
+            Some(x) => loops.push(x),
+            None => return smooth(),
+        }
+    }
+    Tube {
+        first: t.first,
+        loops,
+    }
+}
+
+fn signed_area(p: &[Vector2<f64>]) -> f64 {
+    (0..p.len())
+        .map(|i| {
+            let (a, b) = (p[i], p[(i + 1) % p.len()]);
+            a.x * b.y - b.x * a.y
+        })
+        .sum::<f64>()
+        / 2.0
+}
+
+/// `l` with corners at its vertices nearest to `model`'s corners (mapped onto `l` by
+/// centroid and area), started at the first; `None` when two fall on one vertex.
+fn corners_like(l: &Loop, model: &Loop) -> Option<Loop> {
+    let (cl, cm) = (l.centroid(), model.centroid());
+    let s = (signed_area(&l.points) / signed_area(&model.points))
+        .abs()
+        .sqrt();
+    let nearest = |q: Vector2<f64>| {
+        (0..l.points.len()).min_by(|&a, &b| {
+            (l.points[a] - q)
+                .norm()
+                .total_cmp(&(l.points[b] - q).norm())
+                .then(a.cmp(&b))
+        })
+    };
+    let idx: Vec<usize> = model
+        .corners
+        .iter()
+        .map(|&i| nearest(cl + (model.points[i] - cm) * s))
+        .collect::<Option<_>>()?;
+    let n = l.points.len();
+    let start = idx[0];
+    let mut corners: Vec<usize> = idx.iter().map(|&i| (i + n - start) % n).collect();
+    let before = corners.len();
+    corners.sort_unstable();
+    corners.dedup();
+    if corners.len() != before {
+        return None;
+    }
+    Some(Loop {
+        points: (0..n).map(|k| l.points[(k + start) % n]).collect(),
+        corners,
+    })
+}
+
+/// The offsets and loops the fit goes through: the tube's own, or for a tube of one section
+/// its loop twice, a quarter of the neighbouring gap to either side (a prism).
+fn stations<'t>(t: &'t Tube, s: &Sections) -> (Vec<f64>, Vec<&'t Loop>) {
+    let u: Vec<f64> = (0..t.loops.len()).map(|i| s.offsets[t.first + i]).collect();
+    if t.loops.len() > 1 {
+        return (u, t.loops.iter().collect());
+    }
+    let k = t.first;
+    let gaps = [
+        k.checked_sub(1).map(|j| s.offsets[k] - s.offsets[j]),
+        s.offsets.get(k + 1).map(|o| o - s.offsets[k]),
+    ];
+    let q = gaps
+        .iter()
+        .flatten()
+        .copied()
+        .fold(f64::INFINITY, f64::min)
+        .min(s.extent.1 - s.extent.0)
+        / 4.0;
+    (vec![u[0] - q, u[0] + q], vec![&t.loops[0], &t.loops[0]])
 }
 
 /// Fits one tube: strips from the curvature, then control points per rail doubled from
@@ -180,6 +304,7 @@ fn grid(t: &Tube, s: &Sections, sides: &[usize], k: usize) -> GridSamples {
 /// # Errors
 /// [`Error::Fit`] when no fit can be made (too few sections for a cubic rail).
 pub fn fit_tube(index: usize, t: &Tube, s: &Sections, f: &FitSettings) -> Result<Region> {
+    let t = &aligned(t);
     let sides = side_strips(t, f.tolerance / 2.0, f.max_strips);
     let strips: usize = sides.iter().sum();
     let k = f.samples_per_strip.max(2);
@@ -200,10 +325,28 @@ pub fn fit_tube(index: usize, t: &Tube, s: &Sections, f: &FitSettings) -> Result
     // is within the tolerance; where the sections leave a knot span empty (few, unevenly
     // spread sections), fewer, then a lower degree
     let degree = 3.min(nu - 1).max(1);
-    let first = (nu / 4).max(degree + 1).min(nu);
+    let most = nu;
+    let first = (nu / 4).max(degree + 1).min(most);
     let mut best: Option<(BSplineSurface, Vec<f64>, usize)> = None;
     let mut controls = first;
-    while let Ok((surface, residuals)) = try_fit(degree, controls) {
+    let mut tried = first;
+    loop {
+        let attempt = try_fit(degree, controls).or_else(|e| {
+            // more control points than the sections pin: the most between the last that
+            // fitted and this
+            (tried + 1..controls)
+                .rev()
+                .find_map(|c| try_fit(degree, c).ok().map(|r| (r, c)))
+                .map(|(r, c)| {
+                    controls = c;
+                    r
+                })
+                .ok_or(e)
+        });
+        let Ok((surface, residuals)) = attempt else {
+            break;
+        };
+        tried = controls;
         let done = worst(&residuals) <= f.tolerance;
         if best
             .as_ref()
@@ -211,10 +354,11 @@ pub fn fit_tube(index: usize, t: &Tube, s: &Sections, f: &FitSettings) -> Result
         {
             best = Some((surface, residuals, controls));
         }
-        if done || controls >= nu {
+        let next = (controls * 2).min(most);
+        if done || next == controls {
             break;
         }
-        controls = (controls * 2).min(nu);
+        controls = next;
     }
     if best.is_none() {
         'lower: for d in (1..=degree).rev() {
@@ -242,6 +386,7 @@ pub fn fit_tube(index: usize, t: &Tube, s: &Sections, f: &FitSettings) -> Result
     );
     Ok(Region {
         first: t.first,
+        last: t.first + t.loops.len() - 1,
         offsets: g.u,
         surface,
         strips,

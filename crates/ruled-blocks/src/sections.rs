@@ -73,8 +73,9 @@ pub struct Sections {
 
 /// Sections of the closed `mesh` by `n` planes normal to `axis`, spread over its extent
 /// with cosine spacing (denser towards the ends), the end planes `end_gap` (a share of the
-/// extent) inside it; where the loops change from one section to the next, sections are
-/// added by bisection until the change lies within `refine` (at most [`MAX_REFINED`]).
+/// extent) inside it; where the number of loops changes from one section to the next,
+/// sections are added by bisection until the change lies within `refine` (at most
+/// [`MAX_REFINED`]).
 ///
 /// # Errors
 /// [`Error::Model`] when a section is not made of closed loops (the mesh is open) or the
@@ -164,10 +165,9 @@ pub fn section_window(
 /// Most sections added where the loops change.
 pub const MAX_REFINED: usize = 400;
 
-/// What must match for two sections to belong to the same regions: their loops' corner
-/// counts, in order.
-fn signature(l: &[Loop]) -> Vec<usize> {
-    l.iter().map(|l| l.corners.len()).collect()
+/// What must match for two sections to belong to the same regions: their loop count.
+fn signature(l: &[Loop]) -> usize {
+    l.len()
 }
 
 fn loops_at(
@@ -265,6 +265,17 @@ pub fn make_loop(raw: Vec<Vector2<f64>>, eps: f64) -> Option<Loop> {
     let mut corners: Vec<usize> = corners.iter().map(|&i| (i + n - s) % n).collect();
     corners.sort_unstable();
     Some(Loop { points, corners })
+}
+
+/// A loop's points started where the ray from its centroid straight down leaves it (as a
+/// loop without corners starts).
+pub fn smooth_start(points: &[Vector2<f64>]) -> Vec<Vector2<f64>> {
+    let c = Loop {
+        points: points.to_vec(),
+        corners: Vec::new(),
+    }
+    .centroid();
+    ray_down(points, c)
 }
 
 /// The loop rotated to start where the ray from `c` along −v first leaves it (a point

@@ -11,8 +11,10 @@ use nalgebra::Vector3;
 use crate::error::{Error, Result};
 use crate::regions::Region;
 
-/// Rows of the tessellation per gap between sections.
-pub const ROWS_PER_GAP: usize = 2;
+/// Rows of the tessellation per gap between sections: one, the sections themselves — between
+/// two rows the surface is the bilinear patch of their rulings, which is what a wire moved
+/// linearly from one ruling to the next cuts.
+pub const ROWS_PER_GAP: usize = 1;
 /// Wire positions across a cap, from its rim to its tip.
 pub const CAP_STEPS: usize = 4;
 

@@ -130,19 +130,13 @@ fn bad_input_is_refused_with_its_field() {
         fit_piecewise_ruled(&short, &params(1, 4)),
         Err(FitError::Samples(_))
     ));
-    // ten samples along u, all but two in the first knot span: the last control points
-    // are not pinned
+    // ten samples along u, nine of them clumped near the start: the knots are placed among
+    // the samples (every span holds some), so all six control points are still pinned
     let mut clumped = s.clone();
     clumped.u = (0..10)
         .map(|i| if i < 9 { i as f64 * 1e-3 } else { 1.0 })
         .collect();
-    assert!(matches!(
-        fit_piecewise_ruled(&clumped, &params(1, 6)),
-        Err(FitError::RankDeficient {
-            field: "controls",
-            ..
-        })
-    ));
+    assert!(fit_piecewise_ruled(&clumped, &params(1, 6)).is_ok());
 }
 
 proptest! {

@@ -1,6 +1,6 @@
 //! The files of a `RuledBlocks` run: `rationalized.obj` (the rationalized model and the
 //! blocks), `model.gltf` (the rationalized model coloured by its deviation from the model,
-//! and the blocks), `blocks.svg` (regions, rulings and blocks seen along the axis), and one
+//! and the blocks), `blocks.svg` (regions, rulings and blocks in plan), and one
 //! program per cut, `block_BB_cut_CC.gcode`, each read back before it is written.
 
 use export::gltf::{write_gltf, Material, Mesh};
@@ -177,17 +177,13 @@ const COLOURS: [&str; 6] = [
     "#1f5fa8", "#d95f02", "#1b9e77", "#7570b3", "#e7298a", "#66a61e",
 ];
 
-/// `blocks.svg`: the model seen along the axis — every region's rulings at its sections
-/// (one colour per region) and the blocks' outlines (green: cut by their strips, red: to
-/// their hulls), with a legend, the axes and a scale bar.
+/// `blocks.svg`: the plan — every other ruling of every strip (one colour per region) and
+/// the blocks' outlines (green: cut by their strips, red: to their hulls), with a legend,
+/// the axes and a scale bar. The rulings show each strategy's directions (fig. 4.2).
 pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export::Result<()> {
     let r = done.run;
-    let frame = geom::slice::PlaneFrame::from_direction(r.whole.solid.axis)
-        .map_err(|e| export::ExportError::Data(e.to_string()))?;
-    let flat = |p: &nalgebra::Vector3<f64>| {
-        let q = frame.to_plane(p);
-        (q.x, q.y)
-    };
+    // a plan: x right, y up
+    let flat = |p: &nalgebra::Vector3<f64>| (p.x, p.y);
     let mut pts: Vec<(f64, f64)> = r.mesh.vertices().iter().map(flat).collect();
     for b in &r.blocks {
         pts.extend(b.block.corners().iter().map(flat));
@@ -220,7 +216,7 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
     );
     for st in &r.strips {
         let colour = COLOURS[st.region % COLOURS.len()];
-        for ru in st.rulings.iter().step_by(4) {
+        for ru in st.rulings.iter().step_by(2) {
             doc.polyline(
                 &[
                     vp.map(flat(&ru.a).0, flat(&ru.a).1),
@@ -269,6 +265,6 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
     legend.push(Legend::new(Mark::Line, "#d02020", "block cut to its hull"));
     doc.legend((10.0, 44.0), w - 20.0, &legend);
     doc.scale_bar(&vp, (30.0, h - 30.0), w - 60.0, done.job.units.symbol());
-    doc.axes_key((w - 80.0, h - 20.0), "u", "v");
+    doc.axes_key((w - 80.0, h - 20.0), "x", "y");
     files.add("blocks.svg", |buf| doc.write(buf))
 }

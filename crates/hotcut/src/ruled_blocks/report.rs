@@ -66,8 +66,8 @@ pub struct StrategyReport {
     pub rms_gap: f64,
     /// Largest ruling-direction jump, degrees.
     pub max_jump_deg: f64,
-    /// Mean jump, degrees.
-    pub mean_jump_deg: f64,
+    /// Median jump, degrees.
+    pub median_jump_deg: f64,
     /// Deviation from the model.
     pub deviation: DeviationReport,
     /// Material the hulls add.
@@ -330,7 +330,7 @@ pub fn make(p: &RuledBlocksParams, run: &RuledBlocksRun, job: &Context) -> Ruled
                 max_gap: f.max_gap,
                 rms_gap: f.rms_gap,
                 max_jump_deg: f.max_jump_deg,
-                mean_jump_deg: f.mean_jump_deg,
+                median_jump_deg: f.median_jump_deg,
                 deviation: DeviationReport::of(&f.deviation, diag, tol),
                 added_volume: f.added_volume,
                 cuts: f.cuts,

@@ -1,0 +1,137 @@
+//! The `RuledBlocks` task's bad input: each gets a clear error naming its field, and
+//! writes nothing; a model no ruled surface approximates within the tolerance fails with
+//! its numbers and no program.
+
+mod common;
+
+use common::{expect_invalid, expect_invalid_with, hotcut, stderr, write};
+
+/// A closed cube, 400 mm, as OBJ.
+const CUBE: &str = "v 0 0 0\nv 400 0 0\nv 400 400 0\nv 0 400 0\nv 0 0 400\nv 400 0 400\nv 400 400 400\nv 0 400 400\n\
+f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+
+fn job(surface: &str, block: f64, task: &str, extra: &str) -> String {
+    format!(
+        r#"Job(
+    name: "t",
+    surface: {surface},
+    block: Block(size: ({block}, {block}, {block})),
+    wire: Wire(tower_distance: 1400, kerf: 1.0, travel: Travel(along: (0, 4000), up: (0, 4000))),
+    tolerance: Tolerance(max: 2.0),
+    task: {task},
+    outputs: [Report, GCode],
+    {extra}
+)"#
+    )
+}
+
+const WAVE: &str = r#"HeightField(z: "100 + 40*sin(x/150)*cos(y/170)", x: (0, 600), y: (0, 500))"#;
+const TASK: &str = "RuledBlocks(sections: 16, max_strips: 32, grid: 24, max_iterations: 4)";
+
+#[test]
+fn a_small_wave_runs_and_writes_a_program_per_cut() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "job.ron", &job(WAVE, 400.0, TASK, ""));
+    let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = dir.path().join("out/t");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let cuts: usize = report["blocks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b["cuts"].as_array().unwrap().len())
+        .sum();
+    let programs = std::fs::read_dir(&out)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.path().extension().is_some_and(|x| x == "gcode"))
+        .count();
+    assert!(cuts > 0);
+    assert_eq!(programs, cuts);
+    assert_eq!(report["comparison"].as_array().unwrap().len(), 2);
+}
+
+#[test]
+fn an_open_mesh_is_refused() {
+    // the cube without its top
+    let open: String = CUBE
+        .lines()
+        .filter(|l| *l != "f 5 6 7" && *l != "f 5 7 8")
+        .map(|l| format!("{l}\n"))
+        .collect();
+    expect_invalid_with(
+        &job(r#"Mesh(path: "m.obj")"#, 300.0, TASK, ""),
+        &[("m.obj", &open)],
+        &["/surface/Mesh/path", "open", "boundary edges"],
+    );
+}
+
+#[test]
+fn a_non_manifold_mesh_is_refused() {
+    // three triangles on one edge
+    let bad = "v 0 0 0\nv 100 0 0\nv 0 100 0\nv 0 0 100\nv 0 -100 0\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
+    expect_invalid_with(
+        &job(r#"Mesh(path: "m.obj")"#, 300.0, TASK, ""),
+        &[("m.obj", bad)],
+        &["non-manifold"],
+    );
+}
+
+#[test]
+fn a_block_no_larger_than_the_tolerance_is_refused() {
+    expect_invalid(&job(WAVE, 1.5, TASK, ""), &["/block/size", "tolerance"]);
+}
+
+#[test]
+fn other_surfaces_and_a_block_origin_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let _ = dir;
+    expect_invalid(
+        &job(WAVE, 400.0, TASK, "").replace(
+            "Block(size: (400, 400, 400))",
+            "Block(size: (400, 400, 400), origin: (0, 0, 0))",
+        ),
+        &["/block/origin"],
+    );
+    expect_invalid(
+        &job(WAVE, 400.0, "RuledBlocks(sections: 2)", ""),
+        &["/task/RuledBlocks/sections"],
+    );
+}
+
+#[test]
+fn g_code_needs_the_wire() {
+    let text = job(WAVE, 400.0, TASK, "").replace(
+        "    wire: Wire(tower_distance: 1400, kerf: 1.0, travel: Travel(along: (0, 4000), up: (0, 4000))),\n",
+        "",
+    );
+    expect_invalid(&text, &["/wire"]);
+}
+
+#[test]
+fn a_model_no_ruled_surface_approximates_fails_with_its_numbers_and_writes_nothing() {
+    // a bumpy field, 2 strips at most around each section: nowhere near 0.01 mm
+    let text = job(
+        WAVE,
+        400.0,
+        "RuledBlocks(sections: 8, max_strips: 2, grid: 24, max_iterations: 4)",
+        "",
+    )
+    .replace("Tolerance(max: 2.0)", "Tolerance(max: 0.01)");
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "job.ron", &text);
+    let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("no piecewise ruled surface"), "{e}");
+    assert!(
+        e.contains("deviation max") && e.contains("> tolerance.max 0.01"),
+        "{e}"
+    );
+    assert!(
+        !dir.path().join("out/t").exists(),
+        "a failed run wrote files"
+    );
+}
