@@ -229,10 +229,17 @@ fn check_job(name: &str) {
     let tol = report["tolerance"].as_f64().unwrap();
     let dev_max = report["deviation"]["max"].as_f64().unwrap();
     let objs = read_obj(&std::fs::read_to_string(run.dir.join("rationalized.obj")).unwrap());
-    let (rv, rf) = &objs["rationalized"];
     let diag = report["model"]["diagonal"].as_f64().unwrap();
     let cell = (diag / 64.0).max(tol);
-    let solid = Soup::new(rv, rf, cell);
+    // what each block keeps: the one rationalized model, or (per block) its own
+    let whole = objs.get("rationalized").map(|(v, f)| Soup::new(v, f, cell));
+    let own: Vec<Option<Soup>> = (1..=report["blocks"].as_array().unwrap().len())
+        .map(|i| {
+            objs.get(&format!("rationalized_{i}"))
+                .map(|(v, f)| Soup::new(v, f, cell))
+        })
+        .collect();
+    let kept = |b: usize| whole.as_ref().or(own[b - 1].as_ref());
     let model = model_of(name).map(|(v, f)| (Soup::new(&v, &f, cell), v, f));
     let blocks: Vec<Block> = report["blocks"]
         .as_array()
@@ -283,6 +290,9 @@ fn check_job(name: &str) {
                         continue;
                     }
                     samples += 1;
+                    let Some(solid) = kept(h.block) else {
+                        panic!("{name}: block {} keeps nothing but has a program", h.block)
+                    };
                     if solid.inside(p) {
                         let d = solid.distance_within(p, 4.0 * tol).unwrap_or(4.0 * tol);
                         let depth = d.min(inside_block);
@@ -324,7 +334,20 @@ fn check_job(name: &str) {
             let [a, b, c] = t.map(|i| v[i]);
             [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0)
         }));
-        let d: Vec<f64> = pts.iter().map(|p| solid.distance(*p)).collect();
+        // each sample's distance to the surface of the one model, or of the nearest of the
+        // blocks holding it
+        let d: Vec<f64> = pts
+            .iter()
+            .filter_map(|p| match &whole {
+                Some(s) => Some(s.distance(*p)),
+                None => blocks
+                    .iter()
+                    .zip(&own)
+                    .filter(|(b, s)| s.is_some() && b.depth(*p) >= -1e-9 * diag)
+                    .map(|(_, s)| s.as_ref().map_or(f64::INFINITY, |s| s.distance(*p)))
+                    .reduce(f64::min),
+            })
+            .collect();
         let max = d.iter().copied().fold(0.0, f64::max);
         let rms = (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt();
         let rep_rms = report["deviation"]["rms"].as_f64().unwrap();

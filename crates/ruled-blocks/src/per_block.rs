@@ -41,6 +41,8 @@ pub struct PerBlock {
     /// Deviation of the model from the union of the blocks' surfaces (each model sample to
     /// the nearest surface of a block holding it).
     pub deviation: Deviation,
+    /// Its figures beside the other strategy's ([`crate::compare`]).
+    pub figures: crate::compare::Figures,
 }
 
 /// Runs the per-block strategy, in the model's unit frame ([`crate::unit`]).
@@ -82,6 +84,7 @@ pub fn run(model: &TriMesh, params: &Params) -> Result<PerBlock> {
         .collect::<Result<_>>()?;
     Ok(PerBlock {
         segmentation: r.segmentation,
+        figures: crate::unit::figures(&f, r.figures),
         rational,
         blocks: r
             .blocks
@@ -131,7 +134,7 @@ fn run_unit(model: &TriMesh, params: &Params) -> Result<PerBlock> {
         kerf: params.kerf,
         lead: params.lead,
     };
-    let blocks = cuboids
+    let blocks: Vec<BlockPlan> = cuboids
         .iter()
         .zip(&rational)
         .map(|(b, r)| match r {
@@ -181,8 +184,14 @@ fn run_unit(model: &TriMesh, params: &Params) -> Result<PerBlock> {
         },
         max: acc.2,
     };
+    let solids: Vec<Option<&Solid>> = rational
+        .iter()
+        .map(|r| r.as_ref().map(|r| &r.solid))
+        .collect();
+    let figures = crate::compare::figures(model, &blocks, &solids, deviation);
     Ok(PerBlock {
         segmentation: SegmentationSummary::of(&segmentation),
+        figures,
         rational,
         blocks,
         deviation,

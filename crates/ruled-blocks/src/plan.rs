@@ -101,6 +101,8 @@ pub struct RuledBlocks {
     pub diagonal: f64,
     /// Sections, the refined ones included.
     pub sections: usize,
+    /// Its figures beside the other strategy's ([`crate::compare`]).
+    pub figures: crate::compare::Figures,
     /// The block segmentation of the rationalized solid, in brief.
     pub segmentation: SegmentationSummary,
     /// Each block's plan, in the segmentation's order.
@@ -194,6 +196,7 @@ pub fn run(
         deviation: crate::unit::deviation(&f, r.deviation),
         diagonal: model.aabb().size().norm(),
         sections: r.sections,
+        figures: crate::unit::figures(&f, r.figures),
         segmentation: r.segmentation,
         blocks: r
             .blocks
@@ -268,10 +271,13 @@ fn run_unit(
     };
     let cuboids: Vec<Cuboid> = segmentation.blocks.iter().map(|b| b.cuboid()).collect();
     let blocks = plan_blocks(&cuboids, &solid, &probe, &plan, progress);
+    let solids: Vec<Option<&Solid>> = blocks.iter().map(|_| Some(&solid)).collect();
+    let figures = crate::compare::figures(model, &blocks, &solids, deviation);
     Ok(RuledBlocks {
         regions,
         diagonal: model.aabb().size().norm(),
         sections: s.offsets.len(),
+        figures,
         deviation,
         segmentation: SegmentationSummary::of(&segmentation),
         blocks,

@@ -145,3 +145,14 @@ pub fn plan(f: &UnitFrame, p: BlockPlan) -> BlockPlan {
         ..p
     }
 }
+
+/// A strategy's figures back: lengths, volumes, the deviation.
+pub fn figures(f: &UnitFrame, x: crate::compare::Figures) -> crate::compare::Figures {
+    crate::compare::Figures {
+        max_gap: x.max_gap * f.scale,
+        rms_gap: x.rms_gap * f.scale,
+        deviation: deviation(f, x.deviation),
+        added_volume: x.added_volume * f.scale.powi(3),
+        ..x
+    }
+}

@@ -281,16 +281,12 @@ impl Task for RuledBlocks {
             Some(_) => 4.0 * (p.grid * p.grid) as f64,
             None => 0.0,
         };
-        let strips = p.plan.max_strips as f64;
-        let sections = p.plan.sections as f64 + 2.0 * ::ruled_blocks::sections::MAX_REFINED as f64;
-        // slicing every face per section, the rationalized solid's faces, its blocks
-        let solid_faces = 2.0 * strips * sections * solid_rows();
-        let work = faces * sections + solid_faces * 200.0;
+        let e = estimate(p, faces, job.surface.as_ref().map(|s| s.aabb()));
         let mut e = Estimate::new(
-            faces * 200.0 + solid_faces * 300.0 + 5e7,
-            work,
+            e.0,
+            e.1,
             "/task/RuledBlocks/sections",
-            "lower the task's sections or max_strips, or coarsen the model",
+            "lower the task's sections or max_strips, enlarge block.size, or coarsen the model",
         );
         for problem in p.plan.problems() {
             let pointer = match problem.0 {
@@ -347,22 +343,7 @@ impl Task for RuledBlocks {
         let per_block = ::ruled_blocks::per_block::run(&model, &params.plan)
             .map_err(|e| job.fail(e.to_string()))?;
         progress.finish();
-        let solids: Vec<Option<&::ruled_blocks::solid::Solid>> =
-            whole.blocks.iter().map(|_| Some(&whole.solid)).collect();
-        let per_solids: Vec<Option<&::ruled_blocks::solid::Solid>> = per_block
-            .rational
-            .iter()
-            .map(|r| r.as_ref().map(|r| &r.solid))
-            .collect();
-        let figures = [
-            ::ruled_blocks::compare::figures(&model, &whole.blocks, &solids, whole.deviation),
-            ::ruled_blocks::compare::figures(
-                &model,
-                &per_block.blocks,
-                &per_solids,
-                per_block.deviation,
-            ),
-        ];
+        let figures = [whole.figures.clone(), per_block.figures.clone()];
         let (mesh, strips, blocks, deviation) = match params.strategy {
             Strategy::WholeModel => (
                 whole.solid.mesh.clone(),
@@ -463,9 +444,27 @@ fn union(solids: &[&::ruled_blocks::solid::Solid]) -> std::result::Result<TriMes
     TriMesh::try_new(v, f).map_err(|e| e.to_string())
 }
 
-/// Rows of the rationalized solid per section (its tessellation).
-fn solid_rows() -> f64 {
-    ::ruled_blocks::solid::ROWS_PER_GAP as f64
+/// Memory (bytes) and work (steps, ~10⁸ a second) of a run on a model of `faces`
+/// triangles in the box `bounds`: both strategies slice every face at every section (the
+/// per-block one for each block and each of its three axes), and probe each block's strips
+/// and lattice. Blocks are counted as the box's volume over a block's, and sections with
+/// as many again added where loops split or merge. Measured against run times in
+/// BENCHMARKS.md ("Segmentation versus rationalization").
+fn estimate(p: &RuledBlocksParams, faces: f64, bounds: Option<geom::bbox::Aabb>) -> (f64, f64) {
+    let size = p.plan.blocks.block_size;
+    let blocks = bounds.map_or(1.0, |b| {
+        let s = b.size();
+        (0..3)
+            .map(|k| (s[k] / size[k]).ceil().max(1.0))
+            .product::<f64>()
+    });
+    let sections = 2.0 * p.plan.sections as f64;
+    let strips = p.plan.max_strips as f64;
+    let slicing = (1.0 + 3.0 * blocks) * sections * faces * 20.0;
+    let probing = blocks * (strips * sections * 400.0 + 4096.0 * 400.0);
+    let solid = strips * sections * 2.0;
+    let memory = faces * 400.0 + blocks * solid * 200.0 + 5e7;
+    (memory, slicing + probing)
 }
 
 fn err_name(e: &ruled::PreCutError) -> &'static str {

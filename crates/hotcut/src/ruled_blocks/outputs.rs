@@ -105,11 +105,24 @@ pub(super) fn gcode(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> expor
     Ok(())
 }
 
-/// `rationalized.obj`: the rationalized model, then every block as a box.
+/// `rationalized.obj`: the rationalized model (`rationalized`; per block:
+/// `rationalized_<block>`, each block's own), then every block as a box (`block_<block>`).
 pub(super) fn obj(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
     files.add("rationalized.obj", |buf| {
         let mut w = crate::output::obj_writer(6, done.job.units, o);
-        w.mesh("rationalized", &done.run.mesh);
+        match done.run.strategy {
+            super::Strategy::WholeModel => {
+                w.mesh("rationalized", &done.run.mesh);
+            }
+            // each block keeps its own rationalization
+            super::Strategy::PerBlock => {
+                for (i, r) in done.run.per_block.rational.iter().enumerate() {
+                    if let Some(r) = r {
+                        w.mesh(&format!("rationalized_{}", i + 1), &r.solid.mesh);
+                    }
+                }
+            }
+        }
         for (i, b) in done.run.blocks.iter().enumerate() {
             w.mesh(
                 &format!("block_{}", i + 1),
@@ -196,10 +209,7 @@ pub(super) fn svg(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> export:
         (10.0, 18.0),
         13.0,
         "#000",
-        &format!(
-            "{} · ruled strips and blocks, seen along the axis",
-            done.job.name
-        ),
+        &format!("{} · ruled strips and blocks, plan", done.job.name),
     );
     doc.text(
         (10.0, 34.0),
