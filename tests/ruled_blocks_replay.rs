@@ -112,11 +112,13 @@ fn moves(text: &str, axes: [char; 4]) -> Vec<(bool, [f64; 4])> {
     out
 }
 
-/// A block from the report: centre, axes (columns) and half sizes.
+/// A block from the report: centre, axes (columns), half sizes, and the half-spaces
+/// `n · x ≤ c` its share of overlaps lies in.
 struct Block {
     center: P,
     axes: [P; 3],
     half: P,
+    keeps: Vec<(P, f64)>,
 }
 
 fn block(v: &Value) -> Block {
@@ -145,10 +147,17 @@ fn block(v: &Value) -> Block {
         ],
     ];
     let axes = [0, 1, 2].map(|k| [r[0][k], r[1][k], r[2][k]]);
+    let keeps = v["keeps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|h| ([0, 1, 2].map(|k| f(&h["normal"][k])), f(&h["offset"])))
+        .collect();
     Block {
         center: c,
         axes,
         half: [0, 1, 2].map(|k| f(&p["size"][k]) / 2.0),
+        keeps,
     }
 }
 
@@ -167,6 +176,14 @@ impl Block {
         (0..3)
             .map(|k| self.half[k] - l[k].abs())
             .fold(f64::INFINITY, f64::min)
+    }
+    /// How far inside the block's share `p` lies: its depth in the block and below each
+    /// half-space's plane.
+    fn share_depth(&self, p: P) -> f64 {
+        self.keeps
+            .iter()
+            .map(|(n, c)| c - (n[0] * p[0] + n[1] * p[1] + n[2] * p[2]))
+            .fold(self.depth(p), f64::min)
     }
 }
 
@@ -286,6 +303,8 @@ fn check_job(name: &str) {
                         );
                         continue;
                     }
+                    // what the block keeps: its share of the rationalized model
+                    let inside_block = b.share_depth(p);
                     if inside_block <= tol {
                         continue;
                     }
@@ -327,6 +346,16 @@ fn check_job(name: &str) {
         .map(|b| b["cuts"].as_array().unwrap().len())
         .sum();
     assert_eq!(programs, listed, "{name}: a program per cut");
+    // the blocks' shares cover the model: every vertex lies in one (to a thousandth of the
+    // tolerance)
+    if let Some((_, v, _)) = &model {
+        for p in v {
+            assert!(
+                blocks.iter().any(|b| b.share_depth(*p) >= -1e-3 * tol),
+                "{name}: no block keeps the model's vertex {p:?}"
+            );
+        }
+    }
     // the deviation from the written mesh: the model's vertices and face centroids
     if let Some((_, v, f)) = &model {
         let mut pts: Vec<P> = v.clone();

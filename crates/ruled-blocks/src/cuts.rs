@@ -93,6 +93,9 @@ pub struct BlockPlan {
     pub added_depth: f64,
     /// Volume of the rationalized solid in the block, on the same lattice.
     pub kept_volume: f64,
+    /// What the block keeps of its overlaps with neighbours: the half-spaces `n · x ≤ c` its
+    /// share lies in (none: all of the solid in it).
+    pub keeps: Vec<crate::hull::Plane>,
 }
 
 /// What the planner needs.
@@ -345,11 +348,45 @@ pub fn strip_cuts(
 
 /// The corners of the polyhedron `solid ∩ block`: the solid's vertices in the block, its
 /// edges' crossings of the block's faces, the block's edges' crossings of its faces and
-/// the block's corners inside it.
+/// the block's corners inside it ([`kept_points_in`] with no further half-space).
 pub fn kept_points(b: &Cuboid, solid: &Solid, probe: &Probe<'_>) -> Vec<Vector3<f64>> {
+    kept_points_in(b, &[], solid, probe)
+}
+
+/// [`kept_points`] of `solid ∩ block ∩ keep`, `keep` half-spaces `n · x ≤ c` (a block's share
+/// of an overlap): the corners of that polyhedron — the solid's edges clipped to the block
+/// and the half-spaces, the polytope's edges (the block's, clipped, and those of its cuts by
+/// each plane) crossing the solid's faces, the polytope's corners inside the solid.
+pub fn kept_points_in(
+    b: &Cuboid,
+    keep: &[crate::hull::Plane],
+    solid: &Solid,
+    probe: &Probe<'_>,
+) -> Vec<Vector3<f64>> {
     let mut pts = Vec::new();
     let (lo, hi) = b.aabb();
     let faces = solid_faces_in(solid, &Aabb { min: lo, max: hi });
+    // the part of segment p → q (unit d, length len) in the block and the half-spaces
+    let clipped = |p: &Vector3<f64>, d: &Vector3<f64>, len: f64| -> Option<(f64, f64)> {
+        let (s0, s1) = clip(b, p, d)?;
+        let (mut a, mut c) = (s0.max(0.0), s1.min(len));
+        for pl in keep {
+            let (at, rate) = (pl.n.dot(p) - pl.c, pl.n.dot(d));
+            if rate.abs() < 1e-300 {
+                if at > 0.0 {
+                    return None;
+                }
+                continue;
+            }
+            let s = -at / rate;
+            if rate > 0.0 {
+                c = c.min(s);
+            } else {
+                a = a.max(s);
+            }
+        }
+        (c >= a).then_some((a, c))
+    };
     for &f in &faces {
         let t = solid.mesh.triangle(f);
         for k in 0..3 {
@@ -359,37 +396,65 @@ pub fn kept_points(b: &Cuboid, solid: &Solid, probe: &Probe<'_>) -> Vec<Vector3<
             if len <= 0.0 {
                 continue;
             }
-            if let Some((s0, s1)) = clip(b, &p, &(d / len)) {
-                let (a, c) = (s0.max(0.0), s1.min(len));
-                if c >= a {
-                    pts.push(p + d / len * a);
-                    pts.push(p + d / len * c);
-                }
+            if let Some((a, c)) = clipped(&p, &(d / len), len) {
+                pts.push(p + d / len * a);
+                pts.push(p + d / len * c);
             }
         }
     }
+    // the polytope's edges: the block's, and each plane's section of the block
     let corners = b.corners();
-    for c in &corners {
-        if probe.inside(c) {
-            pts.push(*c);
+    let mut edges: Vec<(Vector3<f64>, Vector3<f64>)> = Vec::new();
+    for i in 0..8usize {
+        for j in (i + 1)..8 {
+            if (i ^ j).count_ones() == 1 {
+                edges.push((corners[i], corners[j]));
+            }
         }
     }
-    // block edges against the faces
-    for i in 0..8 {
-        for j in (i + 1)..8 {
-            let (p, q) = (corners[i], corners[j]);
-            let (li, lj) = (b.to_local(&p), b.to_local(&q));
-            let differs = (0..3)
-                .filter(|&k| (li[k] - lj[k]).abs() > b.half[k])
-                .count();
-            if differs != 1 {
-                continue;
+    let box_edges = edges.clone();
+    for pl in keep {
+        let mut ring: Vec<Vector3<f64>> = box_edges
+            .iter()
+            .filter_map(|(p, q)| {
+                let (dp, dq) = (pl.n.dot(p) - pl.c, pl.n.dot(q) - pl.c);
+                ((dp <= 0.0) != (dq <= 0.0)).then(|| p + (q - p) * (dp / (dp - dq)))
+            })
+            .collect();
+        if ring.len() < 3 {
+            continue;
+        }
+        let c = ring.iter().sum::<Vector3<f64>>() / ring.len() as f64;
+        let u = (ring[0] - c).normalize();
+        let v = pl.n.cross(&u);
+        ring.sort_by(|x, y| {
+            let ax = (x - c).dot(&v).atan2((x - c).dot(&u));
+            let ay = (y - c).dot(&v).atan2((y - c).dot(&u));
+            ax.total_cmp(&ay)
+        });
+        for k in 0..ring.len() {
+            edges.push((ring[k], ring[(k + 1) % ring.len()]));
+        }
+    }
+    for (p, q) in &edges {
+        let d = q - p;
+        let len = d.norm();
+        if len <= 0.0 {
+            continue;
+        }
+        let Some((a, c)) = clipped(p, &(d / len), len) else {
+            continue;
+        };
+        let (p0, p1) = (p + d / len * a, p + d / len * c);
+        for end in [p0, p1] {
+            if probe.inside(&end) {
+                pts.push(end);
             }
-            for &f in &faces {
-                let [a, bb, c] = solid.mesh.triangle(f);
-                if let Some(x) = segment_triangle(&p, &q, &a, &bb, &c) {
-                    pts.push(x);
-                }
+        }
+        for &f in &faces {
+            let [ta, tb, tc] = solid.mesh.triangle(f);
+            if let Some(x) = segment_triangle(&p0, &p1, &ta, &tb, &tc) {
+                pts.push(x);
             }
         }
     }

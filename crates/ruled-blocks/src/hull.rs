@@ -71,9 +71,28 @@ pub fn hull_cut(
     kerf: f64,
     lead: f64,
 ) -> HullCut {
-    let scale = b.half.norm();
     let lattice = lattice(b);
     let inside: Vec<bool> = lattice.iter().map(|p| probe.inside(p)).collect();
+    hull_cut_on(b, points, (&lattice, &inside), &[], probe, (kerf, lead))
+}
+
+/// [`hull_cut`] with the block's lattice and its points' insideness given (computed once
+/// per block), and the block keeping only its share `keep` (half-spaces `n · x ≤ c`) of the
+/// solid: `points` are then the corners of that share.
+pub fn hull_cut_on(
+    b: &Cuboid,
+    points: &[Vector3<f64>],
+    (lattice, inside_solid): (&[Vector3<f64>], &[bool]),
+    keep: &[Plane],
+    probe: &Probe<'_>,
+    (kerf, lead): (f64, f64),
+) -> HullCut {
+    let scale = b.half.norm();
+    let inside: Vec<bool> = lattice
+        .iter()
+        .zip(inside_solid)
+        .map(|(p, &i)| i && keep.iter().all(|pl| pl.n.dot(p) <= pl.c))
+        .collect();
     let cell = 8.0 * b.half.x * b.half.y * b.half.z / lattice.len() as f64;
     let kept_volume = inside.iter().filter(|&&x| x).count() as f64 * cell;
     let planes = hull_planes(points, scale).unwrap_or_default();

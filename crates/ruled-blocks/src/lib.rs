@@ -51,6 +51,8 @@ pub mod plan;
 pub mod regions;
 /// Sections of the model: loops with their corners.
 pub mod sections;
+/// Sharing the blocks' overlaps where that lowers what their hulls add (fig. 4.4).
+pub mod share;
 /// The rationalized solid, its strips' rulings, inside and depth queries.
 pub mod solid;
 /// The unit frame every step computes in.

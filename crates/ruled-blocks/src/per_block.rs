@@ -154,6 +154,7 @@ fn run_unit(model: &TriMesh, params: &Params) -> Result<PerBlock> {
                 added_volume: 0.0,
                 added_depth: 0.0,
                 kept_volume: 0.0,
+                keeps: Vec::new(),
             },
         })
         .collect();

@@ -103,6 +103,8 @@ pub struct RuledBlocks {
     pub sections: usize,
     /// Its figures beside the other strategy's ([`crate::compare`]).
     pub figures: crate::compare::Figures,
+    /// What sharing the blocks' overlaps saved ([`crate::share`]).
+    pub sharing: crate::share::Sharing,
     /// The block segmentation of the rationalized solid, in brief.
     pub segmentation: SegmentationSummary,
     /// Each block's plan, in the segmentation's order.
@@ -197,6 +199,11 @@ pub fn run(
         diagonal: model.aabb().size().norm(),
         sections: r.sections,
         figures: crate::unit::figures(&f, r.figures),
+        sharing: crate::share::Sharing {
+            added_before: r.sharing.added_before * f.scale.powi(3),
+            added_after: r.sharing.added_after * f.scale.powi(3),
+            ..r.sharing
+        },
         segmentation: r.segmentation,
         blocks: r
             .blocks
@@ -270,7 +277,13 @@ fn run_unit(
         lead: params.lead,
     };
     let cuboids: Vec<Cuboid> = segmentation.blocks.iter().map(|b| b.cuboid()).collect();
-    let blocks = plan_blocks(&cuboids, &solid, &probe, &plan, progress);
+    let mut blocks = plan_blocks(&cuboids, &solid, &probe, &plan, progress);
+    progress(Progress {
+        phase: "overlaps",
+        done: 0,
+        total: 1,
+    });
+    let sharing = crate::share::share(&mut blocks, &solid, &probe, &plan);
     let solids: Vec<Option<&Solid>> = blocks.iter().map(|_| Some(&solid)).collect();
     let figures = crate::compare::figures(model, &blocks, &solids, deviation);
     Ok(RuledBlocks {
@@ -278,6 +291,7 @@ fn run_unit(
         diagonal: model.aabb().size().norm(),
         sections: s.offsets.len(),
         figures,
+        sharing,
         deviation,
         segmentation: SegmentationSummary::of(&segmentation),
         blocks,
@@ -330,6 +344,7 @@ pub fn plan_block(b: &Cuboid, solid: &Solid, probe: &Probe<'_>, s: &PlanSettings
             added_volume: 0.0,
             added_depth: 0.0,
             kept_volume: kept as f64 * cell,
+            keeps: Vec::new(),
         };
     }
     let pts = kept_points(b, solid, probe);
@@ -343,6 +358,7 @@ pub fn plan_block(b: &Cuboid, solid: &Solid, probe: &Probe<'_>, s: &PlanSettings
         added_volume: h.added_volume,
         added_depth: h.added_depth,
         kept_volume: h.kept_volume,
+        keeps: Vec::new(),
     }
 }
 

@@ -142,6 +142,14 @@ pub fn plan(f: &UnitFrame, p: BlockPlan) -> BlockPlan {
         added_volume: p.added_volume * v,
         added_depth: p.added_depth * f.scale,
         kept_volume: p.kept_volume * v,
+        keeps: p
+            .keeps
+            .iter()
+            .map(|h| crate::hull::Plane {
+                n: h.n,
+                c: h.c * f.scale + h.n.dot(&f.origin),
+            })
+            .collect(),
         ..p
     }
 }

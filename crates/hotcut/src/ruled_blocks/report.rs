@@ -186,8 +186,35 @@ pub struct BlockReport {
     pub added_volume: f64,
     /// Largest depth of that material.
     pub added_depth: f64,
+    /// Its share of overlaps with neighbours: the half-spaces `normal · x ≤ offset` what it
+    /// keeps lies in (empty: all of the rationalized model in it).
+    pub keeps: Vec<HalfSpace>,
     /// Its cuts, in order.
     pub cuts: Vec<CutReport>,
+}
+
+/// A half-space `normal · x ≤ offset`.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct HalfSpace {
+    /// Unit normal, pointing out of the share.
+    pub normal: [f64; 3],
+    /// Offset.
+    pub offset: f64,
+}
+
+/// Sharing the blocks' overlaps (fig. 4.4).
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SharingReport {
+    /// Overlaps split between two blocks.
+    pub splits: usize,
+    /// Material the hulls add with no overlap shared.
+    pub added_before: f64,
+    /// With the overlaps shared.
+    pub added_after: f64,
+    /// `added_before − added_after`.
+    pub saved: f64,
 }
 
 /// One cut.
@@ -226,6 +253,8 @@ pub struct Totals {
     pub added_depth: f64,
     /// Cutting minutes.
     pub cut_minutes: f64,
+    /// `WholeModel`: what sharing the overlaps saved (`PerBlock` shares none).
+    pub sharing: Option<SharingReport>,
 }
 
 /// The report of a run.
@@ -276,6 +305,14 @@ pub fn make(p: &RuledBlocksParams, run: &RuledBlocksRun, job: &Context) -> Ruled
             kept_volume: b.kept_volume,
             added_volume: b.added_volume,
             added_depth: b.added_depth,
+            keeps: b
+                .keeps
+                .iter()
+                .map(|h| HalfSpace {
+                    normal: h.n.into(),
+                    offset: h.c,
+                })
+                .collect(),
             cuts: b
                 .cuts
                 .iter()
@@ -308,6 +345,18 @@ pub fn make(p: &RuledBlocksParams, run: &RuledBlocksRun, job: &Context) -> Ruled
         cuts: blocks.iter().map(|b| b.cuts.len()).sum(),
         added_volume: blocks.iter().map(|b| b.added_volume).sum(),
         added_depth: blocks.iter().map(|b| b.added_depth).fold(0.0, f64::max),
+        sharing: match run.strategy {
+            super::Strategy::WholeModel => {
+                let x = &r.sharing;
+                Some(SharingReport {
+                    splits: x.splits,
+                    added_before: x.added_before,
+                    added_after: x.added_after,
+                    saved: x.added_before - x.added_after,
+                })
+            }
+            super::Strategy::PerBlock => None,
+        },
         cut_minutes: blocks
             .iter()
             .flat_map(|b| &b.cuts)
