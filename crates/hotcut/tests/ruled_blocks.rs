@@ -135,3 +135,16 @@ fn a_model_no_ruled_surface_approximates_fails_with_its_numbers_and_writes_nothi
         "a failed run wrote files"
     );
 }
+
+#[test]
+fn per_block_programs_are_refused() {
+    expect_invalid(
+        &job(
+            WAVE,
+            400.0,
+            "RuledBlocks(strategy: PerBlock, sections: 16, grid: 24)",
+            "",
+        ),
+        &["/task/RuledBlocks/strategy", "PerBlock"],
+    );
+}

@@ -39,14 +39,16 @@ pub struct Figures {
 }
 
 /// The figures of a plan whose block `i` is cut from `solids[i]` (the same solid for every
-/// block in the whole-model strategy; `None`: the block holds no model).
+/// block in the whole-model strategy; `None`: the block holds no model), at the model's
+/// samples `spacing` apart ([`crate::plan::model_samples`]).
 pub fn figures(
     model: &TriMesh,
     plans: &[BlockPlan],
     solids: &[Option<&Solid>],
     deviation: Deviation,
+    spacing: f64,
 ) -> Figures {
-    let samples = model_samples(model);
+    let samples = model_samples(model, spacing);
     let probes: Vec<Option<Probe<'_>>> = solids.iter().map(|s| s.map(Probe::new)).collect();
     let cubes: Vec<&Cuboid> = plans.iter().map(|p| &p.block).collect();
     let (mut seams, mut n, mut max_gap, mut sum_gap2, mut max_jump) =

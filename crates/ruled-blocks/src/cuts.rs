@@ -139,6 +139,17 @@ pub fn clip(b: &Cuboid, p: &Vector3<f64>, d: &Vector3<f64>) -> Option<(f64, f64)
 /// any depth beyond `tol` for `d + tol` further on; within `tol` of the surface the walk
 /// goes on by `max(tol − d, tol / 2)`; a point farther than `tol` is tested for inside.
 pub fn penetration(b: &Cuboid, probe: &Probe<'_>, l: &WireLine, tol: f64) -> f64 {
+    penetration_in(b, &[], probe, l, tol)
+}
+
+/// [`penetration`] into the block's share `keep` (half-spaces `n · x ≤ c`) of the solid.
+pub fn penetration_in(
+    b: &Cuboid,
+    keep: &[crate::hull::Plane],
+    probe: &Probe<'_>,
+    l: &WireLine,
+    tol: f64,
+) -> f64 {
     let Some((s0, s1)) = clip(b, &l.point, &l.dir) else {
         return 0.0;
     };
@@ -158,7 +169,11 @@ pub fn penetration(b: &Cuboid, probe: &Probe<'_>, l: &WireLine, tol: f64) -> f64
             let face = (0..3)
                 .map(|k| b.half[k] - local[k].abs())
                 .fold(f64::INFINITY, f64::min);
-            let depth = d.min(face);
+            let share = keep
+                .iter()
+                .map(|h| h.c - h.n.dot(&p))
+                .fold(f64::INFINITY, f64::min);
+            let depth = d.min(face).min(share);
             if depth > tol {
                 return depth;
             }
@@ -366,27 +381,33 @@ pub fn kept_points_in(
     let mut pts = Vec::new();
     let (lo, hi) = b.aabb();
     let faces = solid_faces_in(solid, &Aabb { min: lo, max: hi });
-    // the part of segment p → q (unit d, length len) in the block and the half-spaces
-    let clipped = |p: &Vector3<f64>, d: &Vector3<f64>, len: f64| -> Option<(f64, f64)> {
-        let (s0, s1) = clip(b, p, d)?;
-        let (mut a, mut c) = (s0.max(0.0), s1.min(len));
-        for pl in keep {
-            let (at, rate) = (pl.n.dot(p) - pl.c, pl.n.dot(d));
-            if rate.abs() < 1e-300 {
-                if at > 0.0 {
-                    return None;
-                }
-                continue;
-            }
-            let s = -at / rate;
-            if rate > 0.0 {
-                c = c.min(s);
+    // the part of segment p → q (unit d, length len) in the half-spaces, and in the block
+    // unless it lies on the block (its edges: a slab test would drop them by a rounding)
+    let clipped =
+        |p: &Vector3<f64>, d: &Vector3<f64>, len: f64, in_box: bool| -> Option<(f64, f64)> {
+            let (mut a, mut c) = if in_box {
+                (0.0, len)
             } else {
-                a = a.max(s);
+                let (s0, s1) = clip(b, p, d)?;
+                (s0.max(0.0), s1.min(len))
+            };
+            for pl in keep {
+                let (at, rate) = (pl.n.dot(p) - pl.c, pl.n.dot(d));
+                if rate.abs() < 1e-300 {
+                    if at > 0.0 {
+                        return None;
+                    }
+                    continue;
+                }
+                let s = -at / rate;
+                if rate > 0.0 {
+                    c = c.min(s);
+                } else {
+                    a = a.max(s);
+                }
             }
-        }
-        (c >= a).then_some((a, c))
-    };
+            (c >= a).then_some((a, c))
+        };
     for &f in &faces {
         let t = solid.mesh.triangle(f);
         for k in 0..3 {
@@ -396,7 +417,7 @@ pub fn kept_points_in(
             if len <= 0.0 {
                 continue;
             }
-            if let Some((a, c)) = clipped(&p, &(d / len), len) {
+            if let Some((a, c)) = clipped(&p, &(d / len), len, false) {
                 pts.push(p + d / len * a);
                 pts.push(p + d / len * c);
             }
@@ -442,7 +463,7 @@ pub fn kept_points_in(
         if len <= 0.0 {
             continue;
         }
-        let Some((a, c)) = clipped(p, &(d / len), len) else {
+        let Some((a, c)) = clipped(p, &(d / len), len, true) else {
             continue;
         };
         let (p0, p1) = (p + d / len * a, p + d / len * c);

@@ -8,7 +8,8 @@ use blocks::Cuboid;
 use geom::hull::convex_hull;
 use nalgebra::Vector3;
 
-use crate::cuts::{mount, with_leads, Cut, CutKind, WireLine, LATTICE, MAX_PLANES};
+use crate::cuts::{mount, Cut, CutKind, WireLine, LATTICE, MAX_PLANES};
+use crate::machine::MachineFrame;
 use crate::solid::Probe;
 
 /// A plane `n · x = c`, `n` the unit outward normal.
@@ -186,7 +187,30 @@ fn plane_cut(b: &Cuboid, pl: &Plane, kerf: f64, lead: f64) -> Option<Cut> {
             dir: w,
         })
         .collect();
-    let (lines, _) = with_leads(b, &m_, &lines, lead, 1);
+    // the leads go on along m, in the plane (a lead along the mount's axis would leave the
+    // plane, into what the block keeps), until the wire clears the block along the cut by
+    // `lead` (the rapids then stay off the block)
+    let mut lines = lines;
+    if let (Some(&first), Some(&last)) = (lines.first(), lines.last()) {
+        let f = MachineFrame::new(b, &m_);
+        let rate = m.dot(&f.along).max(1e-3);
+        let w = f.half[1];
+        let along_at = |l: &WireLine, s: f64| f.local(&f.at_across(l, s * w))[0];
+        let back = (along_at(&first, -1.0).max(along_at(&first, 1.0)) + lead).max(lead) / rate;
+        let length = 2.0 * f.half[0];
+        let on = (length - along_at(&last, -1.0).min(along_at(&last, 1.0)) + lead).max(lead) / rate;
+        lines.insert(
+            0,
+            WireLine {
+                point: first.point - m * back,
+                dir: first.dir,
+            },
+        );
+        lines.push(WireLine {
+            point: last.point + m * on,
+            dir: last.dir,
+        });
+    }
     Some(Cut {
         kind: CutKind::Plane,
         lines,

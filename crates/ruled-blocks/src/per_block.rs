@@ -99,7 +99,7 @@ pub fn run(model: &TriMesh, params: &Params) -> Result<PerBlock> {
 fn run_unit(model: &TriMesh, params: &Params) -> Result<PerBlock> {
     let segmentation = blocks::segment(model, &params.blocks, &|_| {})
         .map_err(|e| Error::Blocks(e.to_string()))?;
-    let samples = model_samples(model);
+    let samples = model_samples(model, params.tolerance);
     let cuboids: Vec<Cuboid> = segmentation.blocks.iter().map(|b| b.cuboid()).collect();
     let mut rational = Vec::with_capacity(cuboids.len());
     for b in &cuboids {
@@ -189,7 +189,7 @@ fn run_unit(model: &TriMesh, params: &Params) -> Result<PerBlock> {
         .iter()
         .map(|r| r.as_ref().map(|r| &r.solid))
         .collect();
-    let figures = crate::compare::figures(model, &blocks, &solids, deviation);
+    let figures = crate::compare::figures(model, &blocks, &solids, deviation, params.tolerance);
     Ok(PerBlock {
         segmentation: SegmentationSummary::of(&segmentation),
         figures,
@@ -252,7 +252,9 @@ fn rationalize_in(
         clip.reverse();
     }
     let mid = frame.normal.dot(&c);
-    let window = (mid - b.half[k], mid + b.half[k]);
+    // a hair inside the block's faces: the solid's end caps then lie strictly in the block
+    let inner = b.half[k] * (1.0 - 1e-7);
+    let window = (mid - inner, mid + inner);
     let s = section_window(
         model,
         &frame,

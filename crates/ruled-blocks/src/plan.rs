@@ -252,7 +252,7 @@ fn run_unit(
     let ends: Vec<(End, End)> = regions.iter().map(|r| region_ends(r, &s, model)).collect();
     let solid = build(&regions, &ends, axis)?;
     let probe = Probe::new(&solid);
-    let (deviation, per_region) = deviation(model, &solid, &probe, regions.len());
+    let (deviation, per_region) = deviation(model, &solid, &probe, params.tolerance, regions.len());
     let regions = regions
         .into_iter()
         .zip(per_region)
@@ -285,7 +285,7 @@ fn run_unit(
     });
     let sharing = crate::share::share(&mut blocks, &solid, &probe, &plan);
     let solids: Vec<Option<&Solid>> = blocks.iter().map(|_| Some(&solid)).collect();
-    let figures = crate::compare::figures(model, &blocks, &solids, deviation);
+    let figures = crate::compare::figures(model, &blocks, &solids, deviation, params.tolerance);
     Ok(RuledBlocks {
         regions,
         diagonal: model.aabb().size().norm(),
@@ -425,9 +425,10 @@ fn deviation(
     model: &TriMesh,
     solid: &Solid,
     probe: &Probe<'_>,
+    tolerance: f64,
     n: usize,
 ) -> (Deviation, Vec<Deviation>) {
-    let samples = model_samples(model);
+    let samples = model_samples(model, tolerance);
     let mut whole = (0usize, 0.0f64, 0.0f64);
     let mut per = vec![(0usize, 0.0f64, 0.0f64); n];
     for p in &samples {
@@ -448,12 +449,32 @@ fn deviation(
     (dev(whole), per.into_iter().map(dev).collect())
 }
 
-/// The model's samples for the deviation: its vertices, then its faces' centroids.
-pub fn model_samples(model: &TriMesh) -> Vec<Vector3<f64>> {
+/// Most subdivisions of a face's edges for the deviation's samples.
+pub const MAX_FACE_DIVISIONS: usize = 4;
+
+/// The model's samples for the deviation: its vertices, then per face (in order) the points
+/// of a barycentric lattice dividing its edges into `k = ⌈longest edge / spacing⌉` parts
+/// (1 to [`MAX_FACE_DIVISIONS`]), its corners left out — the centroid alone when `k` is 1
+/// or 2 — so that the samples lie at most about `spacing` apart (the tolerance: the
+/// deviation is not measured only where the model's vertices are).
+pub fn model_samples(model: &TriMesh, spacing: f64) -> Vec<Vector3<f64>> {
     let mut out: Vec<Vector3<f64>> = model.vertices().to_vec();
-    out.extend((0..model.faces().len()).map(|f| {
+    for f in 0..model.faces().len() {
         let [a, b, c] = model.triangle(f);
-        (a + b + c) / 3.0
-    }));
+        let longest = (b - a).norm().max((c - b).norm()).max((a - c).norm());
+        let k = ((longest / spacing).ceil() as usize).clamp(1, MAX_FACE_DIVISIONS);
+        if k <= 2 {
+            out.push((a + b + c) / 3.0);
+            continue;
+        }
+        for i in 0..=k {
+            for j in 0..=(k - i) {
+                if (i == 0 && j == 0) || i == k || j == k {
+                    continue;
+                }
+                out.push(a + (b - a) * (i as f64 / k as f64) + (c - a) * (j as f64 / k as f64));
+            }
+        }
+    }
     out
 }

@@ -147,6 +147,7 @@ pub fn share(
                 let covered = tried.iter().all(|(i, p)| {
                     let other = if *i == a { &plans[b] } else { &plans[a] };
                     given_up_is_kept(p, other, &plans[*i].keeps, solid, probe)
+                        && cuts_keep_out(p, probe, s.tolerance)
                 });
                 if covered && total < current * (1.0 - 1e-9) {
                     for (i, p) in tried {
@@ -189,6 +190,23 @@ fn given_up_is_kept(
         .all(|q| {
             other.block.contains(q, -eps) && other.keeps.iter().all(|h| h.n.dot(q) <= h.c + eps)
         })
+}
+
+/// Whether no wire position of `p`'s cuts, nor the moves between them, enters its share of
+/// the solid deeper than `tol` (the same check as a strip's).
+fn cuts_keep_out(p: &BlockPlan, probe: &Probe<'_>, tol: f64) -> bool {
+    p.cuts.iter().all(|c| {
+        c.lines.windows(2).all(|w| {
+            (0..=4).all(|k| {
+                let t = k as f64 / 4.0;
+                let l = crate::cuts::WireLine {
+                    point: w[0].point + (w[1].point - w[0].point) * t,
+                    dir: (w[0].dir + (w[1].dir - w[0].dir) * t).normalize(),
+                };
+                crate::cuts::penetration_in(&p.block, &p.keeps, probe, &l, tol) == 0.0
+            })
+        })
+    })
 }
 
 /// The corners of the box, in `p`'s block frame, around the corners of what it keeps.

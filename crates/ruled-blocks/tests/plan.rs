@@ -36,7 +36,7 @@ fn a_half_sphere_is_rationalized_within_the_tolerance_and_its_blocks_are_cut() {
     // the flat base is one strip, the rest of the half disc's outline the others
     assert_eq!(r.regions[0].region.side_strips[0], 1);
     assert!(r.deviation.max <= 5.0, "{:?}", r.deviation);
-    assert!(r.deviation.samples == m.vertices().len() + m.faces().len());
+    assert!(r.deviation.samples >= m.vertices().len() + m.faces().len());
     let (v, w) = (r.solid.mesh.volume(), m.volume());
     assert!((v - w).abs() <= 0.02 * w, "volume {v} vs {w}");
     // convex: most blocks are cut by their strips
@@ -53,7 +53,7 @@ fn a_half_sphere_is_rationalized_within_the_tolerance_and_its_blocks_are_cut() {
         .all(|b| b.added_volume == 0.0));
     // the whole model's blocks share one surface: no gap, no jump; per block they differ
     let solids: Vec<_> = r.blocks.iter().map(|_| Some(&r.solid)).collect();
-    let whole = figures(&m, &r.blocks, &solids, r.deviation);
+    let whole = figures(&m, &r.blocks, &solids, r.deviation, p.tolerance);
     assert!(whole.seams > 0);
     assert_eq!((whole.max_gap, whole.max_jump_deg), (0.0, 0.0));
     let pb = per_block::run(&m, &p).unwrap();
@@ -62,7 +62,7 @@ fn a_half_sphere_is_rationalized_within_the_tolerance_and_its_blocks_are_cut() {
         .iter()
         .map(|x| x.as_ref().map(|x| &x.solid))
         .collect();
-    let per = figures(&m, &pb.blocks, &solids, pb.deviation);
+    let per = figures(&m, &pb.blocks, &solids, pb.deviation, p.tolerance);
     assert!(
         per.seams > 0 && per.max_gap > 0.0 && per.max_jump_deg > 0.0,
         "{per:?}"
