@@ -63,7 +63,18 @@ pub fn body(r: &RuledBlocksReport, job: &Context) -> Body {
             ok: true,
         },
     ];
-    let regions = Table {
+    let (regions, blocks, comparison) = (regions(r, job), blocks(r, job), comparison(r, job));
+    Body {
+        verdict: Verdict { ok, text },
+        counts,
+        constraints,
+        notes: Vec::new(),
+        tables: vec![comparison, regions, blocks],
+    }
+}
+
+fn regions(r: &RuledBlocksReport, job: &Context) -> Table {
+    Table {
         title: "Regions".into(),
         columns: ["region", "sections", "strips", "controls", "RMS", "max"]
             .map(String::from)
@@ -89,8 +100,12 @@ pub fn body(r: &RuledBlocksReport, job: &Context) -> Body {
                 )
             })
             .collect(),
-    };
-    let blocks = Table {
+    }
+}
+
+fn blocks(r: &RuledBlocksReport, job: &Context) -> Table {
+    let u = job.units.symbol();
+    Table {
         title: "Blocks".into(),
         columns: [
             "block",
@@ -123,8 +138,12 @@ pub fn body(r: &RuledBlocksReport, job: &Context) -> Body {
                 )
             })
             .collect(),
-    };
-    let comparison = Table {
+    }
+}
+
+fn comparison(r: &RuledBlocksReport, job: &Context) -> Table {
+    let u = job.units.symbol();
+    Table {
         title: "Whole model or per block (§4.1): both strategies on this model".into(),
         columns: [
             "strategy",
@@ -171,12 +190,5 @@ pub fn body(r: &RuledBlocksReport, job: &Context) -> Body {
                 )
             })
             .collect(),
-    };
-    Body {
-        verdict: Verdict { ok, text },
-        counts,
-        constraints,
-        notes: Vec::new(),
-        tables: vec![comparison, regions, blocks],
     }
 }

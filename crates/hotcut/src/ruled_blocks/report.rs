@@ -286,8 +286,65 @@ pub fn make(p: &RuledBlocksParams, run: &RuledBlocksRun, job: &Context) -> Ruled
             deviation: DeviationReport::of(&g.deviation, diag, tol),
         })
         .collect();
-    let blocks: Vec<BlockReport> = run
-        .blocks
+    let blocks = block_reports(run);
+    let totals = Totals {
+        cuttable: blocks.iter().filter(|b| b.cuttable).count(),
+        cuts: blocks.iter().map(|b| b.cuts.len()).sum(),
+        added_volume: blocks.iter().map(|b| b.added_volume).sum(),
+        added_depth: blocks.iter().map(|b| b.added_depth).fold(0.0, f64::max),
+        sharing: match run.strategy {
+            super::Strategy::WholeModel => {
+                let x = &r.sharing;
+                Some(SharingReport {
+                    splits: x.splits,
+                    added_before: x.added_before,
+                    added_after: x.added_after,
+                    saved: x.added_before - x.added_after,
+                })
+            }
+            super::Strategy::PerBlock => None,
+        },
+        cut_minutes: blocks
+            .iter()
+            .flat_map(|b| &b.cuts)
+            .map(|c| c.cut_minutes)
+            .sum(),
+    };
+    RuledBlocksReport {
+        job: job.name.clone(),
+        task: "RuledBlocks".into(),
+        units: job.units,
+        hotcut_version: crate::report::VERSION.into(),
+        strategy: run.strategy,
+        comparison: comparison(run, diag, tol),
+        model: solid(&run.model),
+        rationalized: solid(&run.mesh),
+        model_bounds: crate::report::ModelBounds::of(outputs::scene(run)),
+        tolerance: tol,
+        axis: r.solid.axis.into(),
+        sections: r.sections,
+        deviation: DeviationReport::of(&run.deviation, diag, tol),
+        regions,
+        segmentation: {
+            let seg = match run.strategy {
+                super::Strategy::WholeModel => &r.segmentation,
+                super::Strategy::PerBlock => &run.per_block.segmentation,
+            };
+            SegmentationSummary {
+                initial_blocks: seg.initial_blocks,
+                final_blocks: seg.final_blocks,
+                lower_bound: seg.lower_bound,
+                seed: seg.seed,
+            }
+        },
+        blocks,
+        totals,
+    }
+}
+
+/// Every block's report.
+fn block_reports(run: &RuledBlocksRun) -> Vec<BlockReport> {
+    run.blocks
         .iter()
         .enumerate()
         .map(|(i, b)| BlockReport {
@@ -339,75 +396,27 @@ pub fn make(p: &RuledBlocksParams, run: &RuledBlocksRun, job: &Context) -> Ruled
                 })
                 .collect(),
         })
-        .collect();
-    let totals = Totals {
-        cuttable: blocks.iter().filter(|b| b.cuttable).count(),
-        cuts: blocks.iter().map(|b| b.cuts.len()).sum(),
-        added_volume: blocks.iter().map(|b| b.added_volume).sum(),
-        added_depth: blocks.iter().map(|b| b.added_depth).fold(0.0, f64::max),
-        sharing: match run.strategy {
-            super::Strategy::WholeModel => {
-                let x = &r.sharing;
-                Some(SharingReport {
-                    splits: x.splits,
-                    added_before: x.added_before,
-                    added_after: x.added_after,
-                    saved: x.added_before - x.added_after,
-                })
-            }
-            super::Strategy::PerBlock => None,
-        },
-        cut_minutes: blocks
-            .iter()
-            .flat_map(|b| &b.cuts)
-            .map(|c| c.cut_minutes)
-            .sum(),
-    };
-    RuledBlocksReport {
-        job: job.name.clone(),
-        task: "RuledBlocks".into(),
-        units: job.units,
-        hotcut_version: crate::report::VERSION.into(),
-        strategy: run.strategy,
-        comparison: [super::Strategy::WholeModel, super::Strategy::PerBlock]
-            .iter()
-            .zip(&run.figures)
-            .map(|(&strategy, f)| StrategyReport {
-                strategy,
-                seams: f.seams,
-                seam_samples: f.seam_samples,
-                max_gap: f.max_gap,
-                rms_gap: f.rms_gap,
-                max_jump_deg: f.max_jump_deg,
-                median_jump_deg: f.median_jump_deg,
-                deviation: DeviationReport::of(&f.deviation, diag, tol),
-                added_volume: f.added_volume,
-                cuts: f.cuts,
-                blocks: f.blocks,
-                cuttable: f.cuttable,
-            })
-            .collect(),
-        model: solid(&run.model),
-        rationalized: solid(&run.mesh),
-        model_bounds: crate::report::ModelBounds::of(outputs::scene(run)),
-        tolerance: tol,
-        axis: r.solid.axis.into(),
-        sections: r.sections,
-        deviation: DeviationReport::of(&run.deviation, diag, tol),
-        regions,
-        segmentation: {
-            let seg = match run.strategy {
-                super::Strategy::WholeModel => &r.segmentation,
-                super::Strategy::PerBlock => &run.per_block.segmentation,
-            };
-            SegmentationSummary {
-                initial_blocks: seg.initial_blocks,
-                final_blocks: seg.final_blocks,
-                lower_bound: seg.lower_bound,
-                seed: seg.seed,
-            }
-        },
-        blocks,
-        totals,
-    }
+        .collect()
+}
+
+/// Both strategies' figures.
+fn comparison(run: &RuledBlocksRun, diag: f64, tol: f64) -> Vec<StrategyReport> {
+    [super::Strategy::WholeModel, super::Strategy::PerBlock]
+        .iter()
+        .zip(&run.figures)
+        .map(|(&strategy, f)| StrategyReport {
+            strategy,
+            seams: f.seams,
+            seam_samples: f.seam_samples,
+            max_gap: f.max_gap,
+            rms_gap: f.rms_gap,
+            max_jump_deg: f.max_jump_deg,
+            median_jump_deg: f.median_jump_deg,
+            deviation: DeviationReport::of(&f.deviation, diag, tol),
+            added_volume: f.added_volume,
+            cuts: f.cuts,
+            blocks: f.blocks,
+            cuttable: f.cuttable,
+        })
+        .collect()
 }
