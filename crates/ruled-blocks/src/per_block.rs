@@ -51,17 +51,8 @@ pub struct PerBlock {
 /// [`Error::Params`] and [`Error::Model`] as [`crate::plan::run`], [`Error::Blocks`] when
 /// the segmentation fails, [`Error::Fit`] when a block's fit does.
 pub fn run(model: &TriMesh, params: &Params) -> Result<PerBlock> {
-    if let Some((field, message)) = params.problems().into_iter().next() {
-        return Err(Error::Params { field, message });
-    }
-    model
-        .validate(true)
-        .map_err(|e| Error::Model(e.to_string()))?;
-    let f = crate::unit::frame(model);
-    let r = run_unit(
-        &crate::unit::mesh(&f, model)?,
-        &crate::unit::params(&f, params),
-    )?;
+    let (f, unit_model, unit_params) = crate::unit::prepare(model, params)?;
+    let r = run_unit(&unit_model, &unit_params)?;
     let rational = r
         .rational
         .into_iter()

@@ -170,18 +170,8 @@ pub fn run(
     params: &Params,
     progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<RuledBlocks> {
-    if let Some((field, message)) = params.problems().into_iter().next() {
-        return Err(Error::Params { field, message });
-    }
-    model
-        .validate(true)
-        .map_err(|e| Error::Model(e.to_string()))?;
-    let f = crate::unit::frame(model);
-    let r = run_unit(
-        &crate::unit::mesh(&f, model)?,
-        &crate::unit::params(&f, params),
-        progress,
-    )?;
+    let (f, unit_model, unit_params) = crate::unit::prepare(model, params)?;
+    let r = run_unit(&unit_model, &unit_params, progress)?;
     let axis = r.solid.axis;
     Ok(RuledBlocks {
         regions: r

@@ -24,6 +24,23 @@ pub fn frame(model: &TriMesh) -> UnitFrame {
     }
 }
 
+/// The checks both strategies make first — the parameters, then the mesh a closed solid —
+/// and the model's frame, the model and the parameters in it.
+///
+/// # Errors
+/// [`Error::Params`] naming the first bad field, [`Error::Model`] for a mesh that is not a
+/// closed solid.
+pub fn prepare(model: &TriMesh, p: &Params) -> Result<(UnitFrame, TriMesh, Params)> {
+    if let Some((field, message)) = p.problems().into_iter().next() {
+        return Err(Error::Params { field, message });
+    }
+    model
+        .validate(true)
+        .map_err(|e| Error::Model(e.to_string()))?;
+    let f = frame(model);
+    Ok((f, mesh(&f, model)?, params(&f, p)))
+}
+
 /// The model in the frame.
 ///
 /// # Errors
