@@ -7,6 +7,10 @@
 //! `RENAME_EXCHANGE`; elsewhere the earlier folder is moved aside first), and the earlier
 //! output is then deleted. So a kill at any instant leaves `<out>/<name>` holding one whole
 //! run, old or new, and two runs of one job into one folder both end with a whole folder.
+//! A run with nothing to cut fails and writes no file, except for a task that reports it
+//! ([`Task::REPORTS_NOTHING_TO_CUT`](crate::task::Task::REPORTS_NOTHING_TO_CUT)): its
+//! `report.json` and `report.html` (when the job lists them) replace the earlier output
+//! as a whole, so no earlier program survives beside a report that refuses to cut.
 //! A failed run leaves no partial folder; temporary folders of runs that were killed
 //! (their process is gone) are deleted by the next run of the job, and
 //! [`remove_temporaries`](crate::run::remove_temporaries) deletes this process's own on
@@ -121,9 +125,24 @@ pub fn run_task<T: Task>(
     let start = std::time::Instant::now();
     let params = task.params(job)?;
     let run = T::run(&params, job, progress)?;
-    if let Some(why) = T::nothing_to_cut(&run) {
-        return Err(job.fail(format!("nothing to cut, no file written: {why}")));
-    }
+    let refused = T::nothing_to_cut(&run);
+    let reports_only: Vec<OutputSpec>;
+    let outputs = match &refused {
+        None => outputs,
+        Some(why) => {
+            // a task that reports it writes its report and page, nothing else
+            reports_only = outputs
+                .iter()
+                .filter(|_| T::REPORTS_NOTHING_TO_CUT)
+                .filter(|o| matches!(o.kind(), OutputKind::Report | OutputKind::Html))
+                .cloned()
+                .collect();
+            if reports_only.is_empty() {
+                return Err(job.fail(format!("nothing to cut, no file written: {why}")));
+            }
+            &reports_only
+        }
+    };
     let report = T::report(&params, &run, job);
     let done = Finished::<T> {
         job,
@@ -162,6 +181,13 @@ pub fn run_task<T: Task>(
         list.retain(|p| p != &kept);
     }
     let files = placed?;
+    if let Some(why) = refused {
+        return Err(job.fail(format!(
+            "nothing to cut, only {} written to {}: {why}",
+            files.join(" and "),
+            dir.display()
+        )));
+    }
     Ok(TaskOutcome {
         dir,
         files,

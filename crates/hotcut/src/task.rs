@@ -26,6 +26,11 @@ pub trait Task: Sized + 'static {
     const OUTPUTS: &'static [Output<Self>];
     /// Whether the task follows a cutting-direction curve (`cutting.curve`). Default: no.
     const CUTTING_CURVE: bool = false;
+    /// Whether a run with nothing to cut ([`Task::nothing_to_cut`]) still writes the job's
+    /// `report.json` and `report.html` (saying why, with numbers) before it fails; its
+    /// other files (machine programs, meshes, drawings) are never written. Default: no
+    /// (the run fails with no file).
+    const REPORTS_NOTHING_TO_CUT: bool = false;
 
     /// Parameters of a run, built from the resolved job.
     type Params: 'static;

@@ -1,6 +1,6 @@
 //! The `RuledBlocks` task's bad input: each gets a clear error naming its field, and
 //! writes nothing; a model no ruled surface approximates within the tolerance fails with
-//! its numbers and no program.
+//! its numbers, writes a report that says so, and no program.
 
 mod common;
 
@@ -111,7 +111,7 @@ fn g_code_needs_the_wire() {
 }
 
 #[test]
-fn a_model_no_ruled_surface_approximates_fails_with_its_numbers_and_writes_nothing() {
+fn a_model_no_ruled_surface_approximates_fails_with_a_report_and_no_program() {
     // a bumpy field, 2 strips at most around each section: nowhere near 0.01 mm
     let text = job(
         WAVE,
@@ -119,9 +119,14 @@ fn a_model_no_ruled_surface_approximates_fails_with_its_numbers_and_writes_nothi
         "RuledBlocks(sections: 8, max_strips: 2, grid: 24, max_iterations: 4)",
         "",
     )
-    .replace("Tolerance(max: 2.0)", "Tolerance(max: 0.01)");
+    .replace("Tolerance(max: 2.0)", "Tolerance(max: 0.01)")
+    .replace("[Report, GCode]", "[Report, GCode, Obj, Svg, Html]");
     let dir = tempfile::tempdir().unwrap();
     write(dir.path(), "job.ron", &text);
+    // an earlier good run's programs must not survive next to the failed run's report
+    let old = dir.path().join("out/t");
+    std::fs::create_dir_all(&old).unwrap();
+    std::fs::write(old.join("block_01_cut_01.gcode"), "G0 X0\n").unwrap();
     let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let e = stderr(&o);
@@ -130,6 +135,48 @@ fn a_model_no_ruled_surface_approximates_fails_with_its_numbers_and_writes_nothi
         e.contains("deviation max") && e.contains("> tolerance.max 0.01"),
         "{e}"
     );
+    assert!(
+        e.contains("only report.json and report.html written"),
+        "{e}"
+    );
+    let mut files: Vec<String> = std::fs::read_dir(&old)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    assert_eq!(files, ["report.html", "report.json"]);
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(old.join("report.json")).unwrap()).unwrap();
+    let why = report["nothing_to_cut"]
+        .as_str()
+        .expect("the report says why");
+    assert!(why.contains("no piecewise ruled surface"), "{why}");
+    let d = &report["deviation"];
+    assert_eq!(d["within_tolerance"], false);
+    assert!(d["max"].as_f64().unwrap() > 0.01, "{d}");
+    let page = std::fs::read_to_string(old.join("report.html")).unwrap();
+    assert!(
+        page.contains("No piecewise ruled surface"),
+        "the page says so"
+    );
+}
+
+#[test]
+fn without_a_report_output_a_model_no_ruled_surface_approximates_writes_nothing() {
+    let text = job(
+        WAVE,
+        400.0,
+        "RuledBlocks(sections: 8, max_strips: 2, grid: 24, max_iterations: 4)",
+        "",
+    )
+    .replace("Tolerance(max: 2.0)", "Tolerance(max: 0.01)")
+    .replace("[Report, GCode]", "[GCode]");
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "job.ron", &text);
+    let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("no file written"), "{}", stderr(&o));
     assert!(
         !dir.path().join("out/t").exists(),
         "a failed run wrote files"

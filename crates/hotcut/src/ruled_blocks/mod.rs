@@ -207,6 +207,7 @@ fn model(job: &Context, p: &RuledBlocksParams) -> Result<TriMesh> {
 impl Task for RuledBlocks {
     const NAME: &'static str = "RuledBlocks";
     const REPORT_SCHEMA: &'static str = "ruled-blocks-report.schema.json";
+    const REPORTS_NOTHING_TO_CUT: bool = true;
     const OUTPUTS: &'static [Output<Self>] = &[
         Output::new(OutputKind::Svg, outputs::svg),
         Output::new(OutputKind::Obj, outputs::obj),
@@ -394,17 +395,7 @@ impl Task for RuledBlocks {
     }
 
     fn nothing_to_cut(run: &RuledBlocksRun) -> Option<String> {
-        let d = &run.deviation;
-        if d.max > run.tolerance {
-            return Some(format!(
-                "no piecewise ruled surface of these settings comes within the tolerance ({:?}): deviation max {:.6} (RMS {:.6}) > tolerance.max {}; add sections or max_strips, or raise tolerance.max",
-                run.strategy, d.max, d.rms, run.tolerance
-            ));
-        }
-        if run.blocks.iter().all(|b| b.cuts.is_empty()) {
-            return Some("no block has a cut".into());
-        }
-        None
+        refusal(run)
     }
 
     fn report(
@@ -480,4 +471,20 @@ fn err_name(e: &ruled::PreCutError) -> &'static str {
         ruled::PreCutError::InvalidParameter { name, .. } => name,
         _ => "machine",
     }
+}
+
+/// Why a run cuts nothing (the rationalized model is off the model by more than the
+/// tolerance, or no block has a cut), with numbers; `None` when it cuts.
+fn refusal(run: &RuledBlocksRun) -> Option<String> {
+    let d = &run.deviation;
+    if d.max > run.tolerance {
+        return Some(format!(
+            "no piecewise ruled surface of these settings comes within the tolerance ({:?}): deviation max {:.6} (RMS {:.6}) > tolerance.max {}; add sections or max_strips, or raise tolerance.max",
+            run.strategy, d.max, d.rms, run.tolerance
+        ));
+    }
+    if run.blocks.iter().all(|b| b.cuts.is_empty()) {
+        return Some("no block has a cut".into());
+    }
+    None
 }

@@ -21,6 +21,9 @@ pub struct RuledBlocksReport {
     pub hotcut_version: String,
     /// The strategy cut (`blocks`, `deviation`, `rationalized` and the programs are its).
     pub strategy: super::Strategy,
+    /// Why the run cut nothing (it failed with exit 1, and wrote only this report and
+    /// `report.html`: no program, mesh or drawing), or `null` when it cut.
+    pub nothing_to_cut: Option<String>,
     /// Both strategies side by side: whole model, then per block.
     pub comparison: Vec<StrategyReport>,
     /// The model as a closed solid (a height field closed into its slab).
@@ -316,6 +319,7 @@ pub fn make(p: &RuledBlocksParams, run: &RuledBlocksRun, job: &Context) -> Ruled
         units: job.units,
         hotcut_version: crate::report::VERSION.into(),
         strategy: run.strategy,
+        nothing_to_cut: super::refusal(run),
         comparison: comparison(run, diag, tol),
         model: solid(&run.model),
         rationalized: solid(&run.mesh),
