@@ -8,6 +8,7 @@
 //! - heated moves: no sampled wire point lies inside the rationalized model and inside the
 //!   block deeper than the tolerance (from the model's surface and the block's faces);
 //! - rapids: the cold wire never meets the block;
+//! - a height field's slab, written as `model`, is the job's field closed down to a floor;
 //! - the wire never enters the job's own model deeper than the reported largest
 //!   deviation plus the tolerance (what the cut keeps holds the model but for what the
 //!   report declares);
@@ -17,6 +18,7 @@
 #[path = "ruled/mesh.rs"]
 mod mesh;
 
+use geom::surface::Surface;
 use hotcut::load::load_job;
 use hotcut::run::run_job;
 use hotcut::NoProgress;
@@ -208,12 +210,94 @@ fn lerp(a: P, b: P, t: f64) -> P {
     [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t)
 }
 
-/// The job's model as the checker reads it: its OBJ's one object.
-fn model_of(job: &str) -> Option<(Vec<P>, Vec<[usize; 3]>)> {
-    let text = std::fs::read_to_string(root().join("jobs").join(job)).ok()?;
-    let path = text.split("Mesh(path: \"").nth(1)?.split('"').next()?;
-    let obj = std::fs::read_to_string(root().join("jobs").join(path)).unwrap();
-    read_obj(&obj).into_values().next()
+/// The job's model as the checker reads it: a mesh job's own OBJ (its one object); for a
+/// height field, the slab the run wrote (`model` in `rationalized.obj`), checked here
+/// against the job's height field first ([`check_slab`]).
+fn model_of(
+    name: &str,
+    job: &hotcut::load::ResolvedJob,
+    written: &std::collections::HashMap<String, (Vec<P>, Vec<[usize; 3]>)>,
+) -> (Vec<P>, Vec<[usize; 3]>) {
+    let text = std::fs::read_to_string(root().join("jobs").join(name)).unwrap();
+    if let Some(rest) = text.split("Mesh(path: \"").nth(1) {
+        let path = rest.split('"').next().unwrap();
+        let obj = std::fs::read_to_string(root().join("jobs").join(path)).unwrap();
+        return read_obj(&obj).into_values().next().unwrap();
+    }
+    let Some(Surface::HeightField(hf)) = &job.context.surface else {
+        panic!("{name}: RuledBlocks jobs are meshes or height fields")
+    };
+    let (v, f) = written
+        .get("model")
+        .unwrap_or_else(|| panic!("{name}: rationalized.obj has no `model` (the slab)"))
+        .clone();
+    check_slab(name, hf, &v, &f);
+    (v, f)
+}
+
+/// A written slab is the job's height field closed down to a floor: every vertex on the
+/// height field or on the floor (its lowest plane), inside the field's rectangle, and
+/// its enclosed volume (divergence theorem over its triangles) the integral of height
+/// minus floor (midpoint rule on a grid four times finer than the slab's), within the
+/// error of linear interpolation on the slab's cells: (cell diagonal)² / 8 · the largest
+/// second difference found, times the rectangle's area, doubled.
+fn check_slab(name: &str, hf: &geom::HeightField, v: &[P], f: &[[usize; 3]]) {
+    let z = |x: f64, y: f64| hf.expr().eval(x, y);
+    let ((x0, x1), (y0, y1)) = (hf.x_range(), hf.y_range());
+    let floor = v.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
+    let scale = (x1 - x0).max(y1 - y0);
+    let eps = 1e-6 * scale; // the OBJ's 6 decimals, and then some
+    let (mut dx, mut dy) = (x1 - x0, y1 - y0);
+    for p in v {
+        assert!(
+            p[0] >= x0 - eps && p[0] <= x1 + eps && p[1] >= y0 - eps && p[1] <= y1 + eps,
+            "{name}: slab vertex {p:?} outside the field"
+        );
+        assert!(
+            (p[2] - floor).abs() <= eps || (p[2] - z(p[0], p[1])).abs() <= eps,
+            "{name}: slab vertex {p:?} neither on the field ({}) nor on the floor {floor}",
+            z(p[0], p[1])
+        );
+        // the grid step: the smallest positive coordinate gap from the field's corner
+        for (d, c, o) in [(&mut dx, p[0], x0), (&mut dy, p[1], y0)] {
+            if c - o > eps {
+                *d = d.min(c - o);
+            }
+        }
+    }
+    let volume: f64 = f
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| v[i]);
+            (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0]))
+                / 6.0
+        })
+        .sum();
+    let (nx, ny) = (
+        (4.0 * (x1 - x0) / dx).round() as usize,
+        (4.0 * (y1 - y0) / dy).round() as usize,
+    );
+    let (hx, hy) = ((x1 - x0) / nx as f64, (y1 - y0) / ny as f64);
+    let (mut integral, mut curv) = (0.0, 0.0f64);
+    for i in 0..nx {
+        for j in 0..ny {
+            let (x, y) = (x0 + (i as f64 + 0.5) * hx, y0 + (j as f64 + 0.5) * hy);
+            integral += (z(x, y) - floor) * hx * hy;
+            let fxx = (z(x + hx, y) - 2.0 * z(x, y) + z(x - hx, y)) / (hx * hx);
+            let fyy = (z(x, y + hy) - 2.0 * z(x, y) + z(x, y - hy)) / (hy * hy);
+            let fxy = (z(x + hx, y + hy) - z(x + hx, y - hy) - z(x - hx, y + hy)
+                + z(x - hx, y - hy))
+                / (4.0 * hx * hy);
+            curv = curv.max(fxx.abs() + fyy.abs() + 2.0 * fxy.abs());
+        }
+    }
+    let area = (x1 - x0) * (y1 - y0);
+    let bound = 2.0 * (dx * dx + dy * dy) / 8.0 * curv * area + eps * area;
+    assert!(
+        (volume - integral).abs() <= bound,
+        "{name}: the slab holds {volume}, the field over its floor {integral} (bound {bound})"
+    );
 }
 
 #[test]
@@ -257,7 +341,8 @@ fn check_job(name: &str) {
         })
         .collect();
     let kept = |b: usize| whole.as_ref().or(own[b - 1].as_ref());
-    let model = model_of(name).map(|(v, f)| (Soup::new(&v, &f, cell), v, f));
+    let (v, f) = model_of(name, &job, &objs);
+    let m = Soup::new(&v, &f, cell);
     let blocks: Vec<Block> = report["blocks"]
         .as_array()
         .unwrap()
@@ -327,17 +412,15 @@ fn check_job(name: &str) {
                             h.block
                         );
                     }
-                    if let Some((m, _, _)) = &model {
-                        if m.inside(p) {
-                            let reach = dev_max + 2.0 * tol;
-                            let d = m.distance_within(p, reach).unwrap_or(reach);
-                            model_deepest = model_deepest.max(d.min(inside_block));
-                            assert!(
-                                d.min(inside_block) <= dev_max + tol,
-                                "{name} {}: the wire enters the model {d} deep at {p:?} (deviation {dev_max})",
-                                file.display()
-                            );
-                        }
+                    if m.inside(p) {
+                        let reach = dev_max + 2.0 * tol;
+                        let d = m.distance_within(p, reach).unwrap_or(reach);
+                        model_deepest = model_deepest.max(d.min(inside_block));
+                        assert!(
+                            d.min(inside_block) <= dev_max + tol,
+                            "{name} {}: the wire enters the model {d} deep at {p:?} (deviation {dev_max})",
+                            file.display()
+                        );
                     }
                 }
             }
@@ -354,8 +437,8 @@ fn check_job(name: &str) {
     }
     // the blocks' shares cover the model: every vertex lies in one (to a thousandth of the
     // tolerance)
-    if let Some((_, v, _)) = &model {
-        for p in v {
+    {
+        for p in &v {
             assert!(
                 blocks.iter().any(|b| b.share_depth(*p) >= -1e-3 * tol),
                 "{name}: no block keeps the model's vertex {p:?}"
@@ -363,12 +446,12 @@ fn check_job(name: &str) {
         }
     }
     // the deviation from the written mesh: the model's vertices and face centroids
-    if let Some((_, v, f)) = &model {
+    {
         // the report's rule (README): the vertices, then per face a barycentric lattice
         // dividing its edges into k = ⌈longest edge / tolerance⌉ parts (1 to 4), corners
         // left out, the centroid alone for k ≤ 2
         let mut pts: Vec<P> = v.clone();
-        for t in f {
+        for t in &f {
             let [a, b, c] = t.map(|i| v[i]);
             let len = |p: P, q: P| mesh::point_triangle(p, [q, q, q]);
             let longest = len(a, b).max(len(b, c)).max(len(c, a));

@@ -1,11 +1,13 @@
-//! The files of a `RuledBlocks` run: `rationalized.obj` (the rationalized model and the
-//! blocks), `model.gltf` (the rationalized model coloured by its deviation from the model,
-//! and the blocks), `blocks.svg` (regions, rulings and blocks in plan), and one
-//! program per cut, `block_BB_cut_CC.gcode`, each read back before it is written.
+//! The files of a `RuledBlocks` run: `rationalized.obj` (a height field's slab, the
+//! rationalized model and the blocks), `model.gltf` (the rationalized model coloured by its
+//! deviation from the model, and the blocks), `blocks.svg` (regions, rulings and blocks in
+//! plan), and one program per cut, `block_BB_cut_CC.gcode`, each read back before it is
+//! written.
 
 use export::gltf::{write_gltf, Material, Mesh};
 use export::svg::{Legend, Mark, SvgDoc, Viewport};
 use geom::index::TriangleIndex;
+use geom::surface::Surface;
 use ruled::wire::{check_program, program_labelled, Labels, Program};
 
 use super::{RuledBlocks, RuledBlocksParams, RuledBlocksRun};
@@ -105,11 +107,16 @@ pub(super) fn gcode(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> expor
     Ok(())
 }
 
-/// `rationalized.obj`: the rationalized model (`rationalized`; per block:
-/// `rationalized_<block>`, each block's own), then every block as a box (`block_<block>`).
+/// `rationalized.obj`: the model when the task made it (`model`: a height field closed into
+/// its slab; a mesh job's model is its own file), the rationalized model (`rationalized`;
+/// per block: `rationalized_<block>`, each block's own), then every block as a box
+/// (`block_<block>`).
 pub(super) fn obj(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
     files.add("rationalized.obj", |buf| {
         let mut w = crate::output::obj_writer(6, done.job.units, o);
+        if matches!(done.job.surface, Some(Surface::HeightField(_))) {
+            w.mesh("model", &done.run.model);
+        }
         match done.run.strategy {
             super::Strategy::WholeModel => {
                 w.mesh("rationalized", &done.run.mesh);
