@@ -3,6 +3,13 @@
 //! Entry point: [`convex_hull`](crate::hull::convex_hull). Written here because no well-kept pure-Rust crate offers a
 //! 3D hull without pulling in a physics engine; the algorithm is short and the block
 //! segmentation needs it on every block.
+//!
+//! Whether a point is outside a face is decided by Shewchuk's exact orientation predicate
+//! (the `robust` crate), not by a rounded distance: on nearly coplanar or collinear points
+//! (a box's corners, points on its edges, many duplicates) a rounded test lets a sliver
+//! face with a noisy plane judge points inside that are outside, and the "hull" then
+//! leaves points out by a good part of its size. Distances only pick which outside point
+//! is added next.
 
 use std::collections::HashMap;
 
@@ -34,11 +41,22 @@ impl Face {
     fn dist(&self, p: &Vector3<f64>) -> f64 {
         self.n.dot(p) - self.d
     }
+    /// Whether `p` lies strictly outside the face's plane (exactly: the sign of the
+    /// orientation determinant of its corners and `p`).
+    fn outside(&self, pts: &[Vector3<f64>], p: &Vector3<f64>) -> bool {
+        let c = |q: &Vector3<f64>| robust::Coord3D {
+            x: q.x,
+            y: q.y,
+            z: q.z,
+        };
+        let [a, b, d] = self.v.map(|i| c(&pts[i]));
+        robust::orient3d(a, b, d, c(p)) < 0.0
+    }
 }
 
 /// The convex hull of a point set as a closed, outward-oriented triangle mesh (only the
-/// hull's vertices are kept). Points closer than `1e-10 ×` the set's extent to a face count
-/// as on it.
+/// hull's vertices are kept). Every point lies inside or on every face's plane, exactly
+/// (points on a face's plane are not added as vertices).
 ///
 /// # Errors
 /// [`GeomError::NonFinite`] for NaN points, [`GeomError::Unsupported`] for fewer than four
@@ -96,7 +114,7 @@ pub fn convex_hull(points: &[Vector3<f64>]) -> Result<TriMesh> {
         if [i0, i1, i2, i3].contains(&pi) {
             continue;
         }
-        if let Some(f) = faces.iter_mut().find(|f| f.dist(p) > eps) {
+        if let Some(f) = faces.iter_mut().find(|f| f.outside(points, p)) {
             f.outside.push(pi);
         }
     }
@@ -116,7 +134,7 @@ pub fn convex_hull(points: &[Vector3<f64>]) -> Result<TriMesh> {
             })
             .unwrap_or(&faces[fi].outside[0]);
         let ep = points[eye];
-        let (visible, horizon) = visible_and_horizon(&faces, &edges, fi, &ep, eps);
+        let (visible, horizon) = visible_and_horizon(&faces, &edges, fi, points, &ep);
         let mut orphans = Vec::new();
         for &f in &visible {
             faces[f].alive = false;
@@ -140,7 +158,7 @@ pub fn convex_hull(points: &[Vector3<f64>]) -> Result<TriMesh> {
             }
             if let Some(f) = faces[first_new..]
                 .iter_mut()
-                .find(|f| f.dist(&points[p]) > eps)
+                .find(|f| f.outside(points, &points[p]))
             {
                 f.outside.push(p);
             }
@@ -185,8 +203,8 @@ fn visible_and_horizon(
     faces: &[Face],
     edges: &HashMap<(usize, usize), usize>,
     fi: usize,
+    points: &[Vector3<f64>],
     ep: &Vector3<f64>,
-    eps: f64,
 ) -> (Vec<usize>, Vec<(usize, usize)>) {
     let mut visible = vec![fi];
     let mut seen = std::collections::HashSet::from([fi]);
@@ -197,7 +215,7 @@ fn visible_and_horizon(
         let v = faces[f].v;
         for e in 0..3 {
             if let Some(&g) = edges.get(&(v[(e + 1) % 3], v[e])) {
-                if !seen.contains(&g) && faces[g].dist(ep) > eps {
+                if !seen.contains(&g) && faces[g].outside(points, ep) {
                     seen.insert(g);
                     visible.push(g);
                 }

@@ -294,3 +294,114 @@ fn benchmark_meshes_match_their_recorded_volume_and_area() {
         assert_eq!(hull.topology().boundary_edges, 0);
     }
 }
+
+/// Points where the old rounded hull failed: a box's corners, points on its edges and faces
+/// (clipping a solid to a block makes such sets), duplicates, and a curved top inside it,
+/// all turned and moved so that no coordinate is exact.
+fn boxed_points(
+    half: [f64; 3],
+    turn: (Vector3<f64>, f64),
+    shift: Vector3<f64>,
+    params: &[(u8, f64, f64)],
+) -> Vec<Vector3<f64>> {
+    let rot = nalgebra::Rotation3::from_axis_angle(
+        &nalgebra::Unit::new_normalize(turn.0 + Vector3::new(0.0, 0.0, 1e-3)),
+        turn.1,
+    );
+    let h = Vector3::from(half);
+    let mut local = Vec::new();
+    for &(kind, s, t) in params {
+        let (s2, t2) = (2.0 * s - 1.0, 2.0 * t - 1.0);
+        let k = (kind % 3) as usize;
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        let mut p = Vector3::zeros();
+        match kind / 3 % 4 {
+            // on an edge along axis k
+            0 => {
+                p[k] = s2 * h[k];
+                p[i] = if t < 0.5 { -h[i] } else { h[i] };
+                p[j] = if (s * 7.0).fract() < 0.5 { -h[j] } else { h[j] };
+            }
+            // on a face normal to k
+            1 => {
+                p[k] = if (s * 5.0).fract() < 0.5 { -h[k] } else { h[k] };
+                p[i] = s2 * h[i];
+                p[j] = t2 * h[j];
+            }
+            // a corner
+            2 => {
+                p = Vector3::new(
+                    if s < 0.5 { -h.x } else { h.x },
+                    if t < 0.5 { -h.y } else { h.y },
+                    if (s * 3.0 + t).fract() < 0.5 {
+                        -h.z
+                    } else {
+                        h.z
+                    },
+                );
+            }
+            // a gently curved top inside the box, clipped at its walls
+            _ => {
+                p.x = s2 * h.x;
+                p.y = t2 * h.y;
+                p.z = h.z * (0.2 + 0.3 * (2.0 * s2).sin() * (1.5 * t2).cos());
+            }
+        }
+        // noise as a clipped solid's points carry, from none to a millionth of the box
+        let noise = [0.0, 1e-12, 1e-9, 1e-6][(kind / 12 % 4) as usize];
+        let wobble = |x: f64| noise * h.norm() * ((x * 97.0).fract() - 0.5);
+        p += Vector3::new(wobble(s + t), wobble(s * 3.0 + t), wobble(s + 5.0 * t));
+        local.push(p);
+        // duplicates, as clipping writes them
+        if (s * 11.0).fract() < 0.3 {
+            local.push(p);
+        }
+    }
+    local.iter().map(|p| rot * p + shift).collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// The hull holds every point (no point outside any face's plane by more than the
+    /// rounding of that plane, 1e-12 of the set's extent) and is closed, whatever the
+    /// coplanar, collinear and repeated points (it is exact, whatever the input).
+    #[test]
+    fn convex_hull_holds_every_point_of_degenerate_sets(
+        half in prop::array::uniform3(0.05f64..3.0),
+        axis in prop::array::uniform3(-1.0f64..1.0),
+        angle in 0.0f64..6.3,
+        shift in prop::array::uniform3(-100.0f64..100.0),
+        params in prop::collection::vec((any::<u8>(), 0.0f64..1.0, 0.0f64..1.0), 40..3000),
+    ) {
+        let mut pts = boxed_points(half, (Vector3::from(axis), angle), Vector3::from(shift), &params);
+        // the box's corners make it three-dimensional
+        pts.extend(boxed_points(half, (Vector3::from(axis), angle), Vector3::from(shift), &[
+            (6, 0.1, 0.1), (6, 0.9, 0.1), (6, 0.1, 0.9), (6, 0.9, 0.9),
+            (6, 0.2, 0.2), (6, 0.8, 0.2), (6, 0.2, 0.8), (6, 0.8, 0.8),
+        ]));
+        let hull = geom::hull::convex_hull(&pts).unwrap();
+        let extent = geom::bbox::Aabb::from_points(&pts).unwrap().size().norm();
+        let shift = Vector3::from(shift);
+        for f in 0..hull.faces().len() {
+            let [a, b, c] = hull.triangle(f);
+            let n = (b - a).cross(&(c - a));
+            if n.norm() == 0.0 {
+                continue;
+            }
+            // the measured plane's rounding: coordinates carry δ (an ulp of the largest),
+            // the normal's direction then errs by δ·(|b−a| + |c−a|)/|n| (a sliver's is
+            // noise), which moves the plane by that times the extent at the far points
+            let delta = f64::EPSILON * (extent + shift.norm());
+            let tilt = delta * ((b - a).norm() + (c - a).norm()) / n.norm();
+            let slack = 8.0 * (tilt * extent + delta);
+            let n = n.normalize();
+            for p in &pts {
+                let d = n.dot(&(p - a));
+                prop_assert!(d <= slack, "a point {d:e} outside face {f} (slack {slack:e})");
+            }
+        }
+        let t = hull.topology();
+        prop_assert_eq!((t.boundary_edges, t.nonmanifold_edges), (0, 0));
+    }
+}

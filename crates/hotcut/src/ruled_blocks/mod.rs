@@ -247,14 +247,6 @@ impl Task for RuledBlocks {
                 "GCode needs the machine: `wire: Wire(machine: LinuxCncXyuv, tower_distance: .., kerf: ..)`",
             ));
         }
-        if self.strategy == Strategy::PerBlock
-            && job.outputs.iter().any(|o| o.kind() == OutputKind::GCode)
-        {
-            errors.push(job.error(
-                &format!("{PTR}/strategy"),
-                "PerBlock is for comparison: its blocks' programs are not verified (the independent replay finds wires entering a block's own rationalization), so no G-code is written for it; cut WholeModel, or leave GCode out",
-            ));
-        }
         if self.floor.is_some_and(|f| !(f.is_finite() && f > 0.0)) {
             errors.push(job.error(&format!("{PTR}/floor"), "floor must be positive"));
         }
