@@ -224,62 +224,40 @@ fn model_of(
         let obj = std::fs::read_to_string(root().join("jobs").join(path)).unwrap();
         return read_obj(&obj).into_values().next().unwrap();
     }
-    let Some(Surface::HeightField(hf)) = &job.context.surface else {
-        panic!("{name}: RuledBlocks jobs are meshes or height fields")
-    };
     let (v, f) = written
         .get("model")
         .unwrap_or_else(|| panic!("{name}: rationalized.obj has no `model` (the slab)"))
         .clone();
-    check_slab(name, hf, &v, &f);
+    check_slab(name, job, &v, &f);
     (v, f)
 }
 
-/// A written slab is the job's height field closed down to a floor: every vertex on the
-/// height field or on the floor (its lowest plane), inside the field's rectangle, and
-/// its enclosed volume (divergence theorem over its triangles) the integral of height
-/// minus floor (midpoint rule on a grid four times finer than the slab's), within the
-/// error of linear interpolation on the slab's cells: (cell diagonal)² / 8 · the largest
-/// second difference found, times the rectangle's area, doubled.
-fn check_slab(name: &str, hf: &geom::HeightField, v: &[P], f: &[[usize; 3]]) {
+/// A written slab is the job's height field (as the job loader parses it: the input, not
+/// the algorithm) closed down to a floor, meshed on the job's `grid`: its top vertices are
+/// the `(grid + 1)²` grid points, each on the field, the others on the floor (its lowest
+/// plane); every vertex inside the field's rectangle; and its enclosed volume (divergence
+/// theorem over its triangles) is the integral of height minus floor (midpoint rule on a
+/// grid four times finer), within the error of linear interpolation on the grid's cells:
+/// (cell diagonal)² / 8 · the largest second difference found, times the rectangle's
+/// area, doubled. Coordinates carry the OBJ's rounding, half a unit of its 6th decimal, in
+/// each of x, y and z; a height read at a rounded (x, y) is off by the field's slope times
+/// that.
+fn check_slab(name: &str, job: &hotcut::load::ResolvedJob, v: &[P], f: &[[usize; 3]]) {
+    let Some(Surface::HeightField(hf)) = &job.context.surface else {
+        panic!("{name}: not a height field")
+    };
+    let task = serde_json::to_value(&job.task).unwrap();
+    let grid = task["RuledBlocks"]["grid"]
+        .as_u64()
+        .expect("RuledBlocks' grid") as usize;
     let z = |x: f64, y: f64| hf.expr().eval(x, y);
     let ((x0, x1), (y0, y1)) = (hf.x_range(), hf.y_range());
+    let (dx, dy) = ((x1 - x0) / grid as f64, (y1 - y0) / grid as f64);
     let floor = v.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
-    let scale = (x1 - x0).max(y1 - y0);
-    let eps = 1e-6 * scale; // the OBJ's 6 decimals, and then some
-    let (mut dx, mut dy) = (x1 - x0, y1 - y0);
-    for p in v {
-        assert!(
-            p[0] >= x0 - eps && p[0] <= x1 + eps && p[1] >= y0 - eps && p[1] <= y1 + eps,
-            "{name}: slab vertex {p:?} outside the field"
-        );
-        assert!(
-            (p[2] - floor).abs() <= eps || (p[2] - z(p[0], p[1])).abs() <= eps,
-            "{name}: slab vertex {p:?} neither on the field ({}) nor on the floor {floor}",
-            z(p[0], p[1])
-        );
-        // the grid step: the smallest positive coordinate gap from the field's corner
-        for (d, c, o) in [(&mut dx, p[0], x0), (&mut dy, p[1], y0)] {
-            if c - o > eps {
-                *d = d.min(c - o);
-            }
-        }
-    }
-    let volume: f64 = f
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|i| v[i]);
-            (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
-                + a[2] * (b[0] * c[1] - b[1] * c[0]))
-                / 6.0
-        })
-        .sum();
-    let (nx, ny) = (
-        (4.0 * (x1 - x0) / dx).round() as usize,
-        (4.0 * (y1 - y0) / dy).round() as usize,
-    );
+    // the field's steepest slope and sharpest bend, on a grid four times finer than the slab's
+    let (nx, ny) = (4 * grid, 4 * grid);
     let (hx, hy) = ((x1 - x0) / nx as f64, (y1 - y0) / ny as f64);
-    let (mut integral, mut curv) = (0.0, 0.0f64);
+    let (mut integral, mut curv, mut slope) = (0.0, 0.0f64, 0.0f64);
     for i in 0..nx {
         for j in 0..ny {
             let (x, y) = (x0 + (i as f64 + 0.5) * hx, y0 + (j as f64 + 0.5) * hy);
@@ -290,8 +268,49 @@ fn check_slab(name: &str, hf: &geom::HeightField, v: &[P], f: &[[usize; 3]]) {
                 + z(x - hx, y - hy))
                 / (4.0 * hx * hy);
             curv = curv.max(fxx.abs() + fyy.abs() + 2.0 * fxy.abs());
+            let gx = (z(x + hx, y) - z(x - hx, y)) / (2.0 * hx);
+            let gy = (z(x, y + hy) - z(x, y - hy)) / (2.0 * hy);
+            slope = slope.max(gx.hypot(gy));
         }
     }
+    // the OBJ's rounding (absolute) through the slope, and a margin for the finite differences
+    let eps = 5e-7 * (1.0 + 2.0 * std::f64::consts::SQRT_2 * slope) * 2.0;
+    let mut top = 0;
+    for p in v {
+        assert!(
+            p[0] >= x0 - eps && p[0] <= x1 + eps && p[1] >= y0 - eps && p[1] <= y1 + eps,
+            "{name}: slab vertex {p:?} outside the field"
+        );
+        if (p[2] - floor).abs() <= eps {
+            continue;
+        }
+        top += 1;
+        assert!(
+            (p[2] - z(p[0], p[1])).abs() <= eps,
+            "{name}: slab vertex {p:?} neither on the field ({}) nor on the floor {floor}",
+            z(p[0], p[1])
+        );
+        // on the job's grid
+        let (i, j) = ((p[0] - x0) / dx, (p[1] - y0) / dy);
+        assert!(
+            (i - i.round()).abs() * dx <= eps && (j - j.round()).abs() * dy <= eps,
+            "{name}: slab vertex {p:?} off the {grid}-cell grid"
+        );
+    }
+    assert_eq!(
+        top,
+        (grid + 1) * (grid + 1),
+        "{name}: the slab's top vertices"
+    );
+    let volume: f64 = f
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| v[i]);
+            (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0]))
+                / 6.0
+        })
+        .sum();
     let area = (x1 - x0) * (y1 - y0);
     let bound = 2.0 * (dx * dx + dy * dy) / 8.0 * curv * area + eps * area;
     assert!(

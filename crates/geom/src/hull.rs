@@ -8,8 +8,8 @@
 //! (the `robust` crate), not by a rounded distance: on nearly coplanar or collinear points
 //! (a box's corners, points on its edges, many duplicates) a rounded test lets a sliver
 //! face with a noisy plane judge points inside that are outside, and the "hull" then
-//! leaves points out by a good part of its size. Distances only pick which outside point
-//! is added next.
+//! leaves points out by a good part of its size. Rounded distances only pick which outside
+//! point is added next, and refuse input that is coplanar within `1e-10 ×` its extent.
 
 use std::collections::HashMap;
 
@@ -56,7 +56,7 @@ impl Face {
 
 /// The convex hull of a point set as a closed, outward-oriented triangle mesh (only the
 /// hull's vertices are kept). Every point lies inside or on every face's plane, exactly
-/// (points on a face's plane are not added as vertices).
+/// (a face's plane through its three corners, as the orientation predicate sees it).
 ///
 /// # Errors
 /// [`GeomError::NonFinite`] for NaN points, [`GeomError::Unsupported`] for fewer than four
@@ -96,10 +96,15 @@ pub fn convex_hull(points: &[Vector3<f64>]) -> Result<TriMesh> {
 
     let [i0, i1, i2, i3] = initial_tetrahedron(points, eps).ok_or_else(degenerate)?;
     let mut faces: Vec<Face> = Vec::new();
-    let centroid = (points[i0] + points[i1] + points[i2] + points[i3]) / 4.0;
-    for tri in [[i0, i1, i2], [i0, i1, i3], [i0, i2, i3], [i1, i2, i3]] {
+    // each face turned so that the opposite corner is inside it (exactly)
+    for (tri, opposite) in [
+        ([i0, i1, i2], i3),
+        ([i0, i1, i3], i2),
+        ([i0, i2, i3], i1),
+        ([i1, i2, i3], i0),
+    ] {
         let mut f = Face::new(points, tri);
-        if f.dist(&centroid) > 0.0 {
+        if f.outside(points, &points[opposite]) {
             f = Face::new(points, [tri[0], tri[2], tri[1]]);
         }
         faces.push(f);

@@ -180,7 +180,16 @@ pub fn run_task<T: Task>(
         remove_entry(&kept);
         list.retain(|p| p != &kept);
     }
-    let files = placed?;
+    let files = match (placed, &refused) {
+        (Ok(files), _) => files,
+        (Err(e), None) => return Err(e),
+        // the reason the run cut nothing outlives a failure to write its report
+        (Err(e), Some(why)) => {
+            return Err(job.fail(format!(
+                "nothing to cut, and the report could not be written ({e}): {why}"
+            )))
+        }
+    };
     if let Some(why) = refused {
         return Err(job.fail(format!(
             "nothing to cut, only {} written to {}: {why}",

@@ -61,8 +61,9 @@ pub trait Task: Sized + 'static {
     fn run(params: &Self::Params, job: &Context, progress: &dyn Progress) -> Result<Self::Run>;
 
     /// Why a run produced nothing to cut (no block, piece, pose or cut), or `None` when
-    /// it did. A run with nothing to cut fails and writes no file. Default: `None` (tasks
-    /// that write no machine file).
+    /// it did. A run with nothing to cut fails and writes no file (but its report and page
+    /// when [`Task::REPORTS_NOTHING_TO_CUT`]). Default: `None` (tasks that write no machine
+    /// file).
     fn nothing_to_cut(run: &Self::Run) -> Option<String> {
         let _ = run;
         None

@@ -164,6 +164,12 @@ fn a_model_no_ruled_surface_approximates_fails_with_a_report_and_no_program() {
         .as_str()
         .expect("the report says why");
     assert!(why.contains("no piecewise ruled surface"), "{why}");
+    // and lists no program it did not write
+    for b in report["blocks"].as_array().unwrap() {
+        for c in b["cuts"].as_array().unwrap() {
+            assert!(c["program"].is_null(), "{c}");
+        }
+    }
     let d = &report["deviation"];
     assert_eq!(d["within_tolerance"], false);
     assert!(d["max"].as_f64().unwrap() > 0.01, "{d}");

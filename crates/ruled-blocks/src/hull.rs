@@ -21,7 +21,8 @@ pub struct Plane {
     pub c: f64,
 }
 
-/// The hull's face planes, coplanar faces merged (outward normals).
+/// The hull's face planes, coplanar faces merged (outward normals), each moved out to the
+/// farthest of `points` along its normal, so every plane supports every point.
 pub fn hull_planes(points: &[Vector3<f64>], scale: f64) -> Option<Vec<Plane>> {
     let hull = convex_hull(points).ok()?;
     let centre = hull.vertices().iter().sum::<Vector3<f64>>() / hull.vertices().len() as f64;
@@ -37,7 +38,13 @@ pub fn hull_planes(points: &[Vector3<f64>], scale: f64) -> Option<Vec<Plane>> {
         if n.dot(&(centre - a)) > 0.0 {
             n = -n;
         }
-        let c = n.dot(&a);
+        // the plane through the farthest point along `n`, not through the face's corner: a
+        // sliver face's rounded normal is noise, and a plane through its corner could then
+        // tilt into the hull; this one supports every point whatever `n` is
+        let c = points
+            .iter()
+            .map(|p| n.dot(p))
+            .fold(f64::NEG_INFINITY, f64::max);
         if !planes
             .iter()
             .any(|p| (p.n - n).norm() < 1e-9 && (p.c - c).abs() < 1e-9 * scale)

@@ -409,7 +409,7 @@ fn region_ends(r: &Region, s: &crate::sections::Sections, model: &TriMesh) -> (E
     (start, end)
 }
 
-/// Distances from the model's vertices and face centroids to the rationalized surface:
+/// Distances from the model's samples ([`model_samples`]) to the rationalized surface:
 /// whole and per region (a sample counts for the region of its closest face).
 fn deviation(
     model: &TriMesh,

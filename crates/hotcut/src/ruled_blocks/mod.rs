@@ -370,8 +370,7 @@ impl Task for RuledBlocks {
                 )
             }
         };
-        let programs = outputs::programs(&blocks, params, job)?;
-        Ok(RuledBlocksRun {
+        let mut run = RuledBlocksRun {
             model,
             whole,
             per_block,
@@ -381,9 +380,14 @@ impl Task for RuledBlocks {
             strips,
             blocks,
             deviation,
-            programs,
+            programs: Vec::new(),
             tolerance: params.plan.tolerance,
-        })
+        };
+        // a run that cuts nothing has no programs (its report lists none)
+        if refusal(&run).is_none() {
+            run.programs = outputs::programs(&run.blocks, params, job)?;
+        }
+        Ok(run)
     }
 
     fn nothing_to_cut(run: &RuledBlocksRun) -> Option<String> {

@@ -12,8 +12,10 @@ pub fn body(r: &RuledBlocksReport, job: &Context) -> Body {
     let u = job.units.symbol();
     let d = &r.deviation;
     let hulls = r.blocks.len() - r.totals.cuttable;
-    let ok = d.within_tolerance;
-    let text = if ok {
+    let ok = r.nothing_to_cut.is_none();
+    let text = if let Some(why) = r.nothing_to_cut.as_ref().filter(|_| d.within_tolerance) {
+        format!("Nothing to cut, no program written: {why}.")
+    } else if ok {
         format!(
             "Rationalized within the tolerance ({} regions, deviation max {}) and cut in {} block(s): {} by their ruled strips, {} to their convex hulls, adding {} {u}³.",
             r.regions.len(),
@@ -50,7 +52,7 @@ pub fn body(r: &RuledBlocksReport, job: &Context) -> Body {
                 len(d.max, job),
                 d.max_fraction
             ),
-            ok,
+            ok: d.within_tolerance,
         },
         Constraint {
             name: "deviation from the model (RMS)".into(),

@@ -38,8 +38,9 @@ pub struct RuledBlocksReport {
     pub axis: [f64; 3],
     /// Sections, the refined ones included.
     pub sections: usize,
-    /// Deviation of the rationalized surface from the model, at the model's vertices and
-    /// face centroids (the distance from each to the rationalized surface).
+    /// Deviation of the rationalized surface from the model, at the model's samples (its
+    /// vertices and a barycentric lattice on each face, README): the distance from each
+    /// to the rationalized surface.
     pub deviation: DeviationReport,
     /// The whole model's regions, each a piecewise ruled surface.
     pub regions: Vec<RegionReport>,
