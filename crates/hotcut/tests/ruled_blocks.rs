@@ -200,3 +200,72 @@ fn without_a_report_output_a_model_no_ruled_surface_approximates_writes_nothing(
         "a failed run wrote files"
     );
 }
+
+/// A degree-1 B-spline surface of `rows` (each a list of `(x, y, z)` control points) as
+/// the control-grid JSON a job's `Spline(path: ..)` reads.
+fn grid_json(rows: &[Vec<(f64, f64, f64)>]) -> String {
+    let rows: Vec<String> = rows
+        .iter()
+        .map(|r| {
+            let pts: Vec<String> = r
+                .iter()
+                .map(|(x, y, z)| format!("[{x}, {y}, {z}]"))
+                .collect();
+            format!("[{}]", pts.join(", "))
+        })
+        .collect();
+    format!(
+        r#"{{"degree_u": 1, "degree_v": 1, "points": [{}]}}"#,
+        rows.join(", ")
+    )
+}
+
+#[test]
+fn an_open_b_spline_surface_is_closed_into_a_slab_and_cut() {
+    // a twisted panel over 800 × 600 mm: one height per (x, y)
+    let rows: Vec<Vec<(f64, f64, f64)>> = (0..3)
+        .map(|i| {
+            (0..3)
+                .map(|j| {
+                    let (x, y) = (400.0 * i as f64, 300.0 * j as f64);
+                    (x, y, 100.0 + 0.0002 * (x - 400.0) * (y - 300.0))
+                })
+                .collect()
+        })
+        .collect();
+    let text = job(r#"Spline(path: "panel.json")"#, 400.0, TASK, "")
+        .replace("[Report, GCode]", "[Report, Obj, GCode]");
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "panel.json", &grid_json(&rows));
+    write(dir.path(), "job.ron", &text);
+    let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = dir.path().join("out/t");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    // the slab: the panel over its 800 × 600 mm shadow, down to 50 mm under its lowest
+    // point (76 mm); the panel's mean height is 100 mm, and the job's 24 × 24 cells, each
+    // split along its rising diagonal, add a·h²k²/12 each for the twist a·x·y
+    let v = report["model"]["volume"].as_f64().unwrap();
+    let (h, k) = (800.0 / 24.0, 600.0 / 24.0);
+    let expected = 800.0 * 600.0 * (100.0 - (76.0 - 50.0)) + 576.0 * 0.0002 * h * h * k * k / 12.0;
+    assert!((v - expected).abs() < 1e-6 * expected, "{v} vs {expected}");
+    assert!(std::fs::read_to_string(out.join("rationalized.obj"))
+        .unwrap()
+        .contains("o model"));
+    assert!(report["deviation"]["within_tolerance"].as_bool().unwrap());
+}
+
+#[test]
+fn a_b_spline_surface_that_folds_over_is_refused_at_validation() {
+    // the middle row of control points pulled back past the first: the surface folds
+    let rows: Vec<Vec<(f64, f64, f64)>> = [0.0, -300.0, 400.0]
+        .iter()
+        .map(|&x| (0..3).map(|j| (x, 300.0 * j as f64, 100.0)).collect())
+        .collect();
+    expect_invalid_with(
+        &job(r#"Spline(path: "panel.json")"#, 400.0, TASK, ""),
+        &[("panel.json", &grid_json(&rows))],
+        &["/surface/Spline/path", "not a graph over the xy-plane"],
+    );
+}

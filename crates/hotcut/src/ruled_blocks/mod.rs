@@ -28,7 +28,7 @@ use crate::context::{Context, JobFields};
 use crate::error::{JobError, Result};
 use crate::limits::Estimate;
 use crate::progress::Progress;
-use crate::spec::{defaults, OutputKind, SurfaceSpec};
+use crate::spec::{defaults, OutputKind};
 use crate::task::{Output, Task};
 pub use report::RuledBlocksReport;
 
@@ -50,12 +50,12 @@ pub struct RuledBlocks {
     #[serde(default = "default_max_strips")]
     #[schemars(range(min = 1, max = 1000))]
     pub max_strips: usize,
-    /// Height fields: depth of the slab's floor below the field's lowest point (> 0).
-    /// Default: 50 mm.
+    /// Open surfaces (height fields, B-spline surfaces): depth of the slab's floor below
+    /// the surface's lowest point (> 0). Default: 50 mm.
     #[serde(default)]
     pub floor: Option<f64>,
-    /// Height fields: cells of the grid the slab is meshed on, per side (2–2000).
-    /// Default: 96.
+    /// Open surfaces: cells of the grid the slab is meshed on, per side (2–2000; a
+    /// B-spline surface's over its parameter domain). Default: 96.
     #[serde(default = "default_grid")]
     #[schemars(range(min = 2, max = 2000))]
     pub grid: usize,
@@ -182,8 +182,8 @@ impl RuledBlocks {
     }
 }
 
-/// The job's model as a closed solid: a mesh as it is, a height field closed into a slab
-/// `floor` below its lowest point.
+/// The job's model as a closed solid: a mesh as it is, a height field or a B-spline surface
+/// closed into a slab `floor` below its lowest point.
 fn model(job: &Context, p: &RuledBlocksParams) -> Result<TriMesh> {
     let (grid, floor) = (p.grid, p.floor);
     match job.surface(RuledBlocks::NAME)? {
@@ -200,8 +200,25 @@ fn model(job: &Context, p: &RuledBlocksParams) -> Result<TriMesh> {
             ::ruled_blocks::model::slab(hf, grid, grid, low - floor)
                 .map_err(|e| job.fail(e.to_string()))
         }
-        _ => Err(job.fail("RuledBlocks needs a closed mesh (`Mesh(path: ..)`) or a height field")),
+        Surface::Spline(sp) => spline_slab(sp, grid, floor).map_err(|e| job.fail(e.to_string())),
     }
+}
+
+/// A B-spline surface closed into its slab: sampled on `grid × grid` cells of its domain,
+/// walls down to a floor `floor` below its lowest sample.
+fn spline_slab(
+    sp: &geom::surface_spline::BSplineSurface,
+    grid: usize,
+    floor: f64,
+) -> std::result::Result<TriMesh, ::ruled_blocks::Error> {
+    let ((u0, u1), (v0, v1)) = sp.domain();
+    let t = |a: f64, b: f64, k: usize| a + (b - a) * k as f64 / grid as f64;
+    let top: Vec<_> = (0..=grid)
+        .flat_map(|i| (0..=grid).map(move |j| (i, j)))
+        .map(|(i, j)| sp.eval(t(u0, u1, i), t(v0, v1, j)))
+        .collect();
+    let low = top.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
+    ::ruled_blocks::model::slab_under(top, grid, grid, low - floor)
 }
 
 impl Task for RuledBlocks {
@@ -221,17 +238,10 @@ impl Task for RuledBlocks {
     fn check(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
         job.require_surface_and_block(
             Self::NAME,
-            " (a closed mesh or a height field)",
+            " (a closed mesh, a height field or a B-spline surface)",
             "model is",
             errors,
         );
-        match job.surface {
-            Some(SurfaceSpec::Mesh { .. } | SurfaceSpec::HeightField { .. }) | None => {}
-            Some(_) => errors.push(job.error(
-                "/surface",
-                "RuledBlocks needs a closed triangle mesh (`Mesh(path: ..)`) or a height field",
-            )),
-        }
         if job.block.is_some_and(|b| b.origin.is_some()) {
             errors.push(job.error(
                 "/block/origin",
@@ -312,6 +322,13 @@ impl Task for RuledBlocks {
             } else if let Err(err) = m.validate(true) {
                 e.checks
                     .push(("/surface/Mesh/path".into(), err.to_string()));
+            }
+        }
+        // an open B-spline surface must close into a slab: the run's check, made here
+        if let Some(Surface::Spline(sp)) = &job.surface {
+            if let Err(err) = spline_slab(sp, p.grid, p.floor) {
+                e.checks
+                    .push(("/surface/Spline/path".into(), err.to_string()));
             }
         }
         if let (Some(w), Some(m), Some(b)) = (&p.wire, &p.machine, &job.block) {

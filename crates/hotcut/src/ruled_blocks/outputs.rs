@@ -1,4 +1,4 @@
-//! The files of a `RuledBlocks` run: `rationalized.obj` (a height field's slab, the
+//! The files of a `RuledBlocks` run: `rationalized.obj` (an open surface's slab, the
 //! rationalized model and the blocks), `model.gltf` (the rationalized model coloured by its
 //! deviation from the model, and the blocks), `blocks.svg` (regions, rulings and blocks in
 //! plan), and one program per cut, `block_BB_cut_CC.gcode`, each read back before it is
@@ -107,14 +107,14 @@ pub(super) fn gcode(done: &Done<'_>, _: &OutputSpec, files: &mut Files) -> expor
     Ok(())
 }
 
-/// `rationalized.obj`: the model when the task made it (`model`: a height field closed into
-/// its slab; a mesh job's model is its own file), the rationalized model (`rationalized`;
+/// `rationalized.obj`: the model when the task made it (`model`: a height field or B-spline
+/// surface closed into its slab; a mesh job's model is its own file), the rationalized model (`rationalized`;
 /// per block: `rationalized_<block>`, each block's own), then every block as a box
 /// (`block_<block>`).
 pub(super) fn obj(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
     files.add("rationalized.obj", |buf| {
         let mut w = crate::output::obj_writer(6, done.job.units, o);
-        if matches!(done.job.surface, Some(Surface::HeightField(_))) {
+        if !matches!(done.job.surface, Some(Surface::Mesh(_))) {
             w.mesh("model", &done.run.model);
         }
         match done.run.strategy {
