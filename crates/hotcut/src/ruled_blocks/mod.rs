@@ -474,9 +474,14 @@ fn estimate(p: &RuledBlocksParams, faces: f64, bounds: Option<geom::bbox::Aabb>)
     let strips = p.plan.max_strips as f64;
     let slicing = (1.0 + 3.0 * blocks) * sections * faces * 20.0;
     let probing = blocks * (strips * sections * 400.0 + 4096.0 * 400.0);
+    // the run grows with the square of the sections (every ruling's wire checked against
+    // rows of every section): measured on the half sphere (4 blocks by this count, 48
+    // strips) as about 1e-3 s · sections² from 24 to 400 sections, ~540 steps per block,
+    // strip and section²; counted 700 (a tilted cutting direction is slower)
+    let checks = blocks * strips * (p.plan.sections as f64).powi(2) * 700.0;
     let solid = strips * sections * 2.0;
     let memory = faces * 400.0 + blocks * solid * 200.0 + 5e7;
-    (memory, slicing + probing)
+    (memory, slicing + probing + checks)
 }
 
 fn err_name(e: &ruled::PreCutError) -> &'static str {
