@@ -122,17 +122,22 @@ fn g_code_needs_the_wire() {
     expect_invalid(&text, &["/wire"]);
 }
 
-#[test]
-fn a_model_no_ruled_surface_approximates_fails_with_a_report_and_no_program() {
-    // a bumpy field, 2 strips at most around each section: nowhere near 0.01 mm
-    let text = job(
+/// A job no ruled surface approximates, writing `outputs`: a bumpy field, 2 strips at
+/// most around each section, nowhere near a 0.01 mm tolerance.
+fn unapproximable(outputs: &str) -> String {
+    job(
         WAVE,
         400.0,
         "RuledBlocks(sections: 8, max_strips: 2, grid: 24, max_iterations: 4)",
         "",
     )
     .replace("Tolerance(max: 2.0)", "Tolerance(max: 0.01)")
-    .replace("[Report, GCode]", "[Report, GCode, Obj, Svg, Html]");
+    .replace("[Report, GCode]", outputs)
+}
+
+#[test]
+fn a_model_no_ruled_surface_approximates_fails_with_a_report_and_no_program() {
+    let text = unapproximable("[Report, GCode, Obj, Svg, Html]");
     let dir = tempfile::tempdir().unwrap();
     write(dir.path(), "job.ron", &text);
     // an earlier good run's programs must not survive next to the failed run's report
@@ -182,14 +187,7 @@ fn a_model_no_ruled_surface_approximates_fails_with_a_report_and_no_program() {
 
 #[test]
 fn without_a_report_output_a_model_no_ruled_surface_approximates_writes_nothing() {
-    let text = job(
-        WAVE,
-        400.0,
-        "RuledBlocks(sections: 8, max_strips: 2, grid: 24, max_iterations: 4)",
-        "",
-    )
-    .replace("Tolerance(max: 2.0)", "Tolerance(max: 0.01)")
-    .replace("[Report, GCode]", "[GCode]");
+    let text = unapproximable("[GCode]");
     let dir = tempfile::tempdir().unwrap();
     write(dir.path(), "job.ron", &text);
     let o = hotcut(&["run", "job.ron", "--out", "out"], dir.path());
