@@ -26,6 +26,7 @@
 //!     subtitle: "Analyze · Millimetre · hotcut 0.1.0".into(),
 //!     body,
 //!     drawings: vec![Drawing { name: "sections.svg".into(), svg: b"<svg xmlns='http://www.w3.org/2000/svg'/>".to_vec() }],
+//!     tables_first: false,
 //!     files: vec![("report.json".into(), 1234)],
 //!     run_time: "0.42 s".into(),
 //!     job: "Job(name: \"demo\")".into(),
@@ -50,6 +51,8 @@ pub struct Page {
     pub body: Body,
     /// The drawings, inlined in order.
     pub drawings: Vec<Drawing>,
+    /// Whether the tables come before the drawings (a page that opens on its table).
+    pub tables_first: bool,
     /// Every other file written: (name relative to the page, bytes).
     pub files: Vec<(String, u64)>,
     /// How long the run took, as shown (in an element with id `run-time`).
@@ -198,9 +201,14 @@ pub fn render(page: &Page) -> String {
         }
         h.push_str("</ul>\n</section>\n");
     }
-    drawings(&mut h, &page.drawings);
+    if !page.tables_first {
+        drawings(&mut h, &page.drawings);
+    }
     for (i, t) in body.tables.iter().enumerate() {
         table(&mut h, i, t);
+    }
+    if page.tables_first {
+        drawings(&mut h, &page.drawings);
     }
     files(&mut h, &page.files);
     h.push_str(
@@ -378,6 +386,7 @@ mod tests {
                 name: "a b<.svg".into(),
                 svg: evil.as_bytes().to_vec(),
             }],
+            tables_first: false,
             files: vec![("x\"y.csv".into(), 12_345)],
             run_time: evil.into(),
             job: evil.into(),

@@ -120,6 +120,8 @@ pub struct Context {
     /// Whether the job writes robot programs (`Rapid`): the robot cell is planned then, or
     /// when the job gives a `cell:`.
     pub rapid: bool,
+    /// The outputs the job lists (`Compare` hands them to its processes).
+    pub outputs: Vec<OutputSpec>,
     /// Cutting direction, sections and curve, as written.
     pub cutting: CuttingSpec,
     /// Unit cutting direction (the curve's chord when the job gives a curve).

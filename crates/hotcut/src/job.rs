@@ -19,6 +19,7 @@ use crate::fit_curves::FitCurves;
 use crate::hot_blade::HotBlade;
 use crate::pre_cut::PreCut;
 use crate::ruled_blocks::RuledBlocks;
+use crate::spec::compare::{RatesSpec, ToolSpec};
 use crate::spec::{BladeSpec, BlockSpec, CuttingSpec, OutputSpec, SurfaceSpec, ToleranceSpec};
 use crate::spec::{CellSpec, Units, WireSpec};
 use crate::task::{Name, Visit, VisitType};
@@ -98,6 +99,9 @@ pub enum TaskSpec {
     Design(Design),
     /// A model rationalized by piecewise ruled strips, segmented into blocks a hot wire cuts.
     RuledBlocks(RuledBlocks),
+    /// One design made by several processes (milling, pre-cut + milling, hot wire, hot
+    /// blade), set side by side: material, time, fidelity and cost.
+    Compare(Compare),
 }
 
 impl TaskSpec {
@@ -112,6 +116,7 @@ impl TaskSpec {
             Self::PreCut(t) => v.visit(t),
             Self::Design(t) => v.visit(t),
             Self::RuledBlocks(t) => v.visit(t),
+            Self::Compare(t) => v.visit(t),
         }
     }
 
@@ -126,10 +131,126 @@ impl TaskSpec {
         v.visit::<PreCut>();
         v.visit::<Design>();
         v.visit::<RuledBlocks>();
+        v.visit::<Compare>();
     }
 
     /// Name as written in job files.
     pub fn name(&self) -> &'static str {
         self.visit(Name)
+    }
+}
+
+/// The `Compare` task (thesis ch. 6): one design, the processes to make it with, each with
+/// its own task's settings, and the rates that price them. Every process that applies to
+/// the design runs its own task (its files go to a folder of the output); one that cannot
+/// apply is reported with the reason. Write
+/// `Compare(processes: [Milling(), HotWireRuled(sections: 24)], rates: Rates(eps_per_m3: 70))`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Compare {
+    /// The processes, in the order the report lists them (at least one, at most 12).
+    pub processes: Vec<Process>,
+    /// Prices, machine rates and speeds. Default: every rate's documented default.
+    #[serde(default)]
+    pub rates: RatesSpec,
+}
+
+/// One way to make the design.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub enum Process {
+    /// CNC milling of the stock as bought: roughing by the removal rate, finishing by the
+    /// tool's passes.
+    Milling(Milling),
+    /// Hot-wire pre-cuts (the `PreCut` task) remove the bulk, then milling finishes
+    /// (thesis ch. 2). Needs `wire:` (the cut lengths come from its programs).
+    PreCutThenMilling(PreCutThenMilling),
+    /// A closed model (or a height field's slab) rationalized by ruled strips and cut by a
+    /// hot wire block by block (the `RuledBlocks` task, thesis ch. 4). Needs `wire:`.
+    HotWireRuled(RuledBlocks),
+    /// A facade cut by the hot blade on a grid of blocks (the `HotBlade` task).
+    HotBlade(HotBlade),
+    /// A facade segmented into pieces one blade can cut (the `FacadeSegmentation` task,
+    /// thesis ch. 5), when one blade across a block cannot.
+    FacadeSegmentation(FacadeSegmentation),
+}
+
+/// Milling: the tool, and the stock it mills.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Milling {
+    /// The tool. Default: `Tool()` (20 mm ball nose, 4 mm stepover, the rates' feeds).
+    #[serde(default)]
+    pub tool: ToolSpec,
+    /// The stock. Default: `Blocks` (the job's `block` tiling the design).
+    #[serde(default)]
+    pub stock: MillingStock,
+}
+
+/// Pre-cut then milling: the `PreCut` task's settings, and the milling tool.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PreCutThenMilling {
+    /// The pre-cut, as the `PreCut` task takes it. Default: `PreCut()`.
+    #[serde(default = "default_pre_cut")]
+    pub pre_cut: PreCut,
+    /// The milling tool. Default: `Tool()`.
+    #[serde(default)]
+    pub tool: ToolSpec,
+}
+
+fn default_pre_cut() -> PreCut {
+    // every field of PreCut has a default
+    ron::from_str("()").expect("PreCut() is a valid task")
+}
+
+/// The stock a milling machine starts from.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub enum MillingStock {
+    /// The job's `block` (its size, and its origin when given) repeated over the design's
+    /// bounding box.
+    #[default]
+    Blocks,
+    /// Freely placed blocks covering a closed mesh (the `BlockSegmentation` task,
+    /// thesis ch. 3).
+    BlockSegmentation(BlockSegmentation),
+}
+
+impl Process {
+    /// The process's name as job files write it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Milling(_) => "Milling",
+            Self::PreCutThenMilling(_) => "PreCutThenMilling",
+            Self::HotWireRuled(_) => "HotWireRuled",
+            Self::HotBlade(_) => "HotBlade",
+            Self::FacadeSegmentation(_) => "FacadeSegmentation",
+        }
+    }
+
+    /// The milling tool, for the processes that mill.
+    pub fn tool(&self) -> Option<&ToolSpec> {
+        match self {
+            Self::Milling(m) => Some(&m.tool),
+            Self::PreCutThenMilling(p) => Some(&p.tool),
+            _ => None,
+        }
+    }
+
+    /// Calls `v` with the task the process runs as its own type, `None` for one that runs
+    /// none (milling the job's blocks).
+    pub fn visit<V: Visit>(&self, v: V) -> Option<V::Output> {
+        match self {
+            Self::Milling(Milling {
+                stock: MillingStock::BlockSegmentation(t),
+                ..
+            }) => Some(v.visit(t)),
+            Self::Milling(_) => None,
+            Self::PreCutThenMilling(p) => Some(v.visit(&p.pre_cut)),
+            Self::HotWireRuled(t) => Some(v.visit(t)),
+            Self::HotBlade(t) => Some(v.visit(t)),
+            Self::FacadeSegmentation(t) => Some(v.visit(t)),
+        }
     }
 }

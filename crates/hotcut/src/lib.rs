@@ -26,6 +26,8 @@
 pub mod analyze;
 /// The `BlockSegmentation` task: a closed mesh covered by few freely placed blocks.
 pub mod block_segmentation;
+/// The `Compare` task: one design made by several processes, set side by side (thesis ch. 6).
+pub mod compare;
 /// What a task sees of its job: the common fields as written and resolved.
 pub mod context;
 /// The `Design` task: designs made for the hot blade, their elastica, robot data.
@@ -50,6 +52,8 @@ pub mod load;
 pub mod output;
 /// The `PreCut` task: hot-wire cuts removing the bulk above a design surface.
 pub mod pre_cut;
+/// A task's run measured as a production process: the figures `Compare` sets side by side.
+pub mod process;
 /// Progress of long steps.
 pub mod progress;
 /// What reports share.

@@ -110,6 +110,40 @@ fn summary<T: Task>(report: &T::Report, job: &Context) -> String {
     format!("{}\n  {word}: {}", T::summary(report, job), verdict.text)
 }
 
+/// The outputs of `outputs` that `task` renders itself: the kinds it passes on to
+/// [`Task::attached`] files (Compare's processes') are left out.
+fn own_outputs<T: Task>(task: &T, outputs: &[OutputSpec]) -> Vec<OutputSpec> {
+    let own = crate::task::output_kinds::<T>();
+    let passed = task.passed_outputs();
+    outputs
+        .iter()
+        .filter(|o| own.contains(&o.kind()) || !passed.contains(&o.kind()))
+        .cloned()
+        .collect()
+}
+
+/// What a run of `T` leaves to write: the outputs to render (only the report and page
+/// when the run refused, for a task that reports it), or the error of a refusal.
+fn to_write<T: Task>(
+    job: &Context,
+    outputs: Vec<OutputSpec>,
+    refused: &Option<String>,
+) -> Result<Vec<OutputSpec>> {
+    let Some(why) = refused else {
+        return Ok(outputs);
+    };
+    // a task that reports it writes its report and page, nothing else
+    let reports_only: Vec<OutputSpec> = outputs
+        .into_iter()
+        .filter(|_| T::REPORTS_NOTHING_TO_CUT)
+        .filter(|o| matches!(o.kind(), OutputKind::Report | OutputKind::Html))
+        .collect();
+    if reports_only.is_empty() {
+        return Err(job.fail(format!("nothing to cut, no file written: {why}")));
+    }
+    Ok(reports_only)
+}
+
 /// Runs task `task` on `job` and writes `outputs` to `<out>/<name>/` (see
 /// [`run_job`]).
 ///
@@ -126,23 +160,7 @@ pub fn run_task<T: Task>(
     let params = task.params(job)?;
     let run = T::run(&params, job, progress)?;
     let refused = T::nothing_to_cut(&run);
-    let reports_only: Vec<OutputSpec>;
-    let outputs = match &refused {
-        None => outputs,
-        Some(why) => {
-            // a task that reports it writes its report and page, nothing else
-            reports_only = outputs
-                .iter()
-                .filter(|_| T::REPORTS_NOTHING_TO_CUT)
-                .filter(|o| matches!(o.kind(), OutputKind::Report | OutputKind::Html))
-                .cloned()
-                .collect();
-            if reports_only.is_empty() {
-                return Err(job.fail(format!("nothing to cut, no file written: {why}")));
-            }
-            &reports_only
-        }
-    };
+    let outputs = to_write::<T>(job, own_outputs(task, outputs), &refused)?;
     let report = T::report(&params, &run, job);
     let done = Finished::<T> {
         job,
@@ -165,9 +183,10 @@ pub fn run_task<T: Task>(
         list.push(kept.clone());
         kept
     };
-    let rendered = render(&done, outputs, &kept, start);
+    let mut files = Files::new(&kept);
+    let rendered = render(&done, &outputs, &mut files, refused.is_none(), start);
     let placed = match rendered {
-        Ok(files) => place(&kept, &dir).map(|()| files),
+        Ok(()) => place(&kept, &dir).map(|()| files.into_names()),
         Err((file, source)) => Err(HotcutError::Export {
             path: dir.join(file),
             source,
@@ -206,6 +225,71 @@ pub fn run_task<T: Task>(
     })
 }
 
+/// A run of a task rendered into memory ([`in_memory`]).
+#[derive(Debug, Clone)]
+pub struct MemoryRun {
+    /// Its files, (name, bytes), in the order a run into a folder writes them (none when
+    /// it cut nothing and its task does not report that).
+    pub files: Vec<(String, Vec<u8>)>,
+    /// Its report, as `report.json` holds it (before rounding).
+    pub report: serde_json::Value,
+    /// The run measured as a process (`None`: the task is not one).
+    pub figures: Option<crate::process::ProcessFigures>,
+    /// Why it cut nothing, when it did not.
+    pub nothing_to_cut: Option<String>,
+    /// What the CLI would print about it.
+    pub summary: String,
+}
+
+/// Runs task `task` on `job` and renders `outputs` into memory, each file as a run into a
+/// folder writes it (Compare keeps its processes' files this way, one folder each). A run
+/// with nothing to cut is not an error here: its files are the ones a run into a folder
+/// would leave (none, or the report and page), and `nothing_to_cut` says why.
+///
+/// # Errors
+/// Failures of the task, or of a writer.
+pub fn in_memory<T: Task>(
+    task: &T,
+    job: &Context,
+    outputs: &[OutputSpec],
+    progress: &dyn Progress,
+) -> Result<MemoryRun> {
+    let start = std::time::Instant::now();
+    let params = task.params(job)?;
+    let run = T::run(&params, job, progress)?;
+    let refused = T::nothing_to_cut(&run);
+    let outputs = match to_write::<T>(job, own_outputs(task, outputs), &refused) {
+        Ok(o) => o,
+        Err(_) => Vec::new(),
+    };
+    let report = T::report(&params, &run, job);
+    let figures = T::figures(&params, &run, &report, job);
+    let done = Finished::<T> {
+        job,
+        params: &params,
+        run: &run,
+        report: &report,
+    };
+    let mut files = Files::in_memory();
+    render(&done, &outputs, &mut files, refused.is_none(), start).map_err(|(file, source)| {
+        HotcutError::Export {
+            path: PathBuf::from(file),
+            source,
+        }
+    })?;
+    let value = serde_json::to_value(&report).map_err(|e| HotcutError::Export {
+        path: PathBuf::from("report.json"),
+        source: e.into(),
+    })?;
+    Ok(MemoryRun {
+        files: files.into_kept(),
+        report: value,
+        figures,
+        summary: summary::<T>(&report, job),
+        nothing_to_cut: refused,
+    })
+}
+
 /// A file that could not be rendered, and why.
 type FileError = (String, export::ExportError);
 
@@ -216,10 +300,10 @@ type FileError = (String, export::ExportError);
 fn render<T: Task>(
     done: &Finished<'_, T>,
     outputs: &[OutputSpec],
-    dir: &Path,
+    files: &mut Files,
+    attach: bool,
     start: std::time::Instant,
-) -> std::result::Result<Vec<String>, FileError> {
-    let mut files = Files::new(dir);
+) -> std::result::Result<(), FileError> {
     let html = outputs.iter().any(|o| o.kind() == OutputKind::Html);
     for o in outputs.iter().filter(|o| o.kind() != OutputKind::Html) {
         let before = files.len();
@@ -227,7 +311,7 @@ fn render<T: Task>(
             files.json("report.json", done.report, REPORT_DIGITS)
         } else {
             match T::OUTPUTS.iter().find(|w| w.kind == o.kind()) {
-                Some(w) => (w.write)(done, o, &mut files),
+                Some(w) => (w.write)(done, o, files),
                 None => Err(export::ExportError::Data(format!(
                     "task {} does not write {} files",
                     T::NAME,
@@ -240,12 +324,22 @@ fn render<T: Task>(
             Some(name) if files.len() > before => name.to_string(),
             _ => o.name().to_string(),
         };
-        result.map_err(|e| (failed(&files), e))?;
+        result.map_err(|e| (failed(files), e))?;
+    }
+    if attach {
+        for (name, bytes) in T::attached(done.run) {
+            files
+                .add(name, |buf| {
+                    buf.extend_from_slice(bytes);
+                    Ok(())
+                })
+                .map_err(|e| (name.to_string(), e))?;
+        }
     }
     if html {
-        write_page::<T>(done, &mut files, start.elapsed()).map_err(|e| (PAGE.to_string(), e))?;
+        write_page::<T>(done, files, start.elapsed()).map_err(|e| (PAGE.to_string(), e))?;
     }
-    Ok(files.into_names())
+    Ok(())
 }
 
 /// The page's file name.
@@ -273,13 +367,17 @@ fn write_page<T: Task>(
             .map(|(name, svg)| Drawing { name, svg })
             .collect();
     }
-    // drawings other outputs wrote (PreCut's G-code previews)
-    for name in files.names().iter().filter(|n| n.ends_with(".svg")) {
+    // drawings other outputs wrote (PreCut's G-code previews); not the ones in folders
+    // (a Compare's processes', which their own pages show)
+    for name in files
+        .names()
+        .iter()
+        .filter(|n| n.ends_with(".svg") && !n.contains('/'))
+    {
         if drawings.iter().any(|d| &d.name == name) {
             continue;
         }
-        if let Some(dir) = files.dir() {
-            let svg = std::fs::read(dir.join(name))?;
+        if let Some(svg) = files.bytes(name) {
             drawings.push(Drawing {
                 name: name.clone(),
                 svg,
@@ -289,13 +387,7 @@ fn write_page<T: Task>(
     let listed = files
         .names()
         .iter()
-        .map(|name| {
-            let bytes = files
-                .dir()
-                .and_then(|d| std::fs::metadata(d.join(name)).ok())
-                .map_or(0, |m| m.len());
-            (name.clone(), bytes)
-        })
+        .map(|name| (name.clone(), files.size(name)))
         .collect();
     let job = done.job;
     let page = Page {
@@ -312,6 +404,7 @@ fn write_page<T: Task>(
         ),
         body: T::page(done.report, job),
         drawings,
+        tables_first: T::TABLES_FIRST,
         files: listed,
         run_time: format!("{:.2} s", elapsed.as_secs_f64()),
         job: job.job_ron.clone(),

@@ -31,6 +31,9 @@ pub trait Task: Sized + 'static {
     /// other files (machine programs, meshes, drawings) are never written. Default: no
     /// (the run fails with no file).
     const REPORTS_NOTHING_TO_CUT: bool = false;
+    /// Whether `report.html` shows the task's tables before its drawings (Compare opens
+    /// on its comparison table). Default: no.
+    const TABLES_FIRST: bool = false;
 
     /// Parameters of a run, built from the resolved job.
     type Params: 'static;
@@ -67,6 +70,31 @@ pub trait Task: Sized + 'static {
     fn nothing_to_cut(run: &Self::Run) -> Option<String> {
         let _ = run;
         None
+    }
+
+    /// The run measured as a production process ([`crate::process`]), for `Compare`;
+    /// `None` for a task that is not one (the default).
+    fn figures(
+        params: &Self::Params,
+        run: &Self::Run,
+        report: &Self::Report,
+        job: &Context,
+    ) -> Option<crate::process::ProcessFigures> {
+        let _ = (params, run, report, job);
+        None
+    }
+
+    /// Output kinds a job of this task may list besides [`Task::OUTPUTS`], written by
+    /// [`Task::attached`] (Compare: the kinds its processes write). Default: none.
+    fn passed_outputs(&self) -> Vec<OutputKind> {
+        Vec::new()
+    }
+
+    /// Files of a finished run written as they are, after its outputs (`name` may hold a
+    /// folder: Compare's processes' files, each in its folder). Default: none.
+    fn attached(run: &Self::Run) -> Vec<(&str, &[u8])> {
+        let _ = run;
+        Vec::new()
     }
 
     /// The report of a run.
@@ -161,7 +189,8 @@ impl Visit for Check<'_, '_> {
             ));
         }
         task.check(&job, errors);
-        let kinds = output_kinds::<T>();
+        let mut kinds = output_kinds::<T>();
+        kinds.extend(task.passed_outputs());
         for (i, o) in job.outputs.iter().enumerate() {
             if job.outputs[..i].iter().any(|p| p.kind() == o.kind()) {
                 errors.push(job.error(

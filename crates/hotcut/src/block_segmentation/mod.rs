@@ -263,6 +263,32 @@ impl Task for BlockSegmentation {
             .then(|| "the segmentation placed no block".to_string())
     }
 
+    fn figures(
+        _: &blocks::Params,
+        run: &BlockSegRun,
+        report: &BlockSegReport,
+        _: &Context,
+    ) -> Option<crate::process::ProcessFigures> {
+        let s = &report.segmentation;
+        let stock: f64 = s
+            .blocks
+            .iter()
+            .map(|b| b.size.iter().product::<f64>())
+            .sum();
+        Some(crate::process::ProcessFigures {
+            why_not: None,
+            blocks: s.blocks.len(),
+            stock_volume: stock,
+            part_volume: s.model_volume,
+            milling_volume: (stock - s.model_volume).max(0.0),
+            milled_area: run.mesh.area(),
+            cutter: crate::process::Cutter::None,
+            cut_length: 0.0,
+            programs: 0,
+            deviation: None,
+        })
+    }
+
     fn report(params: &blocks::Params, run: &BlockSegRun, job: &Context) -> BlockSegReport {
         BlockSegReport {
             job: job.name.clone(),

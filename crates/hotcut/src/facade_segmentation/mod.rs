@@ -466,6 +466,79 @@ impl Task for FacadeSegmentation {
         }
     }
 
+    fn figures(
+        _: &SegmentationParams,
+        run: &SegmentationRun,
+        r: &SegmentationReport,
+        job: &Context,
+    ) -> Option<crate::process::ProcessFigures> {
+        let height = job
+            .surface
+            .as_ref()
+            .and_then(|s| ruled::Height::new(s).ok());
+        let mut part = 0.0;
+        let mut stock = 0.0;
+        let (mut sq, mut n, mut max) = (0.0, 0usize, 0.0f64);
+        for p in &r.pieces {
+            let b = &p.block;
+            stock += b.size.iter().product::<f64>();
+            let [w, x, y, z] = b.rotation;
+            let q =
+                nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+            let axes = [
+                q * nalgebra::Vector3::x(),
+                q * nalgebra::Vector3::y(),
+                q * nalgebra::Vector3::z(),
+            ];
+            if let Some(h) = &height {
+                part +=
+                    crate::process::solid_in_block(h, b.origin, axes, b.size, 100).unwrap_or(0.0);
+            }
+            for f in p.sections.iter().filter_map(|s| s.blade_fit.as_ref()) {
+                sq += f.rms * f.rms;
+                n += 1;
+                max = max.max(f.max);
+            }
+        }
+        let c = &r.counts;
+        let why_not = if !c.all_ok {
+            Some(format!(
+                "{} of {} pieces break a constraint ({}), {} gouge(s), {} collision(s), {} part(s) without a pose",
+                r.pieces.iter().filter(|p| !p.verdicts.all()).count(),
+                c.pieces,
+                crate::process::nonzero(&c.failing),
+                c.gouges,
+                c.collisions,
+                c.unposed
+            ))
+        } else {
+            match &run.cell {
+                None => Some("no robot program was planned".into()),
+                Some(cell) if !cell.report.clean => Some(
+                    "the robot program is not clean (a pose out of reach, a configuration change or a joint jump): see its report".into(),
+                ),
+                Some(_) => None,
+            }
+        };
+        Some(crate::process::ProcessFigures {
+            why_not,
+            blocks: c.blocks,
+            stock_volume: stock,
+            part_volume: part,
+            milling_volume: 0.0,
+            milled_area: 0.0,
+            cutter: crate::process::Cutter::Blade,
+            cut_length: run.cell.as_ref().map_or(0.0, |cell| {
+                crate::robot_cell::heated_path_mm(cell) * job.per_mm()
+            }),
+            programs: usize::from(run.cell.is_some()),
+            deviation: (n > 0).then(|| crate::process::Deviation {
+                rms: (sq / n as f64).sqrt(),
+                max,
+            }),
+        })
+    }
+
     fn page(r: &SegmentationReport, job: &Context) -> export::html::Body {
         page::body(r, job)
     }

@@ -372,6 +372,73 @@ impl Task for HotBlade {
         }
     }
 
+    fn figures(
+        _: &HotBladeParams,
+        run: &HotBladeRun,
+        r: &HotBladeReport,
+        job: &Context,
+    ) -> Option<crate::process::ProcessFigures> {
+        let v3 = |a: [f64; 3]| nalgebra::Vector3::from(a);
+        let axes = [v3(r.grid.axis_d), v3(r.grid.axis_u), v3(r.grid.axis_v)];
+        let height = job
+            .surface
+            .as_ref()
+            .and_then(|s| ruled::Height::new(s).ok());
+        let mut part = 0.0;
+        for b in &r.blocks {
+            if let Some(h) = &height {
+                part +=
+                    crate::process::solid_in_block(h, b.origin, axes, b.size, 100).unwrap_or(0.0);
+            }
+        }
+        let stock: f64 = r
+            .blocks
+            .iter()
+            .map(|b| b.size.iter().product::<f64>())
+            .sum();
+        let flagged: Vec<String> = r
+            .blocks
+            .iter()
+            .filter(|b| b.flags.any())
+            .map(|b| b.block.to_string())
+            .collect();
+        let why_not = if !flagged.is_empty() || !r.summary.all_ok {
+            Some(format!(
+                "blocks {} break a constraint ({}); largest deviation {:.4}",
+                flagged.join(", "),
+                crate::process::nonzero(&r.summary.flagged),
+                r.summary.max_deviation
+            ))
+        } else {
+            match &run.cell {
+                None => Some("no robot program was planned".into()),
+                Some(c) if !c.report.clean => Some(
+                    "the robot program is not clean (a pose out of reach, a configuration change or a joint jump): see its report".into(),
+                ),
+                Some(_) => None,
+            }
+        };
+        let rms = r.blocks.iter().map(|b| b.max_rms).fold(0.0, f64::max);
+        Some(crate::process::ProcessFigures {
+            why_not,
+            blocks: r.blocks.len(),
+            stock_volume: stock,
+            part_volume: part,
+            milling_volume: 0.0,
+            milled_area: 0.0,
+            cutter: crate::process::Cutter::Blade,
+            cut_length: run
+                .cell
+                .as_ref()
+                .map_or(0.0, |c| crate::robot_cell::heated_path_mm(c) * job.per_mm()),
+            programs: usize::from(run.cell.is_some()),
+            deviation: Some(crate::process::Deviation {
+                rms,
+                max: r.summary.max_deviation,
+            }),
+        })
+    }
+
     fn page(r: &HotBladeReport, job: &Context) -> export::html::Body {
         page::body(r, job)
     }

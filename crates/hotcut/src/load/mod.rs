@@ -177,6 +177,7 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
         wire: job.wire,
         cell: job.cell,
         rapid: job.outputs.iter().any(|o| matches!(o, OutputSpec::Rapid)),
+        outputs: job.outputs.clone(),
         cutting: job.cutting,
         direction,
         tolerance: job.tolerance.resolve(job.units),

@@ -118,10 +118,40 @@ impl Files {
         let mut buf = Vec::new();
         write(&mut buf)?;
         match &self.dir {
-            Some(dir) => std::fs::write(dir.join(&name), buf)?,
+            Some(dir) => {
+                let path = dir.join(&name);
+                if let Some(parent) = path.parent() {
+                    std::fs::create_dir_all(parent)?;
+                }
+                std::fs::write(path, buf)?
+            }
             None => self.kept.push((name, buf)),
         }
         Ok(())
+    }
+
+    /// The bytes of file `name` written so far (read back from the folder, or kept).
+    pub fn bytes(&self, name: &str) -> Option<Vec<u8>> {
+        match &self.dir {
+            Some(dir) => std::fs::read(dir.join(name)).ok(),
+            None => self
+                .kept
+                .iter()
+                .find(|(n, _)| n == name)
+                .map(|(_, b)| b.clone()),
+        }
+    }
+
+    /// The size of file `name` in bytes (0 when it is not there).
+    pub fn size(&self, name: &str) -> u64 {
+        match &self.dir {
+            Some(dir) => std::fs::metadata(dir.join(name)).map_or(0, |m| m.len()),
+            None => self
+                .kept
+                .iter()
+                .find(|(n, _)| n == name)
+                .map_or(0, |(_, b)| b.len() as u64),
+        }
     }
 
     /// Writes file `name` holding `text`.

@@ -423,6 +423,44 @@ impl Task for PreCut {
         (legs == 0).then(|| "no cut in any direction".to_string())
     }
 
+    fn figures(
+        params: &PreCutParams,
+        run: &PreCutRun,
+        report: &PreCutReport,
+        job: &Context,
+    ) -> Option<crate::process::ProcessFigures> {
+        let b = &params.block;
+        let v = b.volume();
+        let area = crate::process::area_over(
+            &run.surface,
+            [b.min[0], b.min[1]],
+            [b.max[0], b.max[1]],
+            crate::process::VOLUME_GRID,
+        );
+        let cut: f64 = report
+            .programs
+            .iter()
+            .map(|p| p.summary.cut_length_mm)
+            .sum();
+        let why_not = match (&area, report.programs.is_empty()) {
+            (Err(e), _) => Some(format!("the design's area could not be measured: {e}")),
+            (_, true) => Some("no wire program (the job gives no `wire`, or no cut)".into()),
+            _ => None,
+        };
+        Some(crate::process::ProcessFigures {
+            why_not,
+            blocks: 1,
+            stock_volume: v,
+            part_volume: report.volumes.model * v,
+            milling_volume: report.volumes.ruled * v,
+            milled_area: area.unwrap_or(0.0),
+            cutter: crate::process::Cutter::Wire,
+            cut_length: cut * job.per_mm(),
+            programs: report.programs.len(),
+            deviation: None,
+        })
+    }
+
     fn report(params: &PreCutParams, run: &PreCutRun, job: &Context) -> PreCutReport {
         // the directions as run (a search's: the one kept)
         let directions = run

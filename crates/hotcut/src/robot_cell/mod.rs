@@ -368,3 +368,18 @@ pub fn plan(
         report,
     })
 }
+
+/// The blade's heated path in a planned program, mm: the distance its midpoint travels
+/// through the block over every heated move (each move measured in its block's frame,
+/// from the move before it in the same block).
+pub fn heated_path_mm(plan: &CellPlan) -> f64 {
+    let mid = |s: &cell::fixture::Step| {
+        0.5 * (s.ends[0].translation.vector + s.ends[1].translation.vector)
+    };
+    plan.program
+        .steps
+        .windows(2)
+        .filter(|w| w[1].heat && w[0].block == w[1].block)
+        .map(|w| (mid(&w[1]) - mid(&w[0])).norm())
+        .sum()
+}

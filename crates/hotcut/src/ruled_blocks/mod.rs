@@ -419,6 +419,66 @@ impl Task for RuledBlocks {
         report::make(params, run, job)
     }
 
+    fn figures(
+        _: &RuledBlocksParams,
+        _: &RuledBlocksRun,
+        r: &RuledBlocksReport,
+        job: &Context,
+    ) -> Option<crate::process::ProcessFigures> {
+        let stock: f64 = r
+            .blocks
+            .iter()
+            .map(|b| b.placement.size.iter().product::<f64>())
+            .sum();
+        let cuts = r.blocks.iter().flat_map(|b| &b.cuts);
+        let cut_mm: f64 = cuts.clone().map(|c| c.cut_length_mm).sum();
+        let programs = cuts.filter(|c| c.program.is_some()).count();
+        let hulls: Vec<String> = r
+            .blocks
+            .iter()
+            .filter(|b| !b.cuttable)
+            .map(|b| b.index.to_string())
+            .collect();
+        let why_not = if let Some(n) = &r.nothing_to_cut {
+            Some(n.clone())
+        } else if !r.deviation.within_tolerance {
+            Some(format!(
+                "the ruled rationalization deviates up to {:.4} from the design (tolerance {})",
+                r.deviation.max, r.tolerance
+            ))
+        } else if !hulls.is_empty() && r.totals.added_depth > r.tolerance {
+            Some(format!(
+                "{} of {} blocks (number {}) cannot be cut by their strips, only to their convex hulls, which add {:.4e} of material up to {:.4} deep (tolerance {})",
+                hulls.len(),
+                r.blocks.len(),
+                hulls.join(", "),
+                r.totals.added_volume,
+                r.totals.added_depth,
+                r.tolerance
+            ))
+        } else if programs == 0 {
+            Some("no wire program (the job gives no `wire`)".into())
+        } else {
+            None
+        };
+        Some(crate::process::ProcessFigures {
+            why_not,
+            blocks: r.blocks.len(),
+            stock_volume: stock,
+            part_volume: r.model.volume,
+            milling_volume: 0.0,
+            milled_area: 0.0,
+            cutter: crate::process::Cutter::Wire,
+            cut_length: cut_mm * job.per_mm(),
+            programs,
+            // a block cut to its hull keeps material up to `added_depth` above the design
+            deviation: Some(crate::process::Deviation {
+                rms: r.deviation.rms,
+                max: r.deviation.max.max(r.totals.added_depth),
+            }),
+        })
+    }
+
     fn page(r: &RuledBlocksReport, job: &Context) -> export::html::Body {
         page::body(r, job)
     }

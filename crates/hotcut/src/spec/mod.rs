@@ -11,6 +11,8 @@ use serde::{Deserialize, Serialize};
 
 /// The robot cell of the hot blade: `Cell(..)`, its robots, holders, fixture and heat.
 mod cell;
+/// The `Compare` task's rates and milling tool.
+pub mod compare;
 /// The hot-wire machine: `Wire(..)` and its controller profile.
 mod wire;
 

@@ -1,0 +1,618 @@
+//! The `Compare` task (thesis ch. 6, "Discussion": let an architect see a design "for
+//! different price categories (with different production methods) … both considering
+//! price and style"): one design, several processes, each run by its own task.
+//!
+//! Every process that applies to the design runs the task that makes it (`PreCut`,
+//! `RuledBlocks`, `HotBlade`, `FacadeSegmentation`, `BlockSegmentation` for milling
+//! stock) through the [`Task`] trait — its own parameters, run, report and writers, so its
+//! numbers ([`Task::figures`]) and its files (in a folder of the output) are the ones the
+//! task gives on its own — in parallel (rayon, results in the job's order). Milling is
+//! measured on the stock ([`stock`]), and [`cost`] turns the figures into hours and cost
+//! and asks which rate change flips the ranking. This module imports no task module: the
+//! job's process list ([`crate::job::Process`]) hands each task over as its own type.
+//!
+//! ```no_run
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let job = hotcut::load::load_job(std::path::Path::new("jobs/compare-mould.ron"))
+//!     .map_err(|errors| format!("{errors:?}"))?;
+//! let outcome = hotcut::run::run_job(&job, std::path::Path::new("out"), &hotcut::NoProgress)?;
+//! println!("{}", outcome.report["winner"]);
+//! # Ok(()) }
+//! ```
+
+/// Hours, cost, ranking and the rate that flips it.
+pub mod cost;
+/// What `report.html` shows, and the cost-versus-deviation chart.
+mod page;
+/// `report.json`.
+pub mod report;
+/// Milling the job's blocks as bought.
+pub mod stock;
+
+use geom::surface::Surface;
+use rayon::prelude::*;
+
+use crate::context::{Context, JobFields};
+use crate::error::{JobError, Result};
+use crate::job::{Compare, MillingStock, Process};
+use crate::limits::Estimate;
+use crate::output::Files;
+use crate::process::ProcessFigures;
+use crate::progress::{NoProgress, Progress};
+use crate::run::MemoryRun;
+use crate::spec::compare::{RATE_DEFAULTS, STEPOVER_MM, TOOL_DIAMETER_MM};
+use crate::spec::{OutputKind, OutputSpec};
+use crate::task::{output_kinds, Finished, Output, Task, Visit};
+use cost::{Rates, Tool};
+pub use report::CompareReport;
+
+/// Where the task's fields are.
+const PTR: &str = "/task/Compare";
+/// Most processes in one comparison.
+pub const MAX_PROCESSES: usize = 12;
+
+/// A process as planned: what it runs, where its files go, and whether it applies.
+#[derive(Debug, Clone)]
+pub struct Planned {
+    /// The process as the job writes it.
+    pub process: Process,
+    /// Its name in the report (`milling`, `milling_segmented`, `precut_milling`,
+    /// `hot_wire`, `hot_blade`, `facade_segmentation`; `_2`, `_3` … when a kind is listed
+    /// again).
+    pub id: String,
+    /// Its folder in the output (`None`: milling the job's blocks, which writes none).
+    pub folder: Option<String>,
+    /// Its milling tool, resolved (processes that mill).
+    pub tool: Option<Tool>,
+    /// Why it does not apply to the design, when it does not.
+    pub not_applicable: Option<String>,
+}
+
+/// The parameters of a run.
+#[derive(Debug, Clone)]
+pub struct CompareParams {
+    /// The processes, in the job's order.
+    pub processes: Vec<Planned>,
+    /// The rates in job units.
+    pub rates: Rates,
+    /// The rates as the job writes them.
+    pub written: [Option<f64>; 10],
+    /// `tolerance.max`.
+    pub tolerance: f64,
+    /// The design's kind.
+    pub design: &'static str,
+}
+
+/// One process's run.
+#[derive(Debug, Clone, Default)]
+pub struct Outcome {
+    /// What it measured (`None`: not applicable, or its run failed).
+    pub figures: Option<ProcessFigures>,
+    /// Why its run failed, when it did.
+    pub failed: Option<String>,
+    /// Its files, named with its folder.
+    pub files: Vec<(String, Vec<u8>)>,
+    /// Its preview drawing: the first drawing its task writes.
+    pub preview: Option<(String, Vec<u8>)>,
+}
+
+/// What a run produced.
+#[derive(Debug, Clone)]
+pub struct CompareRun {
+    /// Per process, in the job's order.
+    pub outcomes: Vec<Outcome>,
+    /// The comparison (the report without the job's name and version).
+    pub report: CompareReport,
+}
+
+impl Task for Compare {
+    const NAME: &'static str = "Compare";
+    const REPORT_SCHEMA: &'static str = "compare-report.schema.json";
+    const OUTPUTS: &'static [Output<Self>] = &[Output::new(OutputKind::Svg, page::svg)];
+    const REPORTS_NOTHING_TO_CUT: bool = true;
+    const TABLES_FIRST: bool = true;
+    type Params = CompareParams;
+    type Run = CompareRun;
+    type Report = CompareReport;
+
+    fn check(&self, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+        if self.processes.is_empty() || self.processes.len() > MAX_PROCESSES {
+            errors.push(job.error(
+                &format!("{PTR}/processes"),
+                format!(
+                    "list 1 to {MAX_PROCESSES} processes (Milling, PreCutThenMilling, HotWireRuled, HotBlade, FacadeSegmentation); it lists {}",
+                    self.processes.len()
+                ),
+            ));
+        }
+        check_rates(self, job, errors);
+        for (i, p) in self.processes.iter().enumerate() {
+            let at = format!("{PTR}/processes/{i}/{}", p.name());
+            if let Some(t) = p.tool() {
+                check_tool(t, &format!("{at}/tool"), job, errors);
+            }
+            match p {
+                Process::Milling(m) if matches!(m.stock, MillingStock::Blocks) => {
+                    if job.block.is_none() {
+                        errors.push(job.error(
+                            "/block",
+                            format!("{at}: milling the job's blocks needs `block` (its size)"),
+                        ));
+                    }
+                }
+                Process::PreCutThenMilling(_) | Process::HotWireRuled(_) if job.wire.is_none() => {
+                    errors.push(job.error(
+                        "/wire",
+                        format!("{at}: a hot-wire process needs `wire` (its cut lengths come from the wire programs)"),
+                    ));
+                }
+                _ => {}
+            }
+            let inner = match p {
+                Process::PreCutThenMilling(_) => format!("{at}/pre_cut"),
+                Process::Milling(_) => format!("{at}/stock/BlockSegmentation"),
+                _ => at.clone(),
+            };
+            p.visit(SubCheck {
+                job: job.clone(),
+                errors: &mut *errors,
+                prefix: inner,
+            });
+        }
+    }
+
+    fn params(&self, job: &Context) -> Result<CompareParams> {
+        let surface = job.surface(Self::NAME)?;
+        let design = design_kind(surface);
+        let mut bases: Vec<&'static str> = Vec::new();
+        let processes = self
+            .processes
+            .iter()
+            .map(|p| {
+                let base = id_of(p);
+                let n = bases.iter().filter(|b| **b == base).count();
+                bases.push(base);
+                let id = if n == 0 {
+                    base.to_string()
+                } else {
+                    format!("{base}_{}", n + 1)
+                };
+                Planned {
+                    tool: p.tool().map(|t| resolve_tool(t, job.per_mm())),
+                    not_applicable: applies(p, surface).err(),
+                    folder: p.visit(crate::task::Name).map(|_| id.clone()),
+                    id,
+                    process: p.clone(),
+                }
+            })
+            .collect();
+        let written = self.rates.values();
+        Ok(CompareParams {
+            processes,
+            rates: Rates::resolve(written, job.per_mm()),
+            written,
+            tolerance: job.tolerance.max,
+            design,
+        })
+    }
+
+    fn estimate(p: &CompareParams, job: &Context) -> Estimate {
+        let mut total = Estimate::new(1e6, 1e6, "/task/Compare/processes", "list fewer processes");
+        let mut biggest = 0.0;
+        for (i, planned) in p.processes.iter().enumerate() {
+            if planned.not_applicable.is_some() {
+                continue;
+            }
+            let at = format!("{PTR}/processes/{i}/{}", planned.process.name());
+            let e = match &planned.process {
+                Process::Milling(m) if matches!(m.stock, MillingStock::Blocks) => {
+                    milling_estimate(job, &at)
+                }
+                other => match other.visit(SubEstimate { job }) {
+                    Some(Ok(e)) => e,
+                    Some(Err(message)) => {
+                        total.checks.push((at, message));
+                        continue;
+                    }
+                    None => continue,
+                },
+            };
+            total.memory += e.memory;
+            total.work += e.work;
+            total.output += e.output;
+            if e.work > biggest {
+                biggest = e.work;
+                total.pointer = e.pointer;
+                total.change = e.change;
+            }
+            let task_ptr = format!("/task/{}", sub_task_name(&planned.process));
+            total.checks.extend(e.checks.into_iter().map(|(ptr, m)| {
+                (
+                    remap(&ptr, &task_ptr, &at),
+                    format!("{}: {m}", planned.process.name()),
+                )
+            }));
+        }
+        total
+    }
+
+    fn run(p: &CompareParams, job: &Context, progress: &dyn Progress) -> Result<CompareRun> {
+        progress.start("processes", p.processes.len() as u64);
+        let outputs = job_outputs(job);
+        let outcomes: Vec<Outcome> = p
+            .processes
+            .par_iter()
+            .map(|planned| {
+                let o = run_process(planned, job, &outputs);
+                progress.tick();
+                o
+            })
+            .collect();
+        progress.finish();
+        let report = page::compare(p, &outcomes, job);
+        Ok(CompareRun { outcomes, report })
+    }
+
+    fn nothing_to_cut(run: &CompareRun) -> Option<String> {
+        run.report.winner.is_none().then(|| {
+            let why: Vec<String> = run
+                .report
+                .processes
+                .iter()
+                .map(|r| format!("{}: {}", r.process, r.reason.as_deref().unwrap_or("?")))
+                .collect();
+            format!(
+                "no process makes the design within the tolerance ({})",
+                why.join("; ")
+            )
+        })
+    }
+
+    fn passed_outputs(&self) -> Vec<OutputKind> {
+        vec![
+            OutputKind::Obj,
+            OutputKind::Gltf,
+            OutputKind::Csv,
+            OutputKind::RobotTargets,
+            OutputKind::Rapid,
+            OutputKind::GCode,
+            OutputKind::Blocks,
+            OutputKind::PreCut,
+        ]
+    }
+
+    fn attached(run: &CompareRun) -> Vec<(&str, &[u8])> {
+        run.outcomes
+            .iter()
+            .flat_map(|o| o.files.iter().map(|(n, b)| (n.as_str(), b.as_slice())))
+            .collect()
+    }
+
+    fn report(_: &CompareParams, run: &CompareRun, _: &Context) -> CompareReport {
+        run.report.clone()
+    }
+
+    fn summary(r: &CompareReport, job: &Context) -> String {
+        page::summary(r, job)
+    }
+
+    fn page(r: &CompareReport, job: &Context) -> export::html::Body {
+        page::body(r, job)
+    }
+}
+
+/// The job's outputs the processes write: every one but the report, page and drawing
+/// (which each process writes anyway).
+fn job_outputs(job: &Context) -> Vec<OutputSpec> {
+    job.outputs
+        .iter()
+        .filter(|o| {
+            !matches!(
+                o.kind(),
+                OutputKind::Report | OutputKind::Html | OutputKind::Svg
+            )
+        })
+        .cloned()
+        .collect()
+}
+
+/// `design` of the report: the surface's kind, `ClosedMesh` for a closed mesh.
+pub fn design_kind(surface: &Surface) -> &'static str {
+    match surface {
+        Surface::Mesh(m) if m.topology().boundary_edges == 0 => "ClosedMesh",
+        other => crate::report::surface_kind(other),
+    }
+}
+
+/// Whether process `p` can apply to `surface`; else why not.
+fn applies(p: &Process, surface: &Surface) -> std::result::Result<(), String> {
+    let closed = design_kind(surface) == "ClosedMesh";
+    let open_mesh = matches!(surface, Surface::Mesh(_)) && !closed;
+    match p {
+        Process::Milling(m) => match (&m.stock, closed) {
+            (MillingStock::BlockSegmentation(_), false) => Err(
+                "a block segmentation (thesis ch. 3) covers a closed mesh; the design is an open surface: mill the job's blocks (`stock: Blocks`)".into(),
+            ),
+            _ => Ok(()),
+        },
+        Process::PreCutThenMilling(_) if closed => Err(
+            "pre-cuts remove the material above a design surface (thesis ch. 2); a closed model has material to remove under it too".into(),
+        ),
+        Process::HotWireRuled(_) if open_mesh => Err(
+            "the ruled rationalization (thesis ch. 4) takes a closed mesh or a height field or B-spline surface (closed into a slab); the design is an open mesh".into(),
+        ),
+        Process::HotBlade(_) | Process::FacadeSegmentation(_) if closed => Err(
+            "the hot blade sweeps one open facade surface through a block from one side (thesis ch. 5); a closed model needs cuts from every side".into(),
+        ),
+        _ => Ok(()),
+    }
+}
+
+/// A process's name in the report (and its folder's).
+fn id_of(p: &Process) -> &'static str {
+    match p {
+        Process::Milling(m) if matches!(m.stock, MillingStock::Blocks) => "milling",
+        Process::Milling(_) => "milling_segmented",
+        Process::PreCutThenMilling(_) => "precut_milling",
+        Process::HotWireRuled(_) => "hot_wire",
+        Process::HotBlade(_) => "hot_blade",
+        Process::FacadeSegmentation(_) => "facade_segmentation",
+    }
+}
+
+/// The task a process runs, by name (for its pointers).
+fn sub_task_name(p: &Process) -> &'static str {
+    p.visit(crate::task::Name).unwrap_or("Milling")
+}
+
+/// `ptr` with the task's prefix `from` replaced by `to`.
+fn remap(ptr: &str, from: &str, to: &str) -> String {
+    match ptr.strip_prefix(from) {
+        Some(rest) => format!("{to}{rest}"),
+        None => ptr.to_string(),
+    }
+}
+
+/// A milling tool in job units.
+fn resolve_tool(t: &crate::spec::compare::ToolSpec, per_mm: f64) -> Tool {
+    Tool {
+        diameter: t.diameter.unwrap_or(TOOL_DIAMETER_MM * per_mm),
+        stepover: t.stepover.unwrap_or(STEPOVER_MM * per_mm),
+        feed: t.feed,
+        removal_rate: t.removal_rate,
+    }
+}
+
+/// The estimate of milling the job's blocks: a midpoint lattice per block column.
+fn milling_estimate(job: &Context, at: &str) -> Estimate {
+    let mut e = Estimate::new(1e6, 1e6, "/block/size", "make `block.size` larger");
+    if let (Some(s), Some(b)) = (&job.surface, &job.block) {
+        let n = stock::grid_blocks(s, arr(b.size), b.origin.map(arr));
+        if n >= stock::MAX_GRID_BLOCKS {
+            e.checks.push((
+                "/block/size".into(),
+                format!("{at}: the job's blocks would tile the design {n} times (at most {}); make `block.size` larger", stock::MAX_GRID_BLOCKS),
+            ));
+        }
+        let lattice = (crate::process::VOLUME_GRID * crate::process::VOLUME_GRID) as f64;
+        e.work = n * lattice * 50.0;
+    }
+    e
+}
+
+/// Runs one process (not applicable: nothing).
+fn run_process(planned: &Planned, job: &Context, outputs: &[OutputSpec]) -> Outcome {
+    if planned.not_applicable.is_some() {
+        return Outcome::default();
+    }
+    if let Process::Milling(m) = &planned.process {
+        if matches!(m.stock, MillingStock::Blocks) {
+            let measured = match (&job.surface, &job.block) {
+                (Some(s), Some(b)) => stock::figures(s, arr(b.size), b.origin.map(arr)),
+                _ => Err("milling the job's blocks needs a surface and `block`".into()),
+            };
+            return match measured {
+                Ok(f) => Outcome {
+                    figures: Some(f),
+                    ..Outcome::default()
+                },
+                Err(e) => Outcome {
+                    failed: Some(e),
+                    ..Outcome::default()
+                },
+            };
+        }
+    }
+    let mut sub = job.clone();
+    // the blade processes plan their robot programs: their cut paths are measured there
+    sub.rapid = matches!(
+        planned.process,
+        Process::HotBlade(_) | Process::FacadeSegmentation(_)
+    );
+    let ran = planned.process.visit(SubRun { job: &sub, outputs });
+    let folder = planned.folder.clone().unwrap_or_default();
+    match ran {
+        Some(Ok(m)) => outcome(m, &folder),
+        Some(Err(e)) => Outcome {
+            failed: Some(e.to_string()),
+            ..Outcome::default()
+        },
+        None => Outcome::default(),
+    }
+}
+
+/// A process's outcome from its task's run in memory, its files put in `folder`.
+fn outcome(m: MemoryRun, folder: &str) -> Outcome {
+    let preview = m
+        .files
+        .iter()
+        .find(|(n, _)| n.ends_with(".svg"))
+        .map(|(n, b)| (format!("preview_{folder}_{n}"), b.clone()));
+    let figures = m.figures.map(|mut f| {
+        if f.why_not.is_none() {
+            f.why_not = m.nothing_to_cut.clone();
+        }
+        f
+    });
+    Outcome {
+        failed: figures.is_none().then(|| {
+            m.nothing_to_cut
+                .unwrap_or_else(|| "the task measures no process".into())
+        }),
+        figures,
+        files: m
+            .files
+            .into_iter()
+            .map(|(n, b)| (format!("{folder}/{n}"), b))
+            .collect(),
+        preview,
+    }
+}
+
+/// Runs a process's task into memory, with the report, page and drawing and the job's
+/// outputs that the task writes.
+struct SubRun<'a> {
+    job: &'a Context,
+    outputs: &'a [OutputSpec],
+}
+
+impl Visit for SubRun<'_> {
+    type Output = Result<MemoryRun>;
+
+    fn visit<T: Task>(self, task: &T) -> Result<MemoryRun> {
+        let kinds = output_kinds::<T>();
+        let mut outs = vec![OutputSpec::Report, OutputSpec::Html];
+        if kinds.contains(&OutputKind::Svg) {
+            outs.push(OutputSpec::Svg);
+        }
+        for o in self.outputs {
+            if kinds.contains(&o.kind()) && !outs.iter().any(|p| p.kind() == o.kind()) {
+                outs.push(o.clone());
+            }
+        }
+        crate::run::in_memory(task, self.job, &outs, &NoProgress)
+    }
+}
+
+/// A process's task's own checks, its pointers moved under the process.
+struct SubCheck<'a, 'e> {
+    job: JobFields<'a>,
+    errors: &'e mut Vec<JobError>,
+    prefix: String,
+}
+
+impl Visit for SubCheck<'_, '_> {
+    type Output = ();
+
+    fn visit<T: Task>(self, task: &T) {
+        let mut found = Vec::new();
+        task.check(&self.job, &mut found);
+        let from = format!("/task/{}", T::NAME);
+        for e in found {
+            self.errors.push(match e {
+                JobError::Semantic {
+                    path,
+                    pointer,
+                    message,
+                } => JobError::Semantic {
+                    path,
+                    pointer: remap(&pointer, &from, &self.prefix),
+                    message,
+                },
+                other => other,
+            });
+        }
+    }
+}
+
+/// A process's task's parameters and estimate.
+struct SubEstimate<'a> {
+    job: &'a Context,
+}
+
+impl Visit for SubEstimate<'_> {
+    type Output = std::result::Result<Estimate, String>;
+
+    fn visit<T: Task>(self, task: &T) -> Self::Output {
+        let params = task.params(self.job).map_err(|e| e.to_string())?;
+        Ok(T::estimate(&params, self.job))
+    }
+}
+
+/// Every rate finite and non-negative; speeds, feeds and removal rates positive.
+fn check_rates(c: &Compare, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+    for (v, d) in c.rates.values().iter().zip(RATE_DEFAULTS.iter()) {
+        let Some(v) = v else { continue };
+        let positive = d.length_power > 0;
+        let ok = v.is_finite() && if positive { *v > 0.0 } else { *v >= 0.0 };
+        if !ok {
+            errors.push(job.error(
+                &format!("{PTR}/rates/{}", d.field),
+                format!(
+                    "{} must be a finite number {} ({}); it is {v}",
+                    d.field,
+                    if positive { "above 0" } else { "of 0 or more" },
+                    d.unit
+                ),
+            ));
+        }
+    }
+}
+
+/// A milling tool: positive diameter, stepover within it, positive feeds.
+fn check_tool(
+    t: &crate::spec::compare::ToolSpec,
+    at: &str,
+    job: &JobFields<'_>,
+    errors: &mut Vec<JobError>,
+) {
+    let fields = [
+        ("diameter", t.diameter),
+        ("stepover", t.stepover),
+        ("feed", t.feed),
+        ("removal_rate", t.removal_rate),
+    ];
+    for (name, v) in fields {
+        if let Some(v) = v {
+            if !(v.is_finite() && v > 0.0) {
+                errors.push(job.error(
+                    &format!("{at}/{name}"),
+                    format!("{name} must be a finite number above 0; it is {v}"),
+                ));
+            }
+        }
+    }
+    let per_mm = job.units.per_mm();
+    let d = t.diameter.unwrap_or(TOOL_DIAMETER_MM * per_mm);
+    let s = t.stepover.unwrap_or(STEPOVER_MM * per_mm);
+    if s > d {
+        errors.push(job.error(
+            &format!("{at}/stepover"),
+            format!("the stepover ({s}) must not exceed the tool's diameter ({d})"),
+        ));
+    }
+}
+
+/// The drawings of a run: the chart, then every process's preview.
+pub(crate) fn previews(run: &CompareRun) -> impl Iterator<Item = &(String, Vec<u8>)> {
+    run.outcomes.iter().filter_map(|o| o.preview.as_ref())
+}
+
+/// Writes the files `files` holds for the page.
+pub(crate) fn write_previews(
+    done: &Finished<'_, Compare>,
+    files: &mut Files,
+) -> export::Result<()> {
+    for (name, svg) in previews(done.run) {
+        files.add(name.clone(), |buf| {
+            buf.extend_from_slice(svg);
+            Ok(())
+        })?;
+    }
+    Ok(())
+}
+
+/// A triple as an array.
+fn arr((x, y, z): (f64, f64, f64)) -> [f64; 3] {
+    [x, y, z]
+}
