@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use hotcut::job::{Job, TaskSpec};
+use hotcut::job::{Job, MillingStock, Process, TaskSpec};
 use hotcut::load::{parse_job, resolve};
 use hotcut::run::run_job;
 use hotcut::spec::{SurfaceSpec, Units};
@@ -151,7 +151,15 @@ fn with_defaults(job: &Job) -> Job {
     t.max.get_or_insert(d::MAX_MM * u);
     t.smoothing.get_or_insert(d::SMOOTHING_MM * u);
     t.bisection.get_or_insert(d::BISECTION_MM * u);
-    match &mut j.task {
+    task_defaults(&mut j.task, u);
+    j
+}
+
+/// The length defaults of a task written out (`u`: job units per mm); a comparison's
+/// processes each as their own task, its tools and length rates too.
+fn task_defaults(task: &mut TaskSpec, u: f64) {
+    use hotcut::spec::defaults as d;
+    match task {
         TaskSpec::HotBlade(h) => {
             h.speed.get_or_insert(d::BLADE_SPEED_MM_PER_S * u);
             h.approach.get_or_insert(d::APPROACH_MM * u);
@@ -174,9 +182,34 @@ fn with_defaults(job: &Job) -> Job {
         TaskSpec::RuledBlocks(r) => {
             r.floor.get_or_insert(d::RULED_FLOOR_MM * u);
         }
+        TaskSpec::Compare(c) => {
+            use hotcut::spec::compare::{RATE_DEFAULTS, STEPOVER_MM, TOOL_DIAMETER_MM};
+            for p in &mut c.processes {
+                each_process_task(p, |t| task_defaults(t, u));
+                if let Some(t) = process_tool(p) {
+                    t.diameter.get_or_insert(TOOL_DIAMETER_MM * u);
+                    t.stepover.get_or_insert(STEPOVER_MM * u);
+                }
+            }
+            let r = &mut c.rates;
+            let fields = [
+                &mut r.removal_rate,
+                &mut r.finishing_feed,
+                &mut r.wire_speed,
+                &mut r.blade_speed,
+            ];
+            for (x, name) in fields.into_iter().zip([
+                "removal_rate",
+                "finishing_feed",
+                "wire_speed",
+                "blade_speed",
+            ]) {
+                let dflt = RATE_DEFAULTS.iter().find(|d| d.field == name).unwrap();
+                x.get_or_insert(dflt.value * u.powi(dflt.length_power));
+            }
+        }
         _ => {}
     }
-    j
 }
 
 /// The job in `units`, every length scaled by `f` (new units per old unit), its input
@@ -244,7 +277,13 @@ fn convert(job: &Job, base: &Path, units: Units, f: f64, dir: &Path) -> Job {
     for x in [&mut t.rms, &mut t.max, &mut t.smoothing, &mut t.bisection] {
         *x = x.map(|v| v * f);
     }
-    match &mut j.task {
+    convert_task(&mut j.task, base, f, dir);
+    j
+}
+
+/// Every length of a task scaled by `f`, its input files scaled into `dir`.
+fn convert_task(task: &mut TaskSpec, base: &Path, f: f64, dir: &Path) {
+    match task {
         TaskSpec::HotBlade(h) => {
             h.speed = h.speed.map(|v| v * f);
             h.approach = h.approach.map(|v| v * f);
@@ -291,8 +330,57 @@ fn convert(job: &Job, base: &Path, units: Units, f: f64, dir: &Path) -> Job {
         TaskSpec::RuledBlocks(r) => r.floor = r.floor.map(|v| v * f),
         // no lengths: sample counts, fractions of the block, angles
         TaskSpec::Analyze(_) | TaskSpec::BlockSegmentation(_) | TaskSpec::PreCut(_) => {}
+        TaskSpec::Compare(c) => {
+            for p in &mut c.processes {
+                each_process_task(p, |t| convert_task(t, base, f, dir));
+                if let Some(t) = process_tool(p) {
+                    for x in [&mut t.diameter, &mut t.stepover, &mut t.feed] {
+                        *x = x.map(|v| v * f);
+                    }
+                    t.removal_rate = t.removal_rate.map(|v| v * f * f * f);
+                }
+            }
+            let r = &mut c.rates;
+            r.removal_rate = r.removal_rate.map(|v| v * f * f * f);
+            for x in [&mut r.finishing_feed, &mut r.wire_speed, &mut r.blade_speed] {
+                *x = x.map(|v| v * f);
+            }
+        }
     }
-    j
+}
+
+/// Calls `g` with a comparison's process as its own task (`TaskSpec`), and keeps what
+/// `g` changed.
+fn each_process_task(p: &mut Process, g: impl Fn(&mut TaskSpec)) {
+    macro_rules! via {
+        ($v:expr, $variant:ident) => {{
+            let mut t = TaskSpec::$variant($v.clone());
+            g(&mut t);
+            if let TaskSpec::$variant(x) = t {
+                *$v = x;
+            }
+        }};
+    }
+    match p {
+        Process::Milling(m) => {
+            if let MillingStock::BlockSegmentation(b) = &mut m.stock {
+                via!(b, BlockSegmentation)
+            }
+        }
+        Process::PreCutThenMilling(c) => via!(&mut c.pre_cut, PreCut),
+        Process::HotWireRuled(r) => via!(r, RuledBlocks),
+        Process::HotBlade(h) => via!(h, HotBlade),
+        Process::FacadeSegmentation(s) => via!(s, FacadeSegmentation),
+    }
+}
+
+/// A process's milling tool.
+fn process_tool(p: &mut Process) -> Option<&mut hotcut::spec::compare::ToolSpec> {
+    match p {
+        Process::Milling(m) => Some(&mut m.tool),
+        Process::PreCutThenMilling(c) => Some(&mut c.tool),
+        _ => None,
+    }
 }
 
 /// Every length of a `cell:` scaled by `f`.
@@ -369,7 +457,12 @@ fn compare(a: &Value, b: &Value, path: &str, f: f64, errors: &mut Vec<String>) {
             // the input file's path differs (a scaled copy)
             let file = |s: &str| s.starts_with("file ");
             let design = path.ends_with("/design");
-            if !(x == y || design || units(x) && units(y) || file(x) && file(y)) {
+            // Compare's reasons quote lengths in job units, and its rates' units name the
+            // unit; their statuses and numbers are compared
+            let quoted = ["/reason", "/why_not", "/unit"]
+                .iter()
+                .any(|e| path.ends_with(e));
+            if !(x == y || design || quoted || units(x) && units(y) || file(x) && file(y)) {
                 errors.push(format!("{path}: {x:?} vs {y:?}"));
             }
         }
@@ -434,6 +527,7 @@ fn differences(
             if let Some(o) = r.as_object_mut() {
                 o.remove("cell");
             }
+            without_prices(r);
         }
         let mut errors = Vec::new();
         // counts and verdicts exactly
@@ -455,6 +549,28 @@ fn differences(
         out.push((name, errors));
     }
     out
+}
+
+/// A `Compare` report without what a smaller part really costs less for: a cost adds
+/// the EPS bought (m³, which scales) to machine and operator hours (which do not: times
+/// are lengths over speeds, volumes over removal rates), so costs, the margin between
+/// them, the rate changes that flip the ranking, and the ranking itself, are not scaled
+/// numbers. Figures, hours and m³ stay, and are compared; the mm/m test compares all.
+fn without_prices(r: &mut Value) {
+    if r["task"] != "Compare" {
+        return;
+    }
+    if let Some(o) = r.as_object_mut() {
+        for k in ["margin_percent", "sensitivity", "ranking", "winner"] {
+            o.remove(k);
+        }
+    }
+    for p in r["processes"].as_array_mut().into_iter().flatten() {
+        if let Some(o) = p.as_object_mut() {
+            o.remove("cost");
+            o.remove("rank");
+        }
+    }
 }
 
 fn summary(diffs: &[(String, Vec<String>)]) -> String {

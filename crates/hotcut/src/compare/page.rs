@@ -10,6 +10,7 @@ use super::{CompareParams, Outcome, Planned};
 use crate::context::Context;
 use crate::job::{MillingStock, Process};
 use crate::output::Files;
+use crate::process::Cutter;
 use crate::spec::compare::RATE_DEFAULTS;
 use crate::spec::OutputSpec;
 use crate::task::Finished;
@@ -68,6 +69,10 @@ fn row(p: &Planned, o: &Outcome, rates: &Rates, tolerance: f64) -> ProcessRow {
     r.reason = why;
     r.eps_m3 = Some(f.stock_volume * rates.m3_per_unit3);
     r.waste_m3 = Some((f.stock_volume - f.part_volume).max(0.0) * rates.m3_per_unit3);
+    if f.cutter != Cutter::None && f.programs == 0 {
+        // no program to time: a run that refused to cut
+        return r;
+    }
     let h = cost::hours(f, p.tool.as_ref(), rates);
     r.cost = Some(cost::cost(f, &h, rates));
     r.hours = Some(h);
@@ -192,6 +197,11 @@ fn plausibility(p: &CompareParams, rows: &[ProcessRow]) -> Plausibility {
         blade_speedup: ratio(milling.and_then(machine), blade.and_then(machine)),
         precut_saving_percent: ratio(precut.and_then(machine), milling.and_then(machine))
             .map(|r| 100.0 * (1.0 - r)),
+        precut_roughing_saving_percent: ratio(
+            precut.and_then(|r| r.hours.map(|h| h.wire + h.roughing)),
+            milling.and_then(|r| r.hours.map(|h| h.roughing)),
+        )
+        .map(|r| 100.0 * (1.0 - r)),
         blocks_segmented_vs_grid: match (seg, grid) {
             (Some(s), Some(g)) => Some([
                 s.figures.as_ref().map_or(0, |f| f.blocks),
@@ -230,8 +240,10 @@ pub fn summary(r: &CompareReport, job: &Context) -> String {
     if let Some(w) = &r.winner {
         s += &format!(
             "\n  cheapest feasible: {w}{}",
-            r.margin_percent
-                .map_or(String::new(), |m| format!(", {}% below the next", g(m)))
+            r.margin_percent.map_or(String::new(), |m| format!(
+                " (the next cheapest costs {} % more)",
+                g(m)
+            ))
         );
     }
     s
@@ -246,7 +258,7 @@ pub fn body(r: &CompareReport, job: &Context) -> Body {
             text: format!(
                 "Cheapest feasible process: {w}{}. {} of {} processes can make the design within {} {u}.",
                 r.margin_percent
-                    .map_or(String::new(), |m| format!(", {}% below the next", g(m))),
+                    .map_or(String::new(), |m| format!(" (the next cheapest costs {} % more)", g(m))),
                 r.ranking.len(),
                 r.processes.len(),
                 r.tolerance
@@ -452,7 +464,7 @@ pub fn svg(
 
 /// Cost (up) against largest deviation (right), one dot per process that has both.
 fn chart(r: &CompareReport, u: &str) -> SvgDoc {
-    let (w, h) = (640.0, 400.0);
+    let (w, h) = (760.0, 400.0);
     let frame = (70.0, 40.0, 420.0, 300.0);
     let mut doc = SvgDoc::new(w, h);
     let pts: Vec<(&ProcessRow, f64, f64)> = r
@@ -479,31 +491,29 @@ fn chart(r: &CompareReport, u: &str) -> SvgDoc {
         4.0,
         Some("tolerance.max"),
     );
-    for (p, x, y) in &pts {
-        let (colour, mark) = match p.status {
-            Status::Feasible if p.rank == Some(1) => ("#1a7f37", "★ "),
-            Status::Feasible => ("#1f5fbf", ""),
-            _ => ("#999999", "✗ "),
+    // every process its colour, named in the legend (no text inside the frame, where
+    // the tolerance line and the dots are)
+    const PALETTE: [&str; 6] = ["#1a7f37", "#1f5fbf", "#b35900", "#7b3fa0", "#0f8a8a", "#a0303a"];
+    let mut labels = Vec::new();
+    for (k, (p, x, y)) in pts.iter().enumerate() {
+        let colour = PALETTE[k % PALETTE.len()];
+        let state = match p.status {
+            Status::Feasible if p.rank == Some(1) => "cheapest",
+            Status::Feasible => "feasible",
+            _ => "infeasible",
         };
-        let at = map(*x, *y);
-        let name = p.id.as_str();
-        doc.circle(at, 5.0, colour, Some(name));
-        doc.text(
-            (at.0 + 8.0, at.1 - 6.0),
-            10.0,
-            "#222222",
-            &format!("{mark}{name}"),
-        );
+        doc.circle(map(*x, *y), 5.0, colour, Some(&format!("{} ({state})", p.id)));
+        if !matches!(p.status, Status::Feasible) {
+            // a ring marks what cannot make the design
+            doc.circle(map(*x, *y), 2.0, "#ffffff", None);
+        }
+        labels.push((colour, format!("{} ({state})", p.id)));
     }
-    doc.legend(
-        (l + fw + 20.0, t),
-        120.0,
-        &[
-            Legend::new(Mark::Dot, "#1a7f37", "cheapest feasible"),
-            Legend::new(Mark::Dot, "#1f5fbf", "feasible"),
-            Legend::new(Mark::Dot, "#999999", "infeasible"),
-            Legend::new(Mark::Dashed, "#cc3333", "tolerance"),
-        ],
-    );
+    let mut entries: Vec<Legend<'_>> = labels
+        .iter()
+        .map(|(c, l)| Legend::new(Mark::Dot, c, l.as_str()))
+        .collect();
+    entries.push(Legend::new(Mark::Dashed, "#cc3333", "tolerance"));
+    doc.legend((l + fw + 20.0, t), w - (l + fw + 30.0), &entries);
     doc
 }

@@ -130,6 +130,10 @@ pub struct Plausibility {
     /// How much of milling's machine time pre-cuts save, percent (the seed, ch. 2:
     /// 69–72 % on a roughing-dominated mould).
     pub precut_saving_percent: Option<f64>,
+    /// How much of milling's roughing time the pre-cuts save, their own wire time
+    /// counted, percent (the seed's figure is for a job that was roughing only, ~92 % of
+    /// its machine hours).
+    pub precut_roughing_saving_percent: Option<f64>,
     /// Blocks of a block segmentation and of the job's block grid, when both milled
     /// (thesis ch. 3: fewer blocks).
     pub blocks_segmented_vs_grid: Option<[usize; 2]>,
