@@ -13,13 +13,14 @@ use serde::{Deserialize, Serialize};
 
 use crate::analyze::Analyze;
 use crate::block_segmentation::BlockSegmentation;
+use crate::compare::{Compare, Kind, ProcessSpec};
 use crate::design_task::Design;
 use crate::facade_segmentation::FacadeSegmentation;
 use crate::fit_curves::FitCurves;
 use crate::hot_blade::HotBlade;
 use crate::pre_cut::PreCut;
 use crate::ruled_blocks::RuledBlocks;
-use crate::spec::compare::{RatesSpec, ToolSpec};
+use crate::spec::compare::ToolSpec;
 use crate::spec::{BladeSpec, BlockSpec, CuttingSpec, OutputSpec, SurfaceSpec, ToleranceSpec};
 use crate::spec::{CellSpec, Units, WireSpec};
 use crate::task::{Name, Visit, VisitType};
@@ -101,7 +102,7 @@ pub enum TaskSpec {
     RuledBlocks(RuledBlocks),
     /// One design made by several processes (milling, pre-cut + milling, hot wire, hot
     /// blade), set side by side: material, time, fidelity and cost.
-    Compare(Compare),
+    Compare(Compare<Process>),
 }
 
 impl TaskSpec {
@@ -131,28 +132,13 @@ impl TaskSpec {
         v.visit::<PreCut>();
         v.visit::<Design>();
         v.visit::<RuledBlocks>();
-        v.visit::<Compare>();
+        v.visit::<Compare<Process>>();
     }
 
     /// Name as written in job files.
     pub fn name(&self) -> &'static str {
         self.visit(Name)
     }
-}
-
-/// The `Compare` task (thesis ch. 6): one design, the processes to make it with, each with
-/// its own task's settings, and the rates that price them. Every process that applies to
-/// the design runs its own task (its files go to a folder of the output); one that cannot
-/// apply is reported with the reason. Write
-/// `Compare(processes: [Milling(), HotWireRuled(sections: 24)], rates: Rates(eps_per_m3: 70))`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct Compare {
-    /// The processes, in the order the report lists them (at least one, at most 12).
-    pub processes: Vec<Process>,
-    /// Prices, machine rates and speeds. Default: every rate's documented default.
-    #[serde(default)]
-    pub rates: RatesSpec,
 }
 
 /// One way to make the design.
@@ -217,20 +203,22 @@ pub enum MillingStock {
     BlockSegmentation(BlockSegmentation),
 }
 
-impl Process {
-    /// The process's name as job files write it.
-    pub fn name(&self) -> &'static str {
+impl ProcessSpec for Process {
+    fn kind(&self) -> Kind {
         match self {
-            Self::Milling(_) => "Milling",
-            Self::PreCutThenMilling(_) => "PreCutThenMilling",
-            Self::HotWireRuled(_) => "HotWireRuled",
-            Self::HotBlade(_) => "HotBlade",
-            Self::FacadeSegmentation(_) => "FacadeSegmentation",
+            Self::Milling(Milling {
+                stock: MillingStock::Blocks,
+                ..
+            }) => Kind::Milling,
+            Self::Milling(_) => Kind::MillingSegmented,
+            Self::PreCutThenMilling(_) => Kind::PreCutThenMilling,
+            Self::HotWireRuled(_) => Kind::HotWireRuled,
+            Self::HotBlade(_) => Kind::HotBlade,
+            Self::FacadeSegmentation(_) => Kind::FacadeSegmentation,
         }
     }
 
-    /// The milling tool, for the processes that mill.
-    pub fn tool(&self) -> Option<&ToolSpec> {
+    fn tool(&self) -> Option<&ToolSpec> {
         match self {
             Self::Milling(m) => Some(&m.tool),
             Self::PreCutThenMilling(p) => Some(&p.tool),
@@ -238,9 +226,7 @@ impl Process {
         }
     }
 
-    /// Calls `v` with the task the process runs as its own type, `None` for one that runs
-    /// none (milling the job's blocks).
-    pub fn visit<V: Visit>(&self, v: V) -> Option<V::Output> {
+    fn visit<V: Visit>(&self, v: V) -> Option<V::Output> {
         match self {
             Self::Milling(Milling {
                 stock: MillingStock::BlockSegmentation(t),

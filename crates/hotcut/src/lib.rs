@@ -56,6 +56,8 @@ pub mod pre_cut;
 pub mod process;
 /// Progress of long steps.
 pub mod progress;
+/// Rendering a finished run's files, into a folder or into memory.
+pub mod render;
 /// What reports share.
 pub mod report;
 /// The robot cell of the blade-posing tasks: `cell:` checked and resolved, the program planned.

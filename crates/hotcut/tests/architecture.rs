@@ -322,6 +322,11 @@ fn graph() -> (
     let implements_task = |code: &str| {
         code.split("impl").skip(1).any(|rest| {
             let head = rest.split('{').next().unwrap_or("");
+            // `impl<P> Task for Compare<P>`: the generics first
+            let head = match head.trim_start().strip_prefix('<') {
+                Some(generic) => generic.split_once('>').map_or("", |(_, r)| r),
+                None => head,
+            };
             let mut words = head.split_whitespace();
             let trait_path = words.next().unwrap_or("");
             (trait_path == "Task" || trait_path.ends_with("::Task")) && words.next() == Some("for")

@@ -154,9 +154,7 @@ fn when_no_process_is_feasible_the_run_fails_with_its_report_and_no_program() {
     // a tool whose scallop (5 mm ball, 4.9 mm stepover: 1.5 mm) is fine, with a tolerance
     // of 0.1 mm it is not; the pre-cut's milling too
     let text = job(
-        &format!(
-            "Milling(tool: Tool(diameter: 5, stepover: 4.9)), PreCutThenMilling(pre_cut: PreCut(legs: 3, directions: [X], sections: 10, samples: 10, controls: 5), tool: Tool(diameter: 5, stepover: 4.9))"
-        ),
+        "Milling(tool: Tool(diameter: 5, stepover: 4.9)), PreCutThenMilling(pre_cut: PreCut(legs: 3, directions: [X], sections: 10, samples: 10, controls: 5), tool: Tool(diameter: 5, stepover: 4.9))",
         "",
         "",
     )

@@ -31,20 +31,104 @@ pub mod stock;
 
 use geom::surface::Surface;
 use rayon::prelude::*;
+use schemars::JsonSchema;
+use serde::{de::DeserializeOwned, Deserialize, Serialize};
 
 use crate::context::{Context, JobFields};
 use crate::error::{JobError, Result};
-use crate::job::{Compare, MillingStock, Process};
 use crate::limits::Estimate;
 use crate::output::Files;
 use crate::process::ProcessFigures;
 use crate::progress::{NoProgress, Progress};
-use crate::run::MemoryRun;
-use crate::spec::compare::{RATE_DEFAULTS, STEPOVER_MM, TOOL_DIAMETER_MM};
+use crate::render::MemoryRun;
+use crate::spec::compare::{RatesSpec, ToolSpec, RATE_DEFAULTS, STEPOVER_MM, TOOL_DIAMETER_MM};
 use crate::spec::{OutputKind, OutputSpec};
-use crate::task::{output_kinds, Finished, Output, Task, Visit};
+use crate::task::{output_kinds, Output, Task, Visit};
 use cost::{Rates, Tool};
 pub use report::CompareReport;
+
+/// The `Compare` task (thesis ch. 6): one design, the processes to make it with, each with
+/// its own task's settings, and the rates that price them. Every process that applies to
+/// the design runs its own task (its files go to a folder of the output); one that cannot
+/// apply is reported with the reason. Write
+/// `Compare(processes: [Milling(), HotWireRuled(sections: 24)], rates: Rates(eps_per_m3: 70))`.
+/// `P` is the job's list of processes ([`crate::job::Process`]), which names the tasks.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Compare<P> {
+    /// The processes, in the order the report lists them (at least one, at most 12).
+    pub processes: Vec<P>,
+    /// Prices, machine rates and speeds. Default: every rate's documented default.
+    #[serde(default)]
+    pub rates: RatesSpec,
+}
+
+/// The kind of a process.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// Milling the job's blocks as bought.
+    Milling,
+    /// Milling the blocks of a block segmentation.
+    MillingSegmented,
+    /// Hot-wire pre-cuts, then milling.
+    PreCutThenMilling,
+    /// Ruled rationalization cut by a hot wire.
+    HotWireRuled,
+    /// The hot blade on a grid of blocks.
+    HotBlade,
+    /// Facade segmentation for the hot blade.
+    FacadeSegmentation,
+}
+
+impl Kind {
+    /// The process's name as job files write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Milling | Self::MillingSegmented => "Milling",
+            Self::PreCutThenMilling => "PreCutThenMilling",
+            Self::HotWireRuled => "HotWireRuled",
+            Self::HotBlade => "HotBlade",
+            Self::FacadeSegmentation => "FacadeSegmentation",
+        }
+    }
+
+    /// Its name in the report (and its folder's).
+    pub fn id(self) -> &'static str {
+        match self {
+            Self::Milling => "milling",
+            Self::MillingSegmented => "milling_segmented",
+            Self::PreCutThenMilling => "precut_milling",
+            Self::HotWireRuled => "hot_wire",
+            Self::HotBlade => "hot_blade",
+            Self::FacadeSegmentation => "facade_segmentation",
+        }
+    }
+
+    /// Where its task's fields are, under the process.
+    fn inner(self) -> &'static str {
+        match self {
+            Self::MillingSegmented => "/stock/BlockSegmentation",
+            Self::PreCutThenMilling => "/pre_cut",
+            _ => "",
+        }
+    }
+
+    /// Whether it cuts with the hot blade (its robot program is planned).
+    pub fn blade(self) -> bool {
+        matches!(self, Self::HotBlade | Self::FacadeSegmentation)
+    }
+}
+
+/// A process as the job lists it: its kind, its milling tool, and the task it runs
+/// handed to a [`Visit`] as its own type (`None` for milling the job's blocks).
+pub trait ProcessSpec: Clone + std::fmt::Debug + Send + Sync + 'static {
+    /// Its kind.
+    fn kind(&self) -> Kind;
+    /// Its milling tool (processes that mill).
+    fn tool(&self) -> Option<&ToolSpec>;
+    /// Calls `v` with the task it runs.
+    fn visit<V: Visit>(&self, v: V) -> Option<V::Output>;
+}
 
 /// Where the task's fields are.
 const PTR: &str = "/task/Compare";
@@ -53,9 +137,11 @@ pub const MAX_PROCESSES: usize = 12;
 
 /// A process as planned: what it runs, where its files go, and whether it applies.
 #[derive(Debug, Clone)]
-pub struct Planned {
+pub struct Planned<P> {
     /// The process as the job writes it.
-    pub process: Process,
+    pub process: P,
+    /// Its kind.
+    pub kind: Kind,
     /// Its name in the report (`milling`, `milling_segmented`, `precut_milling`,
     /// `hot_wire`, `hot_blade`, `facade_segmentation`; `_2`, `_3` … when a kind is listed
     /// again).
@@ -70,9 +156,9 @@ pub struct Planned {
 
 /// The parameters of a run.
 #[derive(Debug, Clone)]
-pub struct CompareParams {
+pub struct CompareParams<P> {
     /// The processes, in the job's order.
-    pub processes: Vec<Planned>,
+    pub processes: Vec<Planned<P>>,
     /// The rates in job units.
     pub rates: Rates,
     /// The rates as the job writes them.
@@ -105,13 +191,16 @@ pub struct CompareRun {
     pub report: CompareReport,
 }
 
-impl Task for Compare {
+impl<P> Task for Compare<P>
+where
+    P: ProcessSpec + PartialEq + Serialize + DeserializeOwned + JsonSchema,
+{
     const NAME: &'static str = "Compare";
     const REPORT_SCHEMA: &'static str = "compare-report.schema.json";
-    const OUTPUTS: &'static [Output<Self>] = &[Output::new(OutputKind::Svg, page::svg)];
+    const OUTPUTS: &'static [Output<Self>] = &[Output::new(OutputKind::Svg, page::svg::<P>)];
     const REPORTS_NOTHING_TO_CUT: bool = true;
     const TABLES_FIRST: bool = true;
-    type Params = CompareParams;
+    type Params = CompareParams<P>;
     type Run = CompareRun;
     type Report = CompareReport;
 
@@ -127,20 +216,19 @@ impl Task for Compare {
         }
         check_rates(self, job, errors);
         for (i, p) in self.processes.iter().enumerate() {
-            let at = format!("{PTR}/processes/{i}/{}", p.name());
+            let kind = p.kind();
+            let at = format!("{PTR}/processes/{i}/{}", kind.name());
             if let Some(t) = p.tool() {
                 check_tool(t, &format!("{at}/tool"), job, errors);
             }
-            match p {
-                Process::Milling(m) if matches!(m.stock, MillingStock::Blocks) => {
-                    if job.block.is_none() {
-                        errors.push(job.error(
-                            "/block",
-                            format!("{at}: milling the job's blocks needs `block` (its size)"),
-                        ));
-                    }
+            match kind {
+                Kind::Milling if job.block.is_none() => {
+                    errors.push(job.error(
+                        "/block",
+                        format!("{at}: milling the job's blocks needs `block` (its size)"),
+                    ));
                 }
-                Process::PreCutThenMilling(_) | Process::HotWireRuled(_) if job.wire.is_none() => {
+                Kind::PreCutThenMilling | Kind::HotWireRuled if job.wire.is_none() => {
                     errors.push(job.error(
                         "/wire",
                         format!("{at}: a hot-wire process needs `wire` (its cut lengths come from the wire programs)"),
@@ -148,20 +236,15 @@ impl Task for Compare {
                 }
                 _ => {}
             }
-            let inner = match p {
-                Process::PreCutThenMilling(_) => format!("{at}/pre_cut"),
-                Process::Milling(_) => format!("{at}/stock/BlockSegmentation"),
-                _ => at.clone(),
-            };
             p.visit(SubCheck {
-                job: job.clone(),
+                job: *job,
                 errors: &mut *errors,
-                prefix: inner,
+                prefix: format!("{at}{}", kind.inner()),
             });
         }
     }
 
-    fn params(&self, job: &Context) -> Result<CompareParams> {
+    fn params(&self, job: &Context) -> Result<CompareParams<P>> {
         let surface = job.surface(Self::NAME)?;
         let design = design_kind(surface);
         let mut bases: Vec<&'static str> = Vec::new();
@@ -169,7 +252,8 @@ impl Task for Compare {
             .processes
             .iter()
             .map(|p| {
-                let base = id_of(p);
+                let kind = p.kind();
+                let base = kind.id();
                 let n = bases.iter().filter(|b| **b == base).count();
                 bases.push(base);
                 let id = if n == 0 {
@@ -179,9 +263,10 @@ impl Task for Compare {
                 };
                 Planned {
                     tool: p.tool().map(|t| resolve_tool(t, job.per_mm())),
-                    not_applicable: applies(p, surface).err(),
+                    not_applicable: applies(kind, surface).err(),
                     folder: p.visit(crate::task::Name).map(|_| id.clone()),
                     id,
+                    kind,
                     process: p.clone(),
                 }
             })
@@ -196,19 +281,17 @@ impl Task for Compare {
         })
     }
 
-    fn estimate(p: &CompareParams, job: &Context) -> Estimate {
+    fn estimate(p: &CompareParams<P>, job: &Context) -> Estimate {
         let mut total = Estimate::new(1e6, 1e6, "/task/Compare/processes", "list fewer processes");
         let mut biggest = 0.0;
         for (i, planned) in p.processes.iter().enumerate() {
             if planned.not_applicable.is_some() {
                 continue;
             }
-            let at = format!("{PTR}/processes/{i}/{}", planned.process.name());
-            let e = match &planned.process {
-                Process::Milling(m) if matches!(m.stock, MillingStock::Blocks) => {
-                    milling_estimate(job, &at)
-                }
-                other => match other.visit(SubEstimate { job }) {
+            let at = format!("{PTR}/processes/{i}/{}", planned.kind.name());
+            let e = match planned.kind {
+                Kind::Milling => milling_estimate(job, &at),
+                _ => match planned.process.visit(SubEstimate { job }) {
                     Some(Ok(e)) => e,
                     Some(Err(message)) => {
                         total.checks.push((at, message));
@@ -225,18 +308,25 @@ impl Task for Compare {
                 total.pointer = e.pointer;
                 total.change = e.change;
             }
-            let task_ptr = format!("/task/{}", sub_task_name(&planned.process));
+            let task_ptr = format!(
+                "/task/{}",
+                planned
+                    .process
+                    .visit(crate::task::Name)
+                    .unwrap_or("Milling")
+            );
+            let inner = format!("{at}{}", planned.kind.inner());
             total.checks.extend(e.checks.into_iter().map(|(ptr, m)| {
                 (
-                    remap(&ptr, &task_ptr, &at),
-                    format!("{}: {m}", planned.process.name()),
+                    remap(&ptr, &task_ptr, &inner),
+                    format!("{}: {m}", planned.kind.name()),
                 )
             }));
         }
         total
     }
 
-    fn run(p: &CompareParams, job: &Context, progress: &dyn Progress) -> Result<CompareRun> {
+    fn run(p: &CompareParams<P>, job: &Context, progress: &dyn Progress) -> Result<CompareRun> {
         progress.start("processes", p.processes.len() as u64);
         let outputs = job_outputs(job);
         let outcomes: Vec<Outcome> = p
@@ -288,7 +378,7 @@ impl Task for Compare {
             .collect()
     }
 
-    fn report(_: &CompareParams, run: &CompareRun, _: &Context) -> CompareReport {
+    fn report(_: &CompareParams<P>, run: &CompareRun, _: &Context) -> CompareReport {
         run.report.clone()
     }
 
@@ -324,45 +414,25 @@ pub fn design_kind(surface: &Surface) -> &'static str {
     }
 }
 
-/// Whether process `p` can apply to `surface`; else why not.
-fn applies(p: &Process, surface: &Surface) -> std::result::Result<(), String> {
+/// Whether a process of `kind` can apply to `surface`; else why not.
+fn applies(kind: Kind, surface: &Surface) -> std::result::Result<(), String> {
     let closed = design_kind(surface) == "ClosedMesh";
     let open_mesh = matches!(surface, Surface::Mesh(_)) && !closed;
-    match p {
-        Process::Milling(m) => match (&m.stock, closed) {
-            (MillingStock::BlockSegmentation(_), false) => Err(
-                "a block segmentation (thesis ch. 3) covers a closed mesh; the design is an open surface: mill the job's blocks (`stock: Blocks`)".into(),
-            ),
-            _ => Ok(()),
-        },
-        Process::PreCutThenMilling(_) if closed => Err(
+    match kind {
+        Kind::MillingSegmented if !closed => Err(
+            "a block segmentation (thesis ch. 3) covers a closed mesh; the design is an open surface: mill the job's blocks (`stock: Blocks`)".into(),
+        ),
+        Kind::PreCutThenMilling if closed => Err(
             "pre-cuts remove the material above a design surface (thesis ch. 2); a closed model has material to remove under it too".into(),
         ),
-        Process::HotWireRuled(_) if open_mesh => Err(
+        Kind::HotWireRuled if open_mesh => Err(
             "the ruled rationalization (thesis ch. 4) takes a closed mesh or a height field or B-spline surface (closed into a slab); the design is an open mesh".into(),
         ),
-        Process::HotBlade(_) | Process::FacadeSegmentation(_) if closed => Err(
+        Kind::HotBlade | Kind::FacadeSegmentation if closed => Err(
             "the hot blade sweeps one open facade surface through a block from one side (thesis ch. 5); a closed model needs cuts from every side".into(),
         ),
         _ => Ok(()),
     }
-}
-
-/// A process's name in the report (and its folder's).
-fn id_of(p: &Process) -> &'static str {
-    match p {
-        Process::Milling(m) if matches!(m.stock, MillingStock::Blocks) => "milling",
-        Process::Milling(_) => "milling_segmented",
-        Process::PreCutThenMilling(_) => "precut_milling",
-        Process::HotWireRuled(_) => "hot_wire",
-        Process::HotBlade(_) => "hot_blade",
-        Process::FacadeSegmentation(_) => "facade_segmentation",
-    }
-}
-
-/// The task a process runs, by name (for its pointers).
-fn sub_task_name(p: &Process) -> &'static str {
-    p.visit(crate::task::Name).unwrap_or("Milling")
 }
 
 /// `ptr` with the task's prefix `from` replaced by `to`.
@@ -374,7 +444,7 @@ fn remap(ptr: &str, from: &str, to: &str) -> String {
 }
 
 /// A milling tool in job units.
-fn resolve_tool(t: &crate::spec::compare::ToolSpec, per_mm: f64) -> Tool {
+fn resolve_tool(t: &ToolSpec, per_mm: f64) -> Tool {
     Tool {
         diameter: t.diameter.unwrap_or(TOOL_DIAMETER_MM * per_mm),
         stepover: t.stepover.unwrap_or(STEPOVER_MM * per_mm),
@@ -401,12 +471,16 @@ fn milling_estimate(job: &Context, at: &str) -> Estimate {
 }
 
 /// Runs one process (not applicable: nothing).
-fn run_process(planned: &Planned, job: &Context, outputs: &[OutputSpec]) -> Outcome {
+fn run_process<P: ProcessSpec>(
+    planned: &Planned<P>,
+    job: &Context,
+    outputs: &[OutputSpec],
+) -> Outcome {
     if planned.not_applicable.is_some() {
         return Outcome::default();
     }
-    if let Process::Milling(m) = &planned.process {
-        if matches!(m.stock, MillingStock::Blocks) {
+    {
+        if planned.kind == Kind::Milling {
             let measured = match (&job.surface, &job.block) {
                 (Some(s), Some(b)) => stock::figures(s, arr(b.size), b.origin.map(arr)),
                 _ => Err("milling the job's blocks needs a surface and `block`".into()),
@@ -425,10 +499,7 @@ fn run_process(planned: &Planned, job: &Context, outputs: &[OutputSpec]) -> Outc
     }
     let mut sub = job.clone();
     // the blade processes plan their robot programs: their cut paths are measured there
-    sub.rapid = matches!(
-        planned.process,
-        Process::HotBlade(_) | Process::FacadeSegmentation(_)
-    );
+    sub.rapid = planned.kind.blade();
     let ran = planned.process.visit(SubRun { job: &sub, outputs });
     let folder = planned.folder.clone().unwrap_or_default();
     match ran {
@@ -490,7 +561,7 @@ impl Visit for SubRun<'_> {
                 outs.push(o.clone());
             }
         }
-        crate::run::in_memory(task, self.job, &outs, &NoProgress)
+        crate::render::in_memory(task, self.job, &outs, &NoProgress)
     }
 }
 
@@ -540,7 +611,7 @@ impl Visit for SubEstimate<'_> {
 }
 
 /// Every rate finite and non-negative; speeds, feeds and removal rates positive.
-fn check_rates(c: &Compare, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+fn check_rates<P>(c: &Compare<P>, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
     for (v, d) in c.rates.values().iter().zip(RATE_DEFAULTS.iter()) {
         let Some(v) = v else { continue };
         let positive = d.length_power > 0;
@@ -560,12 +631,7 @@ fn check_rates(c: &Compare, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
 }
 
 /// A milling tool: positive diameter, stepover within it, positive feeds.
-fn check_tool(
-    t: &crate::spec::compare::ToolSpec,
-    at: &str,
-    job: &JobFields<'_>,
-    errors: &mut Vec<JobError>,
-) {
+fn check_tool(t: &ToolSpec, at: &str, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
     let fields = [
         ("diameter", t.diameter),
         ("stepover", t.stepover),
@@ -598,12 +664,9 @@ pub(crate) fn previews(run: &CompareRun) -> impl Iterator<Item = &(String, Vec<u
     run.outcomes.iter().filter_map(|o| o.preview.as_ref())
 }
 
-/// Writes the files `files` holds for the page.
-pub(crate) fn write_previews(
-    done: &Finished<'_, Compare>,
-    files: &mut Files,
-) -> export::Result<()> {
-    for (name, svg) in previews(done.run) {
+/// Writes every process's preview drawing into `files`.
+pub(crate) fn write_previews(run: &CompareRun, files: &mut Files) -> export::Result<()> {
+    for (name, svg) in previews(run) {
         files.add(name.clone(), |buf| {
             buf.extend_from_slice(svg);
             Ok(())

@@ -6,9 +6,8 @@ use export::svg::{Legend, Mark, SvgDoc};
 
 use super::cost::{self, Costed, Rates};
 use super::report::{CompareReport, Plausibility, ProcessRow, RateRow, Sensitivity, Status};
-use super::{CompareParams, Outcome, Planned};
+use super::{Compare, CompareParams, CompareRun, Kind, Outcome, Planned};
 use crate::context::Context;
-use crate::job::{MillingStock, Process};
 use crate::output::Files;
 use crate::process::Cutter;
 use crate::spec::compare::RATE_DEFAULTS;
@@ -16,15 +15,15 @@ use crate::spec::OutputSpec;
 use crate::task::Finished;
 
 /// A process's name in the ranking.
-fn label(p: &Planned) -> String {
+fn label<P>(p: &Planned<P>) -> String {
     p.id.clone()
 }
 
 /// One process's row: status, fidelity, material, hours and cost.
-fn row(p: &Planned, o: &Outcome, rates: &Rates, tolerance: f64) -> ProcessRow {
+fn row<P>(p: &Planned<P>, o: &Outcome, rates: &Rates, tolerance: f64) -> ProcessRow {
     let mut r = ProcessRow {
         id: p.id.clone(),
-        process: p.process.name().into(),
+        process: p.kind.name().into(),
         folder: p.folder.clone(),
         status: Status::NotApplicable,
         reason: p.not_applicable.clone(),
@@ -80,7 +79,7 @@ fn row(p: &Planned, o: &Outcome, rates: &Rates, tolerance: f64) -> ProcessRow {
 }
 
 /// The comparison of a run's outcomes: rows, ranking, sensitivity and the seed's claims.
-pub fn compare(p: &CompareParams, outcomes: &[Outcome], job: &Context) -> CompareReport {
+pub fn compare<P>(p: &CompareParams<P>, outcomes: &[Outcome], job: &Context) -> CompareReport {
     let mut rows: Vec<ProcessRow> = p
         .processes
         .iter()
@@ -150,7 +149,7 @@ pub fn compare(p: &CompareParams, outcomes: &[Outcome], job: &Context) -> Compar
 }
 
 /// The rates table of the report.
-fn rate_rows(p: &CompareParams, job: &Context) -> Vec<RateRow> {
+fn rate_rows<P>(p: &CompareParams<P>, job: &Context) -> Vec<RateRow> {
     let unit = job.units.name();
     RATE_DEFAULTS
         .iter()
@@ -172,23 +171,20 @@ fn rate_rows(p: &CompareParams, job: &Context) -> Vec<RateRow> {
 }
 
 /// The seed's claims measured on this comparison.
-fn plausibility(p: &CompareParams, rows: &[ProcessRow]) -> Plausibility {
+fn plausibility<P>(p: &CompareParams<P>, rows: &[ProcessRow]) -> Plausibility {
     let machine = |r: &ProcessRow| r.hours.map(|h| h.wire + h.blade + h.roughing + h.finishing);
-    let find = |pred: &dyn Fn(&Process) -> bool| {
+    let find = |pred: &dyn Fn(Kind) -> bool| {
         p.processes
             .iter()
             .zip(rows)
-            .find(|(pl, r)| pred(&pl.process) && r.hours.is_some())
+            .find(|(pl, r)| pred(pl.kind) && r.hours.is_some())
             .map(|(_, r)| r)
     };
-    let milling = find(&|q| matches!(q, Process::Milling(_)));
-    let blade = find(&|q| matches!(q, Process::HotBlade(_) | Process::FacadeSegmentation(_)));
-    let precut = find(&|q| matches!(q, Process::PreCutThenMilling(_)));
-    let grid =
-        find(&|q| matches!(q, Process::Milling(m) if matches!(m.stock, MillingStock::Blocks)));
-    let seg = find(
-        &|q| matches!(q, Process::Milling(m) if matches!(m.stock, MillingStock::BlockSegmentation(_))),
-    );
+    let milling = find(&|k| matches!(k, Kind::Milling | Kind::MillingSegmented));
+    let blade = find(&|k| k.blade());
+    let precut = find(&|k| k == Kind::PreCutThenMilling);
+    let grid = find(&|k| k == Kind::Milling);
+    let seg = find(&|k| k == Kind::MillingSegmented);
     let ratio = |a: Option<f64>, b: Option<f64>| match (a, b) {
         (Some(a), Some(b)) if b > 0.0 => Some(a / b),
         _ => None,
@@ -450,16 +446,19 @@ fn rates_table(r: &CompareReport) -> Table {
 
 /// `comparison.svg` (cost against deviation, "price and style"), then each process's
 /// preview.
-pub fn svg(
-    done: &Finished<'_, crate::job::Compare>,
+pub fn svg<P>(
+    done: &Finished<'_, Compare<P>>,
     _: &OutputSpec,
     files: &mut Files,
-) -> export::Result<()> {
+) -> export::Result<()>
+where
+    Compare<P>: crate::task::Task<Run = CompareRun, Report = CompareReport>,
+{
     let r = done.report;
     files.add("comparison.svg", |buf| {
         chart(r, done.job.units.name()).write(buf)
     })?;
-    super::write_previews(done, files)
+    super::write_previews(done.run, files)
 }
 
 /// Cost (up) against largest deviation (right), one dot per process that has both.
@@ -493,7 +492,9 @@ fn chart(r: &CompareReport, u: &str) -> SvgDoc {
     );
     // every process its colour, named in the legend (no text inside the frame, where
     // the tolerance line and the dots are)
-    const PALETTE: [&str; 6] = ["#1a7f37", "#1f5fbf", "#b35900", "#7b3fa0", "#0f8a8a", "#a0303a"];
+    const PALETTE: [&str; 6] = [
+        "#1a7f37", "#1f5fbf", "#b35900", "#7b3fa0", "#0f8a8a", "#a0303a",
+    ];
     let mut labels = Vec::new();
     for (k, (p, x, y)) in pts.iter().enumerate() {
         let colour = PALETTE[k % PALETTE.len()];
@@ -502,7 +503,12 @@ fn chart(r: &CompareReport, u: &str) -> SvgDoc {
             Status::Feasible => "feasible",
             _ => "infeasible",
         };
-        doc.circle(map(*x, *y), 5.0, colour, Some(&format!("{} ({state})", p.id)));
+        doc.circle(
+            map(*x, *y),
+            5.0,
+            colour,
+            Some(&format!("{} ({state})", p.id)),
+        );
         if !matches!(p.status, Status::Feasible) {
             // a ring marks what cannot make the design
             doc.circle(map(*x, *y), 2.0, "#ffffff", None);
