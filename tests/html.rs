@@ -161,8 +161,28 @@ fn page_problems(dir: &Path, report: &serde_json::Value) -> Vec<String> {
         }
     }
     for e in std::fs::read_dir(dir).unwrap() {
-        let name = e.unwrap().file_name().to_string_lossy().into_owned();
-        if name != "report.html" && !linked.contains(&name) {
+        let e = e.unwrap();
+        let name = e.file_name().to_string_lossy().into_owned();
+        if e.path().is_dir() {
+            // a folder of a Compare's process: its files are linked, and its own page
+            // stands alone too
+            let inside = format!("{name}/");
+            if !linked.iter().any(|l| l.starts_with(&inside)) {
+                out.push(format!("folder {name}: no file of it is linked"));
+            }
+            let sub = e.path();
+            if sub.join("report.html").is_file() {
+                let report = serde_json::from_str(
+                    &std::fs::read_to_string(sub.join("report.json")).unwrap(),
+                )
+                .unwrap();
+                out.extend(
+                    page_problems(&sub, &report)
+                        .into_iter()
+                        .map(|p| format!("{inside}report.html: {p}")),
+                );
+            }
+        } else if name != "report.html" && !linked.contains(&name) {
             out.push(format!("file {name} is not linked"));
         }
     }

@@ -202,13 +202,13 @@ pub fn render(page: &Page) -> String {
         h.push_str("</ul>\n</section>\n");
     }
     if !page.tables_first {
-        drawings(&mut h, &page.drawings);
+        drawings(&mut h, &page.drawings, &page.files);
     }
     for (i, t) in body.tables.iter().enumerate() {
         table(&mut h, i, t);
     }
     if page.tables_first {
-        drawings(&mut h, &page.drawings);
+        drawings(&mut h, &page.drawings, &page.files);
     }
     files(&mut h, &page.files);
     h.push_str(
@@ -270,7 +270,9 @@ fn constraints(h: &mut String, list: &[Constraint]) {
 /// At most this many drawings are inlined; the rest are linked under "Files".
 pub const MAX_DRAWINGS: usize = 48;
 
-fn drawings(h: &mut String, list: &[Drawing]) {
+/// The drawings, each captioned with its name, a link when the run wrote its file
+/// (`files`; a page can show a drawing its run did not write as a file).
+fn drawings(h: &mut String, list: &[Drawing], files: &[(String, u64)]) {
     if list.is_empty() {
         return;
     }
@@ -281,12 +283,15 @@ fn drawings(h: &mut String, list: &[Drawing]) {
         h.push_str("<div class=\"grid\">\n");
     }
     for d in list.iter().take(MAX_DRAWINGS) {
+        let caption = if files.iter().any(|(f, _)| f == &d.name) {
+            format!("<a href=\"{}\">{}</a>", href(&d.name), escape(&d.name))
+        } else {
+            escape(&d.name)
+        };
         h.push_str(&format!(
-            "<figure>\n<img alt=\"{}\" src=\"data:image/svg+xml;base64,{}\">\n<figcaption><a href=\"{}\">{}</a></figcaption>\n</figure>\n",
+            "<figure>\n<img alt=\"{}\" src=\"data:image/svg+xml;base64,{}\">\n<figcaption>{caption}</figcaption>\n</figure>\n",
             escape(&d.name),
             base64::engine::general_purpose::STANDARD.encode(&d.svg),
-            href(&d.name),
-            escape(&d.name)
         ));
     }
     if grid {
@@ -387,7 +392,7 @@ mod tests {
                 svg: evil.as_bytes().to_vec(),
             }],
             tables_first: false,
-            files: vec![("x\"y.csv".into(), 12_345)],
+            files: vec![("x\"y.csv".into(), 12_345), ("a b<.svg".into(), 10)],
             run_time: evil.into(),
             job: evil.into(),
             job_as_written: Some(evil.into()),
@@ -416,7 +421,7 @@ mod tests {
             svg: b"<svg/>".to_vec(),
         };
         let mut h = String::new();
-        drawings(&mut h, &vec![d; MAX_DRAWINGS + 3]);
+        drawings(&mut h, &vec![d; MAX_DRAWINGS + 3], &[]);
         assert_eq!(h.matches("<img").count(), MAX_DRAWINGS);
         assert!(h.contains("3 more drawing(s)"));
     }
