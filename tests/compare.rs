@@ -236,8 +236,16 @@ fn costs_and_ranking_follow_from_the_figures_and_rates() {
             let f = &p["figures"];
             let g = |k: &str| f[k].as_f64().unwrap();
             let blade = f["cutter"] == "Blade";
-            let cut_h =
-                g("cut_length") / rate(if blade { "blade_speed" } else { "wire_speed" }) / 3600.0;
+            let field = if blade { "blade_speed" } else { "wire_speed" };
+            let rates = r["rates"].as_array().unwrap();
+            let row = rates.iter().find(|x| x["field"] == field).unwrap();
+            // a speed the job leaves out is the programs' own
+            let speed = if row["set_by_job"] == false && g("cut_speed") > 0.0 {
+                g("cut_speed")
+            } else {
+                rate(field)
+            };
+            let cut_h = g("cut_length") / speed / 3600.0;
             let (mut mill_h, mut machines) = (0.0, usize::from(g("cut_length") > 0.0));
             if let Some(t) = p["tool"].as_object() {
                 let feed = t["feed"].as_f64().unwrap_or(rate("finishing_feed"));

@@ -193,15 +193,11 @@ pub fn render(page: &Page) -> String {
     ));
     let body = &page.body;
     verdict(&mut h, body);
-    constraints(&mut h, &body.constraints);
-    if !body.notes.is_empty() {
-        h.push_str("<section id=\"notes\">\n<h2>Notes</h2>\n<ul class=\"notes\">\n");
-        for n in &body.notes {
-            h.push_str(&format!("<li>{}</li>\n", escape(n)));
-        }
-        h.push_str("</ul>\n</section>\n");
-    }
+    // a page that opens on its table: the tables and drawings first, then the constraints
+    // and notes
     if !page.tables_first {
+        constraints(&mut h, &body.constraints);
+        notes(&mut h, &body.notes);
         drawings(&mut h, &page.drawings, &page.files);
     }
     for (i, t) in body.tables.iter().enumerate() {
@@ -209,6 +205,8 @@ pub fn render(page: &Page) -> String {
     }
     if page.tables_first {
         drawings(&mut h, &page.drawings, &page.files);
+        constraints(&mut h, &body.constraints);
+        notes(&mut h, &body.notes);
     }
     files(&mut h, &page.files);
     h.push_str(
@@ -223,6 +221,18 @@ pub fn render(page: &Page) -> String {
     }
     h.push_str("</section>\n</body>\n</html>\n");
     h
+}
+
+/// The run's notes, when it has any.
+fn notes(h: &mut String, notes: &[String]) {
+    if notes.is_empty() {
+        return;
+    }
+    h.push_str("<section id=\"notes\">\n<h2>Notes</h2>\n<ul class=\"notes\">\n");
+    for n in notes {
+        h.push_str(&format!("<li>{}</li>\n", escape(n)));
+    }
+    h.push_str("</ul>\n</section>\n");
 }
 
 fn verdict(h: &mut String, body: &Body) {

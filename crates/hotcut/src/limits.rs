@@ -55,7 +55,7 @@ pub struct Estimate {
     /// Bytes of the files written, all outputs asked for (roughly; 0: not estimated).
     pub output: f64,
     /// JSON pointer of the field that drives the estimate most.
-    pub pointer: &'static str,
+    pub pointer: std::borrow::Cow<'static, str>,
     /// What to change to make the run smaller.
     pub change: &'static str,
     /// Problems found on the resolved job that a run would fail on (JSON pointer,
@@ -71,7 +71,7 @@ impl Estimate {
             memory,
             work,
             output: 0.0,
-            pointer,
+            pointer: pointer.into(),
             change,
             checks: Vec::new(),
         }
@@ -114,7 +114,7 @@ impl Estimate {
         if !(gb <= limits.memory_gb) {
             out.push(JobError::semantic(
                 path,
-                self.pointer,
+                &self.pointer,
                 format!(
                     "{task} would need about {} GB of memory, more than the limit of {} GB: {}, or raise the limit with --max-memory",
                     round3(gb),
@@ -126,7 +126,7 @@ impl Estimate {
         if !(self.work <= limits.work) {
             out.push(JobError::semantic(
                 path,
-                self.pointer,
+                &self.pointer,
                 format!(
                     "{task} would take about {} steps of work (at ~10⁸ steps per second), more than the limit of {:e}: {}, or raise the limit with --max-work",
                     round3(self.work),
@@ -139,7 +139,7 @@ impl Estimate {
         if !(mb <= limits.output_mb) {
             out.push(JobError::semantic(
                 path,
-                self.pointer,
+                &self.pointer,
                 format!(
                     "{task} would write about {} MB of files, more than the limit of {} MB: {}, or raise the limit with --max-output",
                     round3(mb),

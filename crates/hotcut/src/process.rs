@@ -57,6 +57,9 @@ pub struct ProcessFigures {
     pub cutter: Cutter,
     /// The heated path of every program, summed, job units (0 without thermal cuts).
     pub cut_length: f64,
+    /// The speed its programs cut at (their heated path over their cutting time), job
+    /// units per second (0 without thermal cuts).
+    pub cut_speed: f64,
     /// Machine programs (wire cuts, robot programs).
     pub programs: usize,
     /// Deviation of the thermally cut surface from the design (`None` when milling

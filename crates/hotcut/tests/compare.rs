@@ -30,7 +30,7 @@ const PRECUT: &str = "PreCutThenMilling(pre_cut: PreCut(legs: 3, directions: [X]
 fn a_negative_price_is_refused_naming_the_rate() {
     expect_invalid(
         &job(MILL, "eps_per_m3: -5", ""),
-        &["/task/Compare/rates/eps_per_m3", "of 0 or more"],
+        &["/task/Compare/rates/eps_per_m3", "from 0"],
     );
 }
 
@@ -192,4 +192,88 @@ fn a_mould_runs_and_each_process_writes_its_own_files() {
     let drawing = html.find("comparison.svg").unwrap();
     assert!(table < drawing);
     assert!(html.contains("★ cheapest"));
+}
+
+#[test]
+fn a_rate_or_tool_far_out_of_range_is_refused_naming_its_field() {
+    for (rates, field) in [
+        ("removal_rate: 1e-300", "removal_rate"),
+        ("eps_per_m3: 1e300", "eps_per_m3"),
+        ("wire_speed: 1e-320", "wire_speed"),
+    ] {
+        expect_invalid(
+            &job(MILL, rates, ""),
+            &[&format!("/task/Compare/rates/{field}")],
+        );
+    }
+    expect_invalid(
+        &job(
+            "Milling(tool: Tool(diameter: 1e300, stepover: 1e299))",
+            "",
+            "",
+        ),
+        &["/task/Compare/processes/0/Milling/tool/diameter"],
+    );
+}
+
+/// The rows of a run of `processes` on the small mould (`edit` applied to the job text).
+fn rows(processes: &str, edit: impl Fn(String) -> String) -> Vec<serde_json::Value> {
+    let (code, r, _dir, err) = run(&edit(job(processes, "", "")));
+    assert_eq!(code, Some(0), "{err}");
+    r["processes"].as_array().unwrap().clone()
+}
+
+#[test]
+fn a_pre_cut_that_makes_one_block_of_a_wider_design_is_infeasible() {
+    // the design runs 200 mm past the block in x: milling tiles it, the pre-cut cannot
+    let p = rows(&format!("{MILL}, {PRECUT}"), |t| {
+        t.replace("x: (-200, 200)", "x: (-200, 400)")
+    });
+    assert_eq!(p[0]["status"], "Feasible", "{}", p[0]);
+    assert_eq!(p[0]["figures"]["blocks"], 2);
+    assert_eq!(p[1]["status"], "Infeasible", "{}", p[1]);
+    assert!(p[1]["reason"].as_str().unwrap().contains("one block"));
+}
+
+#[test]
+fn milling_a_placed_block_the_design_is_not_in_is_infeasible() {
+    let text = job(MILL, "", "").replace("origin: (-200, -200, 0)", "origin: (-200, -200, 150)");
+    let (code, r, _dir, err) = run(&text);
+    // the only process cannot make it: the run fails with its report
+    assert_eq!(code, Some(1), "{err}");
+    let p = &r["processes"][0];
+    assert_eq!(p["status"], "Infeasible", "{p}");
+    assert!(p["reason"]
+        .as_str()
+        .unwrap()
+        .contains("below the blocks' origin"));
+}
+
+#[test]
+fn block_segmentation_on_a_height_field_is_not_applicable_and_the_ruled_wire_runs_on_a_placed_block(
+) {
+    let p = rows(
+        &format!("{MILL}, Milling(stock: BlockSegmentation(restarts: 1)), HotWireRuled(sections: 10, max_strips: 16, grid: 16, max_iterations: 3)"),
+        |t| t,
+    );
+    assert_eq!(p[1]["status"], "NotApplicable", "{}", p[1]);
+    assert!(p[1]["folder"].is_null(), "nothing written, no folder");
+    // RuledBlocks places its blocks itself: the job's origin is left out for it
+    assert_ne!(p[2]["status"], "NotApplicable", "{}", p[2]);
+    assert!(p[2]["figures"]["blocks"].as_u64().unwrap() >= 1);
+}
+
+#[test]
+fn a_wire_process_is_timed_at_its_own_programs_speed() {
+    let hours = |speed: &str| {
+        let p = rows(PRECUT, |t| {
+            t.replace("kerf: 1.0,", &format!("kerf: 1.0, speed: {speed},"))
+        });
+        p[0]["hours"]["wire"].as_f64().unwrap()
+    };
+    let (fast, slow) = (hours("300"), hours("150"));
+    assert!(
+        (slow / fast - 2.0).abs() < 1e-6,
+        "{fast} h at 300 mm/min, {slow} h at 150"
+    );
 }

@@ -284,6 +284,7 @@ impl Task for BlockSegmentation {
             milled_area: run.mesh.area(),
             cutter: crate::process::Cutter::None,
             cut_length: 0.0,
+            cut_speed: 0.0,
             programs: 0,
             deviation: None,
         })

@@ -43,6 +43,11 @@ pub mod rate {
 pub struct Rates {
     /// Values in the order of [`RATE_DEFAULTS`].
     pub values: [f64; 10],
+    /// The defaults, converted (what `values` holds for a rate the job leaves out, until
+    /// the sensitivity scales it).
+    pub nominal: [f64; 10],
+    /// Whether the job set each rate.
+    pub written: [bool; 10],
     /// Cubic metres per cubic job unit.
     pub m3_per_unit3: f64,
 }
@@ -52,13 +57,28 @@ impl Rates {
     /// left out.
     pub fn resolve(written: [Option<f64>; 10], per_mm: f64) -> Self {
         let mut values = [0.0; 10];
+        let mut nominal = [0.0; 10];
         for (k, d) in RATE_DEFAULTS.iter().enumerate() {
-            values[k] = written[k].unwrap_or(d.value * per_mm.powi(d.length_power));
+            nominal[k] = d.value * per_mm.powi(d.length_power);
+            values[k] = written[k].unwrap_or(nominal[k]);
         }
         let m = 1e-3 / per_mm;
         Self {
             values,
+            nominal,
+            written: written.map(|w| w.is_some()),
             m3_per_unit3: m * m * m,
+        }
+    }
+
+    /// The cutting speed of a process whose programs cut at `own` (0: none given): the
+    /// job's rate when it sets one, else the programs' own speed (scaled as the
+    /// sensitivity scales the rate), else the rate's default.
+    pub fn speed(&self, k: usize, own: f64) -> f64 {
+        if !self.written[k] && own > 0.0 {
+            own * self.values[k] / self.nominal[k]
+        } else {
+            self.values[k]
         }
     }
 
@@ -142,8 +162,8 @@ pub fn hours(f: &ProcessFigures, tool: Option<&Tool>, r: &Rates) -> Hours {
     let mut h = Hours::default();
     if f.cut_length > 0.0 {
         let speed = match f.cutter {
-            crate::process::Cutter::Blade => v[rate::BLADE_SPEED],
-            _ => v[rate::WIRE_SPEED],
+            crate::process::Cutter::Blade => r.speed(rate::BLADE_SPEED, f.cut_speed),
+            _ => r.speed(rate::WIRE_SPEED, f.cut_speed),
         };
         let t = f.cut_length / speed / 3600.0;
         match f.cutter {
@@ -266,6 +286,7 @@ mod tests {
             milled_area: area,
             cutter,
             cut_length: cut,
+            cut_speed: 0.0,
             programs: 1,
             deviation: None,
         }

@@ -42,7 +42,7 @@ use crate::process::ProcessFigures;
 use crate::progress::{NoProgress, Progress};
 use crate::render::MemoryRun;
 use crate::spec::compare::{RatesSpec, ToolSpec, RATE_DEFAULTS, STEPOVER_MM, TOOL_DIAMETER_MM};
-use crate::spec::{OutputKind, OutputSpec};
+use crate::spec::{BlockSpec, OutputKind, OutputSpec, SurfaceSpec};
 use crate::task::{output_kinds, Output, Task, Visit};
 use cost::{Rates, Tool};
 pub use report::CompareReport;
@@ -215,11 +215,20 @@ where
             ));
         }
         check_rates(self, job, errors);
+        // the ruled task places its blocks itself: it runs with the block's size only
+        let unplaced = job.block.map(|b| BlockSpec {
+            origin: None,
+            ..b.clone()
+        });
         for (i, p) in self.processes.iter().enumerate() {
             let kind = p.kind();
             let at = format!("{PTR}/processes/{i}/{}", kind.name());
             if let Some(t) = p.tool() {
                 check_tool(t, &format!("{at}/tool"), job, errors);
+            }
+            if not_applicable_by_spec(kind, job.surface) {
+                // reported NotApplicable, with its reason, once the surface is loaded
+                continue;
             }
             match kind {
                 Kind::Milling if job.block.is_none() => {
@@ -236,8 +245,15 @@ where
                 }
                 _ => {}
             }
+            let fields = match kind {
+                Kind::HotWireRuled => JobFields {
+                    block: unplaced.as_ref(),
+                    ..*job
+                },
+                _ => *job,
+            };
             p.visit(SubCheck {
-                job: *job,
+                job: fields,
                 errors: &mut *errors,
                 prefix: format!("{at}{}", kind.inner()),
             });
@@ -291,7 +307,10 @@ where
             let at = format!("{PTR}/processes/{i}/{}", planned.kind.name());
             let e = match planned.kind {
                 Kind::Milling => milling_estimate(job, &at),
-                _ => match planned.process.visit(SubEstimate { job }) {
+                // as it runs: the blade processes plan their robot program
+                _ => match planned.process.visit(SubEstimate {
+                    job: &for_process(planned.kind, job),
+                }) {
                     Some(Ok(e)) => e,
                     Some(Err(message)) => {
                         total.checks.push((at, message));
@@ -300,14 +319,7 @@ where
                     None => continue,
                 },
             };
-            total.memory += e.memory;
-            total.work += e.work;
-            total.output += e.output;
-            if e.work > biggest {
-                biggest = e.work;
-                total.pointer = e.pointer;
-                total.change = e.change;
-            }
+            // the task's pointers, moved to where the job has its fields: under the process
             let task_ptr = format!(
                 "/task/{}",
                 planned
@@ -316,6 +328,14 @@ where
                     .unwrap_or("Milling")
             );
             let inner = format!("{at}{}", planned.kind.inner());
+            total.memory += e.memory;
+            total.work += e.work;
+            total.output += e.output;
+            if e.work > biggest {
+                biggest = e.work;
+                total.pointer = remap(&e.pointer, &task_ptr, &inner).into();
+                total.change = e.change;
+            }
             total.checks.extend(e.checks.into_iter().map(|(ptr, m)| {
                 (
                     remap(&ptr, &task_ptr, &inner),
@@ -414,6 +434,36 @@ pub fn design_kind(surface: &Surface) -> &'static str {
     }
 }
 
+/// The job as a process of `kind` runs it: the blade processes plan their robot program
+/// (their cut path is measured there), the ruled task places its blocks itself (the
+/// block's `origin` left out).
+fn for_process(kind: Kind, job: &Context) -> Context {
+    let mut sub = job.clone();
+    sub.rapid = kind.blade();
+    if kind == Kind::HotWireRuled {
+        if let Some(b) = sub.block.as_mut() {
+            b.origin = None;
+        }
+    }
+    sub
+}
+
+/// Whether the job's surface, as written, already tells that a process of `kind` does
+/// not apply (a height field or B-spline is never a closed mesh; a mesh the job requires
+/// closed is one): its checks are left out then, and the run reports it.
+fn not_applicable_by_spec(kind: Kind, surface: Option<&SurfaceSpec>) -> bool {
+    match surface {
+        Some(SurfaceSpec::HeightField { .. } | SurfaceSpec::Spline { .. }) => {
+            kind == Kind::MillingSegmented
+        }
+        Some(SurfaceSpec::Mesh { closed: true, .. }) => matches!(
+            kind,
+            Kind::PreCutThenMilling | Kind::HotBlade | Kind::FacadeSegmentation
+        ),
+        _ => false,
+    }
+}
+
 /// Whether a process of `kind` can apply to `surface`; else why not.
 fn applies(kind: Kind, surface: &Surface) -> std::result::Result<(), String> {
     let closed = design_kind(surface) == "ClosedMesh";
@@ -497,9 +547,7 @@ fn run_process<P: ProcessSpec>(
             };
         }
     }
-    let mut sub = job.clone();
-    // the blade processes plan their robot programs: their cut paths are measured there
-    sub.rapid = planned.kind.blade();
+    let sub = for_process(planned.kind, job);
     let ran = planned.process.visit(SubRun { job: &sub, outputs });
     let folder = planned.folder.clone().unwrap_or_default();
     match ran {
@@ -610,48 +658,64 @@ impl Visit for SubEstimate<'_> {
     }
 }
 
-/// Every rate finite and non-negative; speeds, feeds and removal rates positive.
+/// How far from its default a rate or tool size may be, either way: 10⁶ (a rate further
+/// off is a typo or a unit mistake, and its products overflow).
+pub const RANGE: f64 = 1e6;
+
+/// `v` for field `name` (at `at`): finite, positive (or, with `zero_ok`, 0 or more),
+/// and within [`RANGE`] of `nominal` either way; else the error, naming the field.
+fn bounded(v: f64, nominal: f64, zero_ok: bool, unit: &str) -> std::result::Result<(), String> {
+    let (lo, hi) = (nominal / RANGE, nominal * RANGE);
+    let ok = v.is_finite() && v <= hi && if zero_ok { v >= 0.0 } else { v >= lo };
+    if ok {
+        return Ok(());
+    }
+    Err(if zero_ok {
+        format!("must be a finite number from 0 to {hi:e} ({unit}); it is {v}")
+    } else {
+        format!("must be a finite number from {lo:e} to {hi:e} ({unit}), above 0; it is {v}")
+    })
+}
+
+/// Every rate finite, within [`RANGE`] of its default; prices and set-up 0 or more,
+/// speeds, feeds and removal rates above 0.
 fn check_rates<P>(c: &Compare<P>, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+    let per_mm = job.units.per_mm();
     for (v, d) in c.rates.values().iter().zip(RATE_DEFAULTS.iter()) {
         let Some(v) = v else { continue };
-        let positive = d.length_power > 0;
-        let ok = v.is_finite() && if positive { *v > 0.0 } else { *v >= 0.0 };
-        if !ok {
+        let nominal = d.value * per_mm.powi(d.length_power);
+        if let Err(m) = bounded(*v, nominal, d.length_power == 0, d.unit) {
             errors.push(job.error(
                 &format!("{PTR}/rates/{}", d.field),
-                format!(
-                    "{} must be a finite number {} ({}); it is {v}",
-                    d.field,
-                    if positive { "above 0" } else { "of 0 or more" },
-                    d.unit
-                ),
+                format!("{} {m}", d.field),
             ));
         }
     }
 }
 
-/// A milling tool: positive diameter, stepover within it, positive feeds.
+/// A milling tool: diameter, stepover and feeds finite, positive and within [`RANGE`] of
+/// their defaults; the stepover within the diameter.
 fn check_tool(t: &ToolSpec, at: &str, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+    let per_mm = job.units.per_mm();
+    let rate = |k: usize| RATE_DEFAULTS[k].value * per_mm.powi(RATE_DEFAULTS[k].length_power);
     let fields = [
-        ("diameter", t.diameter),
-        ("stepover", t.stepover),
-        ("feed", t.feed),
-        ("removal_rate", t.removal_rate),
+        ("diameter", t.diameter, TOOL_DIAMETER_MM * per_mm),
+        ("stepover", t.stepover, STEPOVER_MM * per_mm),
+        ("feed", t.feed, rate(cost::rate::FEED)),
+        ("removal_rate", t.removal_rate, rate(cost::rate::REMOVAL)),
     ];
-    for (name, v) in fields {
+    let mut bad = false;
+    for (name, v, nominal) in fields {
         if let Some(v) = v {
-            if !(v.is_finite() && v > 0.0) {
-                errors.push(job.error(
-                    &format!("{at}/{name}"),
-                    format!("{name} must be a finite number above 0; it is {v}"),
-                ));
+            if let Err(m) = bounded(v, nominal, false, job.units.name()) {
+                bad = true;
+                errors.push(job.error(&format!("{at}/{name}"), format!("{name} {m}")));
             }
         }
     }
-    let per_mm = job.units.per_mm();
     let d = t.diameter.unwrap_or(TOOL_DIAMETER_MM * per_mm);
     let s = t.stepover.unwrap_or(STEPOVER_MM * per_mm);
-    if s > d {
+    if !bad && s > d {
         errors.push(job.error(
             &format!("{at}/stepover"),
             format!("the stepover ({s}) must not exceed the tool's diameter ({d})"),

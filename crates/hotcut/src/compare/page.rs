@@ -24,7 +24,8 @@ fn row<P>(p: &Planned<P>, o: &Outcome, rates: &Rates, tolerance: f64) -> Process
     let mut r = ProcessRow {
         id: p.id.clone(),
         process: p.kind.name().into(),
-        folder: p.folder.clone(),
+        // a process that wrote nothing has no folder
+        folder: p.folder.clone().filter(|_| !o.files.is_empty()),
         status: Status::NotApplicable,
         reason: p.not_applicable.clone(),
         figures: o.figures.clone(),
@@ -73,7 +74,13 @@ fn row<P>(p: &Planned<P>, o: &Outcome, rates: &Rates, tolerance: f64) -> Process
         return r;
     }
     let h = cost::hours(f, p.tool.as_ref(), rates);
-    r.cost = Some(cost::cost(f, &h, rates));
+    let c = cost::cost(f, &h, rates);
+    if !(c.total.is_finite() && h.total.is_finite()) {
+        r.status = Status::Infeasible;
+        r.reason = Some("its time or cost is not a finite number: a rate far out of range".into());
+        return r;
+    }
+    r.cost = Some(c);
     r.hours = Some(h);
     r
 }
@@ -109,6 +116,10 @@ pub fn compare<P>(p: &CompareParams<P>, outcomes: &[Outcome], job: &Context) -> 
         .collect();
     let margin_percent = (totals.len() >= 2 && totals[0] > 0.0)
         .then(|| 100.0 * (totals[1] - totals[0]).max(0.0) / totals[0]);
+    if order.is_empty() {
+        // nothing feasible: the run writes its report and page only
+        rows.iter_mut().for_each(|r| r.folder = None);
+    }
     let sensitivity = RATE_DEFAULTS
         .iter()
         .enumerate()
@@ -276,18 +287,20 @@ pub fn body(r: &CompareReport, job: &Context) -> Body {
             .collect::<Vec<_>>()
             .join(", ")
     )];
-    notes.push(if flips.is_empty() {
-        "No rate halved or raised by half changes the cheapest process.".into()
+    if r.winner.is_none() {
+        // nothing to rank
+    } else if flips.is_empty() {
+        notes.push("No rate halved or raised by half changes the cheapest process.".into());
     } else {
-        format!(
+        notes.push(format!(
             "The cheapest process changes when {} is halved or raised by half.",
             flips
                 .iter()
                 .map(|s| s.rate.as_str())
                 .collect::<Vec<_>>()
                 .join(", ")
-        )
-    });
+        ));
+    }
     Body {
         verdict,
         counts: vec![

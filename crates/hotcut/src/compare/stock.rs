@@ -73,8 +73,21 @@ pub fn figures(
             (part, area)
         }
     };
+    let b = surface.aabb();
+    let lo = [b.min.x, b.min.y, b.min.z];
+    let outside = (0..3).find(|&k| lo[k] < start[k] - 1e-9 * size[k]);
+    let why_not = match outside {
+        Some(k) => Some(format!(
+            "the design reaches {} = {} below the blocks' origin ({}): the stock does not hold it",
+            ["x", "y", "z"][k],
+            lo[k],
+            start[k]
+        )),
+        None if !(part > 0.0) => Some("the design has no solid inside the blocks".into()),
+        None => None,
+    };
     Ok(ProcessFigures {
-        why_not: None,
+        why_not,
         blocks,
         stock_volume: stock,
         part_volume: part,
@@ -82,6 +95,7 @@ pub fn figures(
         milled_area: area,
         cutter: Cutter::None,
         cut_length: 0.0,
+        cut_speed: 0.0,
         programs: 0,
         deviation: None,
     })

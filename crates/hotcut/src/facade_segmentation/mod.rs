@@ -531,6 +531,10 @@ impl Task for FacadeSegmentation {
             cut_length: run.cell.as_ref().map_or(0.0, |cell| {
                 crate::robot_cell::heated_path_mm(cell) * job.per_mm()
             }),
+            cut_speed: run
+                .cell
+                .as_ref()
+                .map_or(0.0, |c| c.cut_speed * job.per_mm()),
             programs: usize::from(run.cell.is_some()),
             deviation: (n > 0).then(|| crate::process::Deviation {
                 rms: (sq / n as f64).sqrt(),

@@ -431,6 +431,10 @@ impl Task for HotBlade {
                 .cell
                 .as_ref()
                 .map_or(0.0, |c| crate::robot_cell::heated_path_mm(c) * job.per_mm()),
+            cut_speed: run
+                .cell
+                .as_ref()
+                .map_or(0.0, |c| c.cut_speed * job.per_mm()),
             programs: usize::from(run.cell.is_some()),
             deviation: Some(crate::process::Deviation {
                 rms,

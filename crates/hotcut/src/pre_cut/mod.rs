@@ -442,7 +442,19 @@ impl Task for PreCut {
             .iter()
             .map(|p| p.summary.cut_length_mm)
             .sum();
+        let minutes: f64 = report.programs.iter().map(|p| p.summary.cut_minutes).sum();
+        // the pre-cut makes one block: a design wider than it is not made
+        let d = run.surface.aabb();
+        let slack = 1e-9 * (b.max[0] - b.min[0]).max(b.max[1] - b.min[1]);
+        let outside = d.min.x < b.min[0] - slack
+            || d.min.y < b.min[1] - slack
+            || d.max.x > b.max[0] + slack
+            || d.max.y > b.max[1] + slack;
         let why_not = match (&area, report.programs.is_empty()) {
+            _ if outside => Some(format!(
+                "the pre-cut makes one block, x {}–{}, y {}–{}, and the design spans x {}–{}, y {}–{}: give a block that holds it",
+                b.min[0], b.max[0], b.min[1], b.max[1], d.min.x, d.max.x, d.min.y, d.max.y
+            )),
             (Err(e), _) => Some(format!("the design's area could not be measured: {e}")),
             (_, true) => Some("no wire program (the job gives no `wire`, or no cut)".into()),
             _ => None,
@@ -456,6 +468,11 @@ impl Task for PreCut {
             milled_area: area.unwrap_or(0.0),
             cutter: crate::process::Cutter::Wire,
             cut_length: cut * job.per_mm(),
+            cut_speed: if minutes > 0.0 {
+                cut * job.per_mm() / (60.0 * minutes)
+            } else {
+                0.0
+            },
             programs: report.programs.len(),
             deviation: None,
         })

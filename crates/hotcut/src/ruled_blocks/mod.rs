@@ -432,6 +432,7 @@ impl Task for RuledBlocks {
             .sum();
         let cuts = r.blocks.iter().flat_map(|b| &b.cuts);
         let cut_mm: f64 = cuts.clone().map(|c| c.cut_length_mm).sum();
+        let minutes: f64 = cuts.clone().map(|c| c.cut_minutes).sum();
         let programs = cuts.filter(|c| c.program.is_some()).count();
         let hulls: Vec<String> = r
             .blocks
@@ -470,6 +471,11 @@ impl Task for RuledBlocks {
             milled_area: 0.0,
             cutter: crate::process::Cutter::Wire,
             cut_length: cut_mm * job.per_mm(),
+            cut_speed: if minutes > 0.0 {
+                cut_mm * job.per_mm() / (60.0 * minutes)
+            } else {
+                0.0
+            },
             programs,
             // a block cut to its hull keeps material up to `added_depth` above the design
             deviation: Some(crate::process::Deviation {

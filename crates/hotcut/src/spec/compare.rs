@@ -36,10 +36,12 @@ pub struct RatesSpec {
     /// Milling finishing feed, job units per minute.
     #[serde(default)]
     pub finishing_feed: Option<f64>,
-    /// Hot-wire cutting speed, job units per second.
+    /// Hot-wire cutting speed, job units per second. Default: each process's own
+    /// programs' speed (`wire.speed`).
     #[serde(default)]
     pub wire_speed: Option<f64>,
-    /// Hot-blade cutting speed, job units per second.
+    /// Hot-blade cutting speed, job units per second. Default: each process's own robot
+    /// program's speed (its task's `speed`).
     #[serde(default)]
     pub blade_speed: Option<f64>,
 }
@@ -134,7 +136,7 @@ pub const RATE_DEFAULTS: [RateDefault; 10] = [
         length_power: 1,
         unit: "mm per second",
         assumed: true,
-        source: "assumed: hotcut's `wire.speed` default, 300 mm/min",
+        source: "left out: each wire process's own programs' speed (`wire.speed`, default 300 mm/min); this value only where a program gives none (assumed: that default)",
     },
     RateDefault {
         field: "blade_speed",
@@ -142,7 +144,7 @@ pub const RATE_DEFAULTS: [RateDefault; 10] = [
         length_power: 1,
         unit: "mm per second",
         assumed: false,
-        source: "the seed, \"Robotic Hot-Blade Cutting\": good surface quality at 7 mm/s in a 600 mm block",
+        source: "left out: each blade process's own robot program's speed (its task's `speed`, default 7 mm/s: the seed, \"Robotic Hot-Blade Cutting\", good surface quality at 7 mm/s in a 600 mm block)",
     },
 ];
 
