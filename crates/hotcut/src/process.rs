@@ -60,6 +60,12 @@ pub struct ProcessFigures {
     /// The speed its programs cut at (their heated path over their cutting time), job
     /// units per second (0 without thermal cuts).
     pub cut_speed: f64,
+    /// Heated dwells the programs make besides cutting (preheat before each cut),
+    /// seconds in all.
+    pub dwell_s: f64,
+    /// Times a block is mounted for the thermal cuts (a block turned between two cuts
+    /// counts again; 0 without thermal cuts).
+    pub setups: usize,
     /// Machine programs (wire cuts, robot programs).
     pub programs: usize,
     /// Deviation of the thermally cut surface from the design (`None` when milling

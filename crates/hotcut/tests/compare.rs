@@ -145,14 +145,14 @@ f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\
         assert!(p[i]["cost"].is_null());
     }
     assert_eq!(r["winner"], "milling");
-    // no folder for what did not run
-    assert!(!dir.path().join("out/t/hot_blade").exists());
+    // what did not run has no folder
+    assert!(p[2]["folder"].is_null());
 }
 
 #[test]
 fn when_no_process_is_feasible_the_run_fails_with_its_report_and_no_program() {
-    // a tool whose scallop (5 mm ball, 4.9 mm stepover: 1.5 mm) is fine, with a tolerance
-    // of 0.1 mm it is not; the pre-cut's milling too
+    // a 5 mm ball at a 4.9 mm stepover leaves a 2.0 mm scallop: over a tolerance of
+    // 0.1 mm, for the plain milling and for the pre-cut's
     let text = job(
         "Milling(tool: Tool(diameter: 5, stepover: 4.9)), PreCutThenMilling(pre_cut: PreCut(legs: 3, directions: [X], sections: 10, samples: 10, controls: 5), tool: Tool(diameter: 5, stepover: 4.9))",
         "",
@@ -237,7 +237,9 @@ fn a_pre_cut_that_makes_one_block_of_a_wider_design_is_infeasible() {
 
 #[test]
 fn milling_a_placed_block_the_design_is_not_in_is_infeasible() {
-    let text = job(MILL, "", "").replace("origin: (-200, -200, 0)", "origin: (-200, -200, 150)");
+    let text = job(MILL, "", "")
+        .replace("origin: (-200, -200, 0)", "origin: (-200, -200, 150)")
+        .replace("GCode, ", "");
     let (code, r, _dir, err) = run(&text);
     // the only process cannot make it: the run fails with its report
     assert_eq!(code, Some(1), "{err}");
@@ -265,15 +267,23 @@ fn block_segmentation_on_a_height_field_is_not_applicable_and_the_ruled_wire_run
 
 #[test]
 fn a_wire_process_is_timed_at_its_own_programs_speed() {
+    // hours cutting, the preheat dwells left out
     let hours = |speed: &str| {
         let p = rows(PRECUT, |t| {
             t.replace("kerf: 1.0,", &format!("kerf: 1.0, speed: {speed},"))
         });
         p[0]["hours"]["wire"].as_f64().unwrap()
+            - p[0]["figures"]["dwell_s"].as_f64().unwrap() / 3600.0
     };
     let (fast, slow) = (hours("300"), hours("150"));
     assert!(
         (slow / fast - 2.0).abs() < 1e-6,
         "{fast} h at 300 mm/min, {slow} h at 150"
     );
+}
+
+#[test]
+fn an_output_no_process_writes_is_refused() {
+    // milling alone writes no G-code
+    expect_invalid(&job(MILL, "", ""), &["/outputs/2", "GCode"]);
 }

@@ -264,7 +264,7 @@ impl Task for BlockSegmentation {
     }
 
     fn figures(
-        _: &blocks::Params,
+        params: &blocks::Params,
         run: &BlockSegRun,
         report: &BlockSegReport,
         _: &Context,
@@ -275,8 +275,12 @@ impl Task for BlockSegmentation {
             .iter()
             .map(|b| b.size.iter().product::<f64>())
             .sum();
+        // milling stock must hold the solid, not only its surface
+        let why_not = (params.coverage != blocks::Coverage::Solid).then(|| {
+            "the blocks cover the model's surface only (coverage: Surface): milling stock must hold the solid, set coverage: Solid".to_string()
+        });
         Some(crate::process::ProcessFigures {
-            why_not: None,
+            why_not,
             blocks: s.blocks.len(),
             stock_volume: stock,
             part_volume: s.model_volume,
@@ -285,6 +289,8 @@ impl Task for BlockSegmentation {
             cutter: crate::process::Cutter::None,
             cut_length: 0.0,
             cut_speed: 0.0,
+            dwell_s: 0.0,
+            setups: 0,
             programs: 0,
             deviation: None,
         })

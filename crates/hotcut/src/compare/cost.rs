@@ -165,21 +165,24 @@ pub fn hours(f: &ProcessFigures, tool: Option<&Tool>, r: &Rates) -> Hours {
             crate::process::Cutter::Blade => r.speed(rate::BLADE_SPEED, f.cut_speed),
             _ => r.speed(rate::WIRE_SPEED, f.cut_speed),
         };
-        let t = f.cut_length / speed / 3600.0;
+        let t = (f.cut_length / speed + f.dwell_s) / 3600.0;
         match f.cutter {
             crate::process::Cutter::Blade => h.blade = t,
             _ => h.wire = t,
         }
     }
-    let mut machines = usize::from(f.cut_length > 0.0);
+    let mut setups = f.setups;
     if let Some(tool) = tool {
-        let removal = tool.removal_rate.unwrap_or(v[rate::REMOVAL]);
-        let feed = tool.feed.unwrap_or(v[rate::FEED]);
+        // a tool's own feed and removal rate are scaled as the rates are (sensitivity)
+        let own = |k: usize, x: Option<f64>| x.map_or(v[k], |x| x * v[k] / r.nominal[k]);
+        let removal = own(rate::REMOVAL, tool.removal_rate);
+        let feed = own(rate::FEED, tool.feed);
         h.roughing = f.milling_volume / removal / 60.0;
         h.finishing = f.milled_area / (tool.stepover * feed) / 60.0;
-        machines += 1;
+        // every block mounted on the milling machine once
+        setups += f.blocks;
     }
-    h.setup = f.blocks as f64 * machines as f64 * v[rate::SETUP] / 60.0;
+    h.setup = setups as f64 * v[rate::SETUP] / 60.0;
     h.total = h.wire + h.blade + h.roughing + h.finishing + h.setup;
     h
 }
@@ -287,6 +290,8 @@ mod tests {
             cutter,
             cut_length: cut,
             cut_speed: 0.0,
+            dwell_s: 0.0,
+            setups: if cut > 0.0 { 2 } else { 0 },
             programs: 1,
             deviation: None,
         }

@@ -215,6 +215,7 @@ where
             ));
         }
         check_rates(self, job, errors);
+        check_outputs(self, job, errors);
         // the ruled task places its blocks itself: it runs with the block's size only
         let unplaced = job.block.map(|b| BlockSpec {
             origin: None,
@@ -508,10 +509,10 @@ fn milling_estimate(job: &Context, at: &str) -> Estimate {
     let mut e = Estimate::new(1e6, 1e6, "/block/size", "make `block.size` larger");
     if let (Some(s), Some(b)) = (&job.surface, &job.block) {
         let n = stock::grid_blocks(s, arr(b.size), b.origin.map(arr));
-        if n >= stock::MAX_GRID_BLOCKS {
+        if n > stock::MAX_GRID_BLOCKS - 1.0 {
             e.checks.push((
                 "/block/size".into(),
-                format!("{at}: the job's blocks would tile the design {n} times (at most {}); make `block.size` larger", stock::MAX_GRID_BLOCKS),
+                format!("{at}: the job's blocks would tile the design {n} times or more (fewer than {} allowed); make `block.size` larger", stock::MAX_GRID_BLOCKS),
             ));
         }
         let lattice = (crate::process::VOLUME_GRID * crate::process::VOLUME_GRID) as f64;
@@ -658,6 +659,49 @@ impl Visit for SubEstimate<'_> {
     }
 }
 
+/// A rate's unit in a job's length unit `unit`.
+pub(crate) fn rate_unit(d: &crate::spec::compare::RateDefault, unit: &str) -> String {
+    match d.length_power {
+        3 => format!("{unit}³ per minute"),
+        1 if d.field.ends_with("feed") => format!("{unit} per minute"),
+        1 => format!("{unit} per second"),
+        _ => d.unit.into(),
+    }
+}
+
+/// The output kinds a task writes.
+struct Kinds;
+
+impl Visit for Kinds {
+    type Output = Vec<OutputKind>;
+
+    fn visit<T: Task>(self, _: &T) -> Vec<OutputKind> {
+        output_kinds::<T>()
+    }
+}
+
+/// Every output the job lists is written by the comparison or by one of its processes.
+fn check_outputs<P: ProcessSpec>(c: &Compare<P>, job: &JobFields<'_>, errors: &mut Vec<JobError>) {
+    let written: Vec<OutputKind> = c
+        .processes
+        .iter()
+        .filter_map(|p| p.visit(Kinds))
+        .flatten()
+        .chain([OutputKind::Report, OutputKind::Html, OutputKind::Svg])
+        .collect();
+    for (i, o) in job.outputs.iter().enumerate() {
+        if !written.contains(&o.kind()) {
+            errors.push(job.error(
+                &format!("/outputs/{i}"),
+                format!(
+                    "output {} is written by none of the processes compared",
+                    o.name()
+                ),
+            ));
+        }
+    }
+}
+
 /// How far from its default a rate or tool size may be, either way: 10⁶ (a rate further
 /// off is a typo or a unit mistake, and its products overflow).
 pub const RANGE: f64 = 1e6;
@@ -684,7 +728,8 @@ fn check_rates<P>(c: &Compare<P>, job: &JobFields<'_>, errors: &mut Vec<JobError
     for (v, d) in c.rates.values().iter().zip(RATE_DEFAULTS.iter()) {
         let Some(v) = v else { continue };
         let nominal = d.value * per_mm.powi(d.length_power);
-        if let Err(m) = bounded(*v, nominal, d.length_power == 0, d.unit) {
+        let unit = rate_unit(d, job.units.name());
+        if let Err(m) = bounded(*v, nominal, d.length_power == 0, &unit) {
             errors.push(job.error(
                 &format!("{PTR}/rates/{}", d.field),
                 format!("{} {m}", d.field),

@@ -34,6 +34,7 @@ fn row<P>(p: &Planned<P>, o: &Outcome, rates: &Rates, tolerance: f64) -> Process
         eps_m3: None,
         waste_m3: None,
         hours: None,
+        cut_speed: None,
         cost: None,
         rank: None,
     };
@@ -71,6 +72,10 @@ fn row<P>(p: &Planned<P>, o: &Outcome, rates: &Rates, tolerance: f64) -> Process
     r.waste_m3 = Some((f.stock_volume - f.part_volume).max(0.0) * rates.m3_per_unit3);
     if f.cutter != Cutter::None && f.programs == 0 {
         // no program to time: a run that refused to cut
+        if r.status == Status::Feasible {
+            r.status = Status::Infeasible;
+            r.reason = Some("its task wrote no machine program".into());
+        }
         return r;
     }
     let h = cost::hours(f, p.tool.as_ref(), rates);
@@ -82,6 +87,14 @@ fn row<P>(p: &Planned<P>, o: &Outcome, rates: &Rates, tolerance: f64) -> Process
     }
     r.cost = Some(c);
     r.hours = Some(h);
+    if f.cut_length > 0.0 {
+        let k = if f.cutter == Cutter::Blade {
+            cost::rate::BLADE_SPEED
+        } else {
+            cost::rate::WIRE_SPEED
+        };
+        r.cut_speed = Some(rates.speed(k, f.cut_speed));
+    }
     r
 }
 
@@ -131,10 +144,21 @@ pub fn compare<P>(p: &CompareParams<P>, outcomes: &[Outcome], job: &Context) -> 
             };
             let (halved, raised) = (winner(0.5), winner(1.5));
             let now = order.first().map(|&w| name(w));
+            let ranked = |f: f64| -> Vec<String> {
+                cost::ranking(&costed, &p.rates.scaled(k, f))
+                    .into_iter()
+                    .map(name)
+                    .collect()
+            };
+            let (ranking_halved, ranking_raised) = (ranked(0.5), ranked(1.5));
+            let base: Vec<String> = order.iter().map(|&w| name(w)).collect();
             let (flip_below, flip_above) = cost::flip_factors(&costed, &p.rates, k);
             Sensitivity {
                 rate: d.field.into(),
                 flips: halved != now || raised != now,
+                ranking_changes: ranking_halved != base || ranking_raised != base,
+                ranking_halved,
+                ranking_raised,
                 halved,
                 raised,
                 flip_below,
@@ -168,12 +192,7 @@ fn rate_rows<P>(p: &CompareParams<P>, job: &Context) -> Vec<RateRow> {
         .map(|(k, d)| RateRow {
             field: d.field.into(),
             value: p.rates.values[k],
-            unit: match d.length_power {
-                3 => format!("{unit}³ per minute"),
-                1 if d.field.ends_with("feed") => format!("{unit} per minute"),
-                1 => format!("{unit} per second"),
-                _ => d.unit.into(),
-            },
+            unit: super::rate_unit(d, unit),
             set_by_job: p.written[k].is_some(),
             assumed: p.written[k].is_none() && d.assumed,
             source: d.source.into(),

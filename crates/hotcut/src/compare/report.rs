@@ -96,6 +96,9 @@ pub struct ProcessRow {
     pub waste_m3: Option<f64>,
     /// Hours per machine.
     pub hours: Option<Hours>,
+    /// The cutting speed its thermal cuts are timed at, job units per second: its
+    /// programs' own, or the job's `rates.wire_speed`/`blade_speed` when it sets one.
+    pub cut_speed: Option<f64>,
     /// Cost, split.
     pub cost: Option<Cost>,
     /// Its place among the feasible processes, cheapest 1.
@@ -113,6 +116,12 @@ pub struct Sensitivity {
     pub raised: Option<String>,
     /// Whether either changes the winner.
     pub flips: bool,
+    /// The feasible processes cheapest first with the rate halved.
+    pub ranking_halved: Vec<String>,
+    /// The same with the rate raised by half.
+    pub ranking_raised: Vec<String>,
+    /// Whether either changes the ranking (not only the winner).
+    pub ranking_changes: bool,
     /// The factor nearest to 1 below it at which the winner changes (`None`: not above
     /// 1/100).
     pub flip_below: Option<f64>,

@@ -17,10 +17,11 @@ pub fn grid(surface: &Surface, size: [f64; 3], origin: Option<[f64; 3]>) -> ([us
     let mut n = [1usize; 3];
     for k in 0..3 {
         let cells = ((hi[k] - start[k]) / size[k]).ceil();
-        n[k] = if cells.is_finite() && cells >= 1.0 {
-            cells.min(MAX_GRID_BLOCKS) as usize
-        } else {
+        n[k] = if cells.is_nan() || cells < 1.0 {
             1
+        } else {
+            // an infinite count (a block of no size) is capped, and refused at validation
+            cells.min(MAX_GRID_BLOCKS) as usize
         };
     }
     (n, start)
@@ -96,6 +97,8 @@ pub fn figures(
         cutter: Cutter::None,
         cut_length: 0.0,
         cut_speed: 0.0,
+        dwell_s: 0.0,
+        setups: 0,
         programs: 0,
         deviation: None,
     })

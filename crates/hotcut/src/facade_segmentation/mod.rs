@@ -520,6 +520,10 @@ impl Task for FacadeSegmentation {
                 Some(_) => None,
             }
         };
+        let heated = run
+            .cell
+            .as_ref()
+            .map_or((0.0, 0), crate::robot_cell::heated_path_mm);
         Some(crate::process::ProcessFigures {
             why_not,
             blocks: c.blocks,
@@ -528,13 +532,13 @@ impl Task for FacadeSegmentation {
             milling_volume: 0.0,
             milled_area: 0.0,
             cutter: crate::process::Cutter::Blade,
-            cut_length: run.cell.as_ref().map_or(0.0, |cell| {
-                crate::robot_cell::heated_path_mm(cell) * job.per_mm()
-            }),
+            cut_length: heated.0 * job.per_mm(),
             cut_speed: run
                 .cell
                 .as_ref()
                 .map_or(0.0, |c| c.cut_speed * job.per_mm()),
+            dwell_s: heated.1 as f64 * run.cell.as_ref().map_or(0.0, |c| c.report.preheat_s),
+            setups: c.blocks,
             programs: usize::from(run.cell.is_some()),
             deviation: (n > 0).then(|| crate::process::Deviation {
                 rms: (sq / n as f64).sqrt(),

@@ -419,6 +419,10 @@ impl Task for HotBlade {
             }
         };
         let rms = r.blocks.iter().map(|b| b.max_rms).fold(0.0, f64::max);
+        let heated = run
+            .cell
+            .as_ref()
+            .map_or((0.0, 0), crate::robot_cell::heated_path_mm);
         Some(crate::process::ProcessFigures {
             why_not,
             blocks: r.blocks.len(),
@@ -427,14 +431,13 @@ impl Task for HotBlade {
             milling_volume: 0.0,
             milled_area: 0.0,
             cutter: crate::process::Cutter::Blade,
-            cut_length: run
-                .cell
-                .as_ref()
-                .map_or(0.0, |c| crate::robot_cell::heated_path_mm(c) * job.per_mm()),
+            cut_length: heated.0 * job.per_mm(),
             cut_speed: run
                 .cell
                 .as_ref()
                 .map_or(0.0, |c| c.cut_speed * job.per_mm()),
+            dwell_s: heated.1 as f64 * run.cell.as_ref().map_or(0.0, |c| c.report.preheat_s),
+            setups: r.blocks.len(),
             programs: usize::from(run.cell.is_some()),
             deviation: Some(crate::process::Deviation {
                 rms,

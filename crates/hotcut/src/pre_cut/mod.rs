@@ -450,7 +450,19 @@ impl Task for PreCut {
             || d.min.y < b.min[1] - slack
             || d.max.x > b.max[0] + slack
             || d.max.y > b.max[1] + slack;
+        // a cut that does not clear the design cuts into it (the page's "not cuttable")
+        let into = report
+            .directions
+            .iter()
+            .find(|d| !(d.clearance > 0.0))
+            .map(|d| (d.direction, d.clearance));
         let why_not = match (&area, report.programs.is_empty()) {
+            _ if into.is_some() => into.map(|(d, c)| {
+                format!(
+                    "the cuts along ({:.3}, {:.3}, {:.3}) do not clear the design (clearance {c:.4}): they cut into it",
+                    d[0], d[1], d[2]
+                )
+            }),
             _ if outside => Some(format!(
                 "the pre-cut makes one block, x {}–{}, y {}–{}, and the design spans x {}–{}, y {}–{}: give a block that holds it",
                 b.min[0], b.max[0], b.min[1], b.max[1], d.min.x, d.max.x, d.min.y, d.max.y
@@ -473,6 +485,9 @@ impl Task for PreCut {
             } else {
                 0.0
             },
+            dwell_s: report.programs.iter().map(|p| p.summary.preheat_s).sum(),
+            // the block is turned once per direction
+            setups: report.directions.len(),
             programs: report.programs.len(),
             deviation: None,
         })

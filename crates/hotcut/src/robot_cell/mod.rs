@@ -369,17 +369,24 @@ pub fn plan(
     })
 }
 
-/// The blade's heated path in a planned program, mm: the distance its midpoint travels
-/// through the block over every heated move (each move measured in its block's frame,
-/// from the move before it in the same block).
-pub fn heated_path_mm(plan: &CellPlan) -> f64 {
-    let mid = |s: &cell::fixture::Step| {
-        0.5 * (s.ends[0].translation.vector + s.ends[1].translation.vector)
-    };
-    plan.program
-        .steps
+/// The blade's heated path in a planned program, mm, and how many times the heat goes
+/// on: per heated move, the farther of the two ends' travels through the block (the
+/// synchronized move lasts as long as the end that goes farther takes at the cutting
+/// speed), each move measured in its block's frame from the move before it in the same
+/// block.
+pub fn heated_path_mm(plan: &CellPlan) -> (f64, usize) {
+    let steps = &plan.program.steps;
+    let path = steps
         .windows(2)
         .filter(|w| w[1].heat && w[0].block == w[1].block)
-        .map(|w| (mid(&w[1]) - mid(&w[0])).norm())
-        .sum()
+        .map(|w| {
+            let d = |k: usize| {
+                (w[1].ends[k].translation.vector - w[0].ends[k].translation.vector).norm()
+            };
+            d(0).max(d(1))
+        })
+        .sum();
+    let first = usize::from(steps.first().is_some_and(|s| s.heat));
+    let ons = first + steps.windows(2).filter(|w| w[1].heat && !w[0].heat).count();
+    (path, ons)
 }

@@ -421,7 +421,7 @@ impl Task for RuledBlocks {
 
     fn figures(
         _: &RuledBlocksParams,
-        _: &RuledBlocksRun,
+        run: &RuledBlocksRun,
         r: &RuledBlocksReport,
         job: &Context,
     ) -> Option<crate::process::ProcessFigures> {
@@ -476,6 +476,25 @@ impl Task for RuledBlocks {
             } else {
                 0.0
             },
+            dwell_s: run
+                .programs
+                .iter()
+                .flatten()
+                .map(|p| p.summary.preheat_s)
+                .sum(),
+            // a block is mounted again for every cut whose mount differs from the last
+            setups: r
+                .blocks
+                .iter()
+                .map(|b| {
+                    let turns = b
+                        .cuts
+                        .windows(2)
+                        .filter(|w| w[0].mount != w[1].mount)
+                        .count();
+                    usize::from(!b.cuts.is_empty()) + turns
+                })
+                .sum(),
             programs,
             // a block cut to its hull keeps material up to `added_depth` above the design
             deviation: Some(crate::process::Deviation {
