@@ -1,4 +1,4 @@
-//! What a task's run says about it as a production process ([`ProcessFigures`]): the
+//! What a task's run says about it as a production process ([`ProcessFigures`](crate::process::ProcessFigures)): the
 //! blocks bought, the material cut away and left for milling, the heated path of its
 //! programs and how close it comes to the design. Each task that is a process measures its
 //! own run ([`crate::task::Task::figures`]); the `Compare` task sets them side by side, so

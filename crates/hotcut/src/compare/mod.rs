@@ -7,7 +7,7 @@
 //! stock) through the [`Task`] trait — its own parameters, run, report and writers, so its
 //! numbers ([`Task::figures`]) and its files (in a folder of the output) are the ones the
 //! task gives on its own — in parallel (rayon, results in the job's order). Milling is
-//! measured on the stock ([`stock`]), and [`cost`] turns the figures into hours and cost
+//! measured on the stock ([`stock`](crate::compare::stock)), and [`cost`](crate::compare::cost) turns the figures into hours and cost
 //! and asks which rate change flips the ranking. This module imports no task module: the
 //! job's process list ([`crate::job::Process`]) hands each task over as its own type.
 //!

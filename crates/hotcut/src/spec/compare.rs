@@ -1,5 +1,5 @@
 //! The job-file types of the `Compare` task that hold no other task: the `rates:` table
-//! and a milling tool. Every default is stated once here ([`RATE_DEFAULTS`]) with its
+//! and a milling tool. Every default is stated once here ([`RATE_DEFAULTS`](crate::spec::compare::RATE_DEFAULTS)) with its
 //! source, in millimetres, and converted by the job's units.
 
 use schemars::JsonSchema;
