@@ -287,3 +287,21 @@ fn an_output_no_process_writes_is_refused() {
     // milling alone writes no G-code
     expect_invalid(&job(MILL, "", ""), &["/outputs/2", "GCode"]);
 }
+
+#[test]
+fn a_scallop_over_the_rms_tolerance_is_infeasible() {
+    // 10 mm ball, 6 mm stepover: scallop 1.0 mm high (within max 2), RMS ≈ 0.29 mm
+    let text = job(
+        &format!("Milling(tool: Tool(diameter: 10, stepover: 6)), {MILL}"),
+        "",
+        "",
+    )
+    .replace("Tolerance(max: 2.0)", "Tolerance(rms: 0.1, max: 2.0)")
+    .replace("GCode, ", "");
+    let (code, r, _dir, err) = run(&text);
+    assert_eq!(code, Some(0), "{err}");
+    let p = r["processes"].as_array().unwrap();
+    assert_eq!(p[0]["status"], "Infeasible", "{}", p[0]);
+    assert!(p[0]["reason"].as_str().unwrap().contains("tolerance.rms"));
+    assert_eq!(p[1]["status"], "Feasible", "{}", p[1]);
+}

@@ -165,6 +165,8 @@ pub struct CompareParams<P> {
     pub written: [Option<f64>; 10],
     /// `tolerance.max`.
     pub tolerance: f64,
+    /// `tolerance.rms`.
+    pub tolerance_rms: f64,
     /// The design's kind.
     pub design: &'static str,
 }
@@ -294,6 +296,7 @@ where
             rates: Rates::resolve(written, job.per_mm()),
             written,
             tolerance: job.tolerance.max,
+            tolerance_rms: job.tolerance.rms,
             design,
         })
     }

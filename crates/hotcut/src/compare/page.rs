@@ -20,7 +20,7 @@ fn label<P>(p: &Planned<P>) -> String {
 }
 
 /// One process's row: status, fidelity, material, hours and cost.
-fn row<P>(p: &Planned<P>, o: &Outcome, rates: &Rates, tolerance: f64) -> ProcessRow {
+fn row<P>(p: &Planned<P>, o: &Outcome, rates: &Rates, (tolerance, rms): (f64, f64)) -> ProcessRow {
     let mut r = ProcessRow {
         id: p.id.clone(),
         process: p.kind.name().into(),
@@ -59,6 +59,11 @@ fn row<P>(p: &Planned<P>, o: &Outcome, rates: &Rates, tolerance: f64) -> Process
             why = Some(format!(
                 "the tool's scallop ({:.4}: {} diameter, {} stepover) exceeds tolerance.max ({tolerance})",
                 d.max, t.diameter, t.stepover
+            ));
+        } else if d.rms > rms {
+            why = Some(format!(
+                "the tool's scallop has an RMS of {:.4} ({} diameter, {} stepover), above tolerance.rms ({rms})",
+                d.rms, t.diameter, t.stepover
             ));
         }
     }
@@ -104,7 +109,7 @@ pub fn compare<P>(p: &CompareParams<P>, outcomes: &[Outcome], job: &Context) -> 
         .processes
         .iter()
         .zip(outcomes)
-        .map(|(planned, o)| row(planned, o, &p.rates, p.tolerance))
+        .map(|(planned, o)| row(planned, o, &p.rates, (p.tolerance, p.tolerance_rms)))
         .collect();
     let feasible: Vec<usize> = (0..rows.len())
         .filter(|&i| rows[i].status == Status::Feasible)
@@ -173,6 +178,7 @@ pub fn compare<P>(p: &CompareParams<P>, outcomes: &[Outcome], job: &Context) -> 
         hotcut_version: crate::report::VERSION.into(),
         design: p.design.into(),
         tolerance: p.tolerance,
+        tolerance_rms: p.tolerance_rms,
         rates: rate_rows(p, job),
         plausibility: plausibility(p, &rows),
         ranking: order.iter().map(|&k| name(k)).collect(),

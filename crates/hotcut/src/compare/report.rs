@@ -22,6 +22,9 @@ pub struct CompareReport {
     pub design: String,
     /// The tolerance every process is held to (`tolerance.max`).
     pub tolerance: f64,
+    /// The RMS a milled surface's scallop is held to (`tolerance.rms`; the thermal
+    /// processes' own tasks apply theirs).
+    pub tolerance_rms: f64,
     /// Every rate used, its unit, whether the job set it, and its source.
     pub rates: Vec<RateRow>,
     /// Every process, in the job's order.
