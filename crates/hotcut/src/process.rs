@@ -74,6 +74,32 @@ pub struct ProcessFigures {
 }
 
 impl ProcessFigures {
+    /// Stock milled as bought: `blocks` of `stock` volume in all, the design's `part`
+    /// kept, everything else milled away, `area` finished (job units).
+    pub fn milled(
+        blocks: usize,
+        stock: f64,
+        part: f64,
+        area: f64,
+        why_not: Option<String>,
+    ) -> Self {
+        Self {
+            why_not,
+            blocks,
+            stock_volume: stock,
+            part_volume: part,
+            milling_volume: (stock - part).max(0.0),
+            milled_area: area,
+            cutter: Cutter::None,
+            cut_length: 0.0,
+            cut_speed: 0.0,
+            dwell_s: 0.0,
+            setups: 0,
+            programs: 0,
+            deviation: None,
+        }
+    }
+
     /// Whether the run makes the design within the tolerance.
     pub fn feasible(&self) -> bool {
         self.why_not.is_none()

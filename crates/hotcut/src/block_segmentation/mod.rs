@@ -279,21 +279,13 @@ impl Task for BlockSegmentation {
         let why_not = (params.coverage != blocks::Coverage::Solid).then(|| {
             "the blocks cover the model's surface only (coverage: Surface): milling stock must hold the solid, set coverage: Solid".to_string()
         });
-        Some(crate::process::ProcessFigures {
+        Some(crate::process::ProcessFigures::milled(
+            s.blocks.len(),
+            stock,
+            s.model_volume,
+            run.mesh.area(),
             why_not,
-            blocks: s.blocks.len(),
-            stock_volume: stock,
-            part_volume: s.model_volume,
-            milling_volume: (stock - s.model_volume).max(0.0),
-            milled_area: run.mesh.area(),
-            cutter: crate::process::Cutter::None,
-            cut_length: 0.0,
-            cut_speed: 0.0,
-            dwell_s: 0.0,
-            setups: 0,
-            programs: 0,
-            deviation: None,
-        })
+        ))
     }
 
     fn report(params: &blocks::Params, run: &BlockSegRun, job: &Context) -> BlockSegReport {

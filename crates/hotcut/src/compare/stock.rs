@@ -3,7 +3,7 @@
 
 use geom::surface::Surface;
 
-use crate::process::{self, Cutter, ProcessFigures};
+use crate::process::{self, ProcessFigures};
 
 /// Most blocks a block grid may hold (`block.size` against the design's extent).
 pub const MAX_GRID_BLOCKS: f64 = 10_000.0;
@@ -87,19 +87,5 @@ pub fn figures(
         None if !(part > 0.0) => Some("the design has no solid inside the blocks".into()),
         None => None,
     };
-    Ok(ProcessFigures {
-        why_not,
-        blocks,
-        stock_volume: stock,
-        part_volume: part,
-        milling_volume: (stock - part).max(0.0),
-        milled_area: area,
-        cutter: Cutter::None,
-        cut_length: 0.0,
-        cut_speed: 0.0,
-        dwell_s: 0.0,
-        setups: 0,
-        programs: 0,
-        deviation: None,
-    })
+    Ok(ProcessFigures::milled(blocks, stock, part, area, why_not))
 }

@@ -501,8 +501,8 @@ impl Task for FacadeSegmentation {
             }
         }
         let c = &r.counts;
-        let why_not = if !c.all_ok {
-            Some(format!(
+        let why_not = (!c.all_ok).then(|| {
+            format!(
                 "{} of {} pieces break a constraint ({}), {} gouge(s), {} collision(s), {} part(s) without a pose",
                 r.pieces.iter().filter(|p| !p.verdicts.all()).count(),
                 c.pieces,
@@ -510,41 +510,18 @@ impl Task for FacadeSegmentation {
                 c.gouges,
                 c.collisions,
                 c.unposed
-            ))
-        } else {
-            match &run.cell {
-                None => Some("no robot program was planned".into()),
-                Some(cell) if !cell.report.clean => Some(
-                    "the robot program is not clean (a pose out of reach, a configuration change or a joint jump): see its report".into(),
-                ),
-                Some(_) => None,
-            }
-        };
-        let heated = run
-            .cell
-            .as_ref()
-            .map_or((0.0, 0), crate::robot_cell::heated_path_mm);
-        Some(crate::process::ProcessFigures {
+            )
+        });
+        Some(crate::robot_cell::blade_figures(
+            run.cell.as_ref(),
             why_not,
-            blocks: c.blocks,
-            stock_volume: stock,
-            part_volume: part,
-            milling_volume: 0.0,
-            milled_area: 0.0,
-            cutter: crate::process::Cutter::Blade,
-            cut_length: heated.0 * job.per_mm(),
-            cut_speed: run
-                .cell
-                .as_ref()
-                .map_or(0.0, |c| c.cut_speed * job.per_mm()),
-            dwell_s: heated.1 as f64 * run.cell.as_ref().map_or(0.0, |c| c.report.preheat_s),
-            setups: c.blocks,
-            programs: usize::from(run.cell.is_some()),
-            deviation: (n > 0).then(|| crate::process::Deviation {
+            (c.blocks, stock, part),
+            (n > 0).then(|| crate::process::Deviation {
                 rms: (sq / n as f64).sqrt(),
                 max,
             }),
-        })
+            job.per_mm(),
+        ))
     }
 
     fn page(r: &SegmentationReport, job: &Context) -> export::html::Body {

@@ -402,48 +402,25 @@ impl Task for HotBlade {
             .filter(|b| b.flags.any())
             .map(|b| b.block.to_string())
             .collect();
-        let why_not = if !flagged.is_empty() || !r.summary.all_ok {
-            Some(format!(
+        let why_not = (!flagged.is_empty() || !r.summary.all_ok).then(|| {
+            format!(
                 "blocks {} break a constraint ({}); largest deviation {:.4}",
                 flagged.join(", "),
                 crate::process::nonzero(&r.summary.flagged),
                 r.summary.max_deviation
-            ))
-        } else {
-            match &run.cell {
-                None => Some("no robot program was planned".into()),
-                Some(c) if !c.report.clean => Some(
-                    "the robot program is not clean (a pose out of reach, a configuration change or a joint jump): see its report".into(),
-                ),
-                Some(_) => None,
-            }
-        };
+            )
+        });
         let rms = r.blocks.iter().map(|b| b.max_rms).fold(0.0, f64::max);
-        let heated = run
-            .cell
-            .as_ref()
-            .map_or((0.0, 0), crate::robot_cell::heated_path_mm);
-        Some(crate::process::ProcessFigures {
+        Some(crate::robot_cell::blade_figures(
+            run.cell.as_ref(),
             why_not,
-            blocks: r.blocks.len(),
-            stock_volume: stock,
-            part_volume: part,
-            milling_volume: 0.0,
-            milled_area: 0.0,
-            cutter: crate::process::Cutter::Blade,
-            cut_length: heated.0 * job.per_mm(),
-            cut_speed: run
-                .cell
-                .as_ref()
-                .map_or(0.0, |c| c.cut_speed * job.per_mm()),
-            dwell_s: heated.1 as f64 * run.cell.as_ref().map_or(0.0, |c| c.report.preheat_s),
-            setups: r.blocks.len(),
-            programs: usize::from(run.cell.is_some()),
-            deviation: Some(crate::process::Deviation {
+            (r.blocks.len(), stock, part),
+            Some(crate::process::Deviation {
                 rms,
                 max: r.summary.max_deviation,
             }),
-        })
+            job.per_mm(),
+        ))
     }
 
     fn page(r: &HotBladeReport, job: &Context) -> export::html::Body {

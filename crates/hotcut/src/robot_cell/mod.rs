@@ -390,3 +390,39 @@ pub fn heated_path_mm(plan: &CellPlan) -> (f64, usize) {
     let ons = first + steps.windows(2).filter(|w| w[1].heat && !w[0].heat).count();
     (path, ons)
 }
+
+/// A blade process's figures ([`crate::process::ProcessFigures`]) from its planned
+/// program: the heated path and its speed, the preheat dwells, one set-up per block; why
+/// not when the task's own `why_not` says so, or when no program was planned or it is not
+/// clean. `blocks`, `stock` and `part` are the task's, in job units.
+pub fn blade_figures(
+    cell: Option<&CellPlan>,
+    why_not: Option<String>,
+    (blocks, stock, part): (usize, f64, f64),
+    deviation: Option<crate::process::Deviation>,
+    per_mm: f64,
+) -> crate::process::ProcessFigures {
+    let why_not = why_not.or_else(|| match cell {
+        None => Some("no robot program was planned".into()),
+        Some(c) if !c.report.clean => Some(
+            "the robot program is not clean (a pose out of reach, a configuration change or a joint jump): see its report".into(),
+        ),
+        Some(_) => None,
+    });
+    let (path, heat_ons) = cell.map_or((0.0, 0), heated_path_mm);
+    crate::process::ProcessFigures {
+        why_not,
+        blocks,
+        stock_volume: stock,
+        part_volume: part,
+        milling_volume: 0.0,
+        milled_area: 0.0,
+        cutter: crate::process::Cutter::Blade,
+        cut_length: path * per_mm,
+        cut_speed: cell.map_or(0.0, |c| c.cut_speed * per_mm),
+        dwell_s: heat_ons as f64 * cell.map_or(0.0, |c| c.report.preheat_s),
+        setups: blocks,
+        programs: usize::from(cell.is_some()),
+        deviation,
+    }
+}
