@@ -51,6 +51,8 @@
 
 /// Sections seen across the facade (`u` ↔ arc length, curvature, inflections).
 mod across;
+/// One section checked against the production constraints and fitted, while it is drawn.
+pub mod check;
 /// The production constraints of §5.1 and their checks on one section part.
 pub mod constraints;
 /// Why a segmentation failed.

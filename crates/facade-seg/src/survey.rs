@@ -198,6 +198,25 @@ fn section_report(
         position: arr(&frame.to_world(s.offset, &p.point)),
         curvature: p.curvature,
     };
+    let violations = violations(a, params);
+    let kmax = a.max_abs_curvature.curvature.abs();
+    SectionReport {
+        index: s.index,
+        piece: s.piece,
+        offset: s.offset,
+        closed: s.closed,
+        length: a.length,
+        fit_rms: s.fit_rms,
+        inflections: a.inflections.iter().map(point).collect(),
+        curvature_maxima: a.curvature_maxima.iter().map(point).collect(),
+        max_abs_curvature: kmax,
+        suppressed_inflections: a.suppressed_inflections,
+        violations,
+    }
+}
+
+/// The production constraints (§5.1.1, §5.1.3, §5.1.4) one analysed section breaks.
+pub(crate) fn violations(a: &CurveAnalysis, params: &SurveyParams) -> Vec<Violation> {
     let mut violations = Vec::new();
     if a.length > params.blade_length {
         violations.push(Violation::Dimension {
@@ -220,19 +239,7 @@ fn section_report(
             at_s: a.max_abs_curvature.s,
         });
     }
-    SectionReport {
-        index: s.index,
-        piece: s.piece,
-        offset: s.offset,
-        closed: s.closed,
-        length: a.length,
-        fit_rms: s.fit_rms,
-        inflections: a.inflections.iter().map(point).collect(),
-        curvature_maxima: a.curvature_maxima.iter().map(point).collect(),
-        max_abs_curvature: kmax,
-        suppressed_inflections: a.suppressed_inflections,
-        violations,
-    }
+    violations
 }
 
 /// The surface larger than the block, or sticking out of the placed block.

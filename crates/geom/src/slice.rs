@@ -46,6 +46,67 @@ impl PlaneFrame {
         Ok(Self { normal: n, u, v })
     }
 
+    /// The plane that holds `points` best (least squares: its normal is the direction of
+    /// least spread about their centroid), as a frame, the plane's offset along its
+    /// normal, and the largest distance of a point from it. The normal is the one with
+    /// its largest component positive, so the frame depends on the points only, not on
+    /// their order; a vertical plane gets a horizontal `u` and an upward `v`.
+    ///
+    /// ```
+    /// use geom::slice::PlaneFrame;
+    /// use nalgebra::Vector3;
+    /// // points of the plane y = 5, the x–z plane moved
+    /// let pts: Vec<Vector3<f64>> = (0..10)
+    ///     .map(|i| Vector3::new(i as f64, 5.0, (i as f64 * 0.7).sin()))
+    ///     .collect();
+    /// let (frame, offset, off) = PlaneFrame::fit_points(&pts)?;
+    /// assert!((frame.normal - Vector3::y()).norm() < 1e-12);
+    /// assert!((offset - 5.0).abs() < 1e-12 && off < 1e-12);
+    /// let q = frame.to_plane(&pts[3]);
+    /// assert!((frame.to_world(offset, &q) - pts[3]).norm() < 1e-12);
+    /// # Ok::<(), geom::GeomError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`GeomError::ZeroDirection`] for fewer than 2 distinct or non-finite points.
+    pub fn fit_points(points: &[Vector3<f64>]) -> Result<(Self, f64, f64)> {
+        if points.is_empty() || points.iter().any(|p| !p.iter().all(|c| c.is_finite())) {
+            return Err(GeomError::ZeroDirection);
+        }
+        let c = points.iter().sum::<Vector3<f64>>() / points.len() as f64;
+        let mut cov = nalgebra::Matrix3::zeros();
+        for p in points {
+            let d = p - c;
+            cov += d * d.transpose();
+        }
+        if !(cov.norm() > 0.0) || !cov.norm().is_finite() {
+            return Err(GeomError::ZeroDirection);
+        }
+        let eig = nalgebra::SymmetricEigen::new(cov);
+        let (i, _) =
+            eig.eigenvalues
+                .iter()
+                .enumerate()
+                .fold(
+                    (0, f64::INFINITY),
+                    |best, (i, &l)| if l < best.1 { (i, l) } else { best },
+                );
+        let mut n: Vector3<f64> = eig.eigenvectors.column(i).into_owned();
+        let largest = n
+            .iter()
+            .fold(0.0f64, |m, &x| if x.abs() > m.abs() { x } else { m });
+        if largest < 0.0 {
+            n = -n;
+        }
+        let frame = Self::from_direction(n)?;
+        let offset = frame.normal.dot(&c);
+        let off = points
+            .iter()
+            .map(|p| (frame.normal.dot(p) - offset).abs())
+            .fold(0.0, f64::max);
+        Ok((frame, offset, off))
+    }
+
     /// Plane coordinates `(u·p, v·p)` of a world point.
     pub fn to_plane(&self, p: &Vector3<f64>) -> Vector2<f64> {
         Vector2::new(self.u.dot(p), self.v.dot(p))

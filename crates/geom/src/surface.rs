@@ -518,27 +518,69 @@ fn fit_pieces(
                     closed,
                 },
             )| {
-                let fit = fit_smoothing_allowing(&points, None, smoothing, deviation.as_deref())?;
-                let n = points.len();
-                let end_margins = (
-                    (points[1] - points[0]).norm(),
-                    (points[n - 1] - points[n - 2]).norm(),
-                );
-                Ok(Section {
-                    end_margins,
-                    index,
-                    piece,
-                    offset,
-                    closed,
-                    curve: SectionCurve::Spline(SplineCurve2::new(fit.curve)),
-                    points,
-                    fit_rms: fit.rms,
-                    precision: fit.precision,
-                    quantization,
-                })
+                let mut s = Section::from_points(points, deviation.as_deref(), closed, smoothing)?;
+                s.index = index;
+                s.piece = piece;
+                s.offset = offset;
+                s.quantization = quantization;
+                Ok(s)
             },
         )
         .collect()
+}
+
+impl Section {
+    /// A section given as points of its plane, as a sectioned polyline is: a smoothing
+    /// spline through them (`smoothing`), its end margins and the points' precision, so
+    /// that [`Section::analysis_params`] reads it as it reads a mesh's sections. `deviation`:
+    /// how far each point may lie from the true curve (`None`: exact points). Index, piece
+    /// and offset are 0.
+    ///
+    /// ```
+    /// use geom::fit::SmoothingParams;
+    /// use geom::surface::Section;
+    /// use nalgebra::Vector2;
+    /// let pts: Vec<Vector2<f64>> = (0..50).map(|i| {
+    ///     let x = i as f64 * 10.0;
+    ///     Vector2::new(x, 30.0 * (x / 80.0).sin())
+    /// }).collect();
+    /// let s = Section::from_points(pts, None, false, &SmoothingParams::default())?;
+    /// assert!(s.fit_rms < 0.05 && !s.closed);
+    /// # Ok::<(), geom::GeomError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`GeomError::InvalidFit`] for fewer than 2 points, or the smoothing fit's.
+    pub fn from_points(
+        points: Vec<Vector2<f64>>,
+        deviation: Option<&[f64]>,
+        closed: bool,
+        smoothing: &SmoothingParams,
+    ) -> Result<Section> {
+        let n = points.len();
+        if n < 2 {
+            return Err(GeomError::InvalidFit(format!(
+                "a section needs at least 2 points, got {n}"
+            )));
+        }
+        let fit = fit_smoothing_allowing(&points, None, smoothing, deviation)?;
+        let end_margins = (
+            (points[1] - points[0]).norm(),
+            (points[n - 1] - points[n - 2]).norm(),
+        );
+        Ok(Section {
+            end_margins,
+            index: 0,
+            piece: 0,
+            offset: 0.0,
+            closed,
+            curve: SectionCurve::Spline(SplineCurve2::new(fit.curve)),
+            points,
+            fit_rms: fit.rms,
+            precision: fit.precision,
+            quantization: 0.0,
+        })
+    }
 }
 
 /// Surface points on an `n × n` parameter grid, with their parameters.

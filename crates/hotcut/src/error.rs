@@ -99,6 +99,10 @@ pub enum HotcutError {
         /// The writer's error.
         source: export::ExportError,
     },
+    /// The run was stopped at the caller's request ([`crate::Progress::cancelled`]); no
+    /// output was placed.
+    #[error("the run was stopped before it finished; the earlier output, if any, is unchanged")]
+    Cancelled,
     /// File-system failure.
     #[error("{path}: {source}")]
     Io {

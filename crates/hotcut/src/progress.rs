@@ -10,6 +10,14 @@ pub trait Progress: Sync {
     fn finish(&self);
     /// A status line for the current step (e.g. iteration, blocks and E). Default: ignored.
     fn message(&self, _status: &str) {}
+    /// Whether the caller wants the run stopped (e.g. Ctrl-C in Python). The runner checks
+    /// it before it writes anything and again, under the output lock, before a finished
+    /// run takes the place of the earlier output, so a stopped run leaves the earlier
+    /// output whole ([`HotcutError::Cancelled`](crate::HotcutError::Cancelled)). Default:
+    /// never.
+    fn cancelled(&self) -> bool {
+        false
+    }
 }
 
 /// Reports nothing.

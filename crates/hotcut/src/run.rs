@@ -74,6 +74,41 @@ pub fn run_job(job: &ResolvedJob, out: &Path, progress: &dyn Progress) -> Result
     job.task.visit(Runner { job, out, progress })
 }
 
+/// Runs a resolved job without writing a file: its report (and nothing else, unless
+/// `outputs` names files, which are rendered into memory). A run with nothing to cut is
+/// no error here: [`MemoryRun::nothing_to_cut`](crate::render::MemoryRun::nothing_to_cut)
+/// says why. The Python bindings' `run(job)` without a folder.
+///
+/// # Errors
+/// Failures of the task or of a writer; [`HotcutError::Cancelled`] when `progress` asked
+/// for it.
+pub fn run_in_memory(
+    job: &ResolvedJob,
+    outputs: &[OutputSpec],
+    progress: &dyn Progress,
+) -> Result<crate::render::MemoryRun> {
+    struct InMemory<'a> {
+        job: &'a ResolvedJob,
+        outputs: &'a [OutputSpec],
+        progress: &'a dyn Progress,
+    }
+    impl Visit for InMemory<'_> {
+        type Output = Result<crate::render::MemoryRun>;
+        fn visit<T: Task>(self, task: &T) -> Self::Output {
+            let r = crate::render::in_memory(task, &self.job.context, self.outputs, self.progress)?;
+            if self.progress.cancelled() {
+                return Err(HotcutError::Cancelled);
+            }
+            Ok(r)
+        }
+    }
+    job.task.visit(InMemory {
+        job,
+        outputs,
+        progress,
+    })
+}
+
 /// Runs `job` with `T` and type-erases the outcome.
 struct Runner<'a> {
     job: &'a ResolvedJob,
@@ -115,6 +150,9 @@ pub fn run_task<T: Task>(
     let start = std::time::Instant::now();
     let params = task.params(job)?;
     let run = T::run(&params, job, progress)?;
+    if progress.cancelled() {
+        return Err(HotcutError::Cancelled);
+    }
     let refused = T::nothing_to_cut(&run);
     let outputs = to_write::<T>(job, own_outputs(task, outputs), &refused)?;
     let report = T::report(&params, &run, job);
@@ -135,26 +173,22 @@ pub fn run_task<T: Task>(
             .prefix(&prefix)
             .tempdir_in(out)
             .map_err(io(out))?;
-        let kept = tmp.keep();
-        list.push(kept.clone());
+        let kept = Temporary(tmp.keep());
+        list.push(kept.0.clone());
         kept
     };
-    let mut files = Files::new(&kept);
+    let mut files = Files::new(&kept.0);
     let rendered = render(&done, &outputs, &mut files, refused.is_none(), start);
     let placed = match rendered {
-        Ok(()) => place(&kept, &dir).map(|()| files.into_names()),
+        Ok(()) => place(&kept.0, &dir, progress).map(|()| files.into_names()),
         Err((file, source)) => Err(HotcutError::Export {
             path: dir.join(file),
             source,
         }),
     };
-    {
-        // whatever is left at the temporary path (a failed run's files, or the earlier
-        // output swapped out) goes
-        let mut list = in_progress();
-        remove_entry(&kept);
-        list.retain(|p| p != &kept);
-    }
+    // whatever is left at the temporary path (a failed run's files, or the earlier output
+    // swapped out) goes
+    drop(kept);
     let files = match (placed, &refused) {
         (Ok(files), _) => files,
         (Err(e), None) => return Err(e),
@@ -179,6 +213,18 @@ pub fn run_task<T: Task>(
         run,
         report,
     })
+}
+
+/// A run's temporary folder: deleted and unlisted when dropped, also when the run
+/// unwinds (a stopped run, a writer's panic), so no half-written folder is left behind.
+struct Temporary(PathBuf);
+
+impl Drop for Temporary {
+    fn drop(&mut self) {
+        let mut list = in_progress();
+        remove_entry(&self.0);
+        list.retain(|p| p != &self.0);
+    }
 }
 
 /// Temporary folders of this process's runs in progress.
@@ -267,9 +313,14 @@ fn process_alive(pid: u32) -> bool {
 
 /// Puts the finished folder `tmp` at `dir`: renamed there when `dir` does not exist,
 /// else swapped with it atomically (after which `tmp` holds the earlier output, for the
-/// caller to delete). Holds the in-progress lock, so a signal handler waits for it.
-fn place(tmp: &Path, dir: &Path) -> Result<()> {
+/// caller to delete). Holds the in-progress lock, so a signal handler waits for it; a run
+/// whose `progress` was cancelled is not placed.
+fn place(tmp: &Path, dir: &Path, progress: &dyn Progress) -> Result<()> {
     let _guard = in_progress();
+    // a caller that stopped the run keeps its earlier output (checked under the lock)
+    if progress.cancelled() {
+        return Err(HotcutError::Cancelled);
+    }
     // a concurrent run may create or remove `dir` between the attempts: a few rounds
     let mut last = None;
     for _ in 0..4 {

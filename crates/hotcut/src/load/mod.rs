@@ -30,7 +30,7 @@ mod surface;
 /// `task: Analyze` read as `task: Analyze()` (the unit form of struct variants).
 mod unit_form;
 
-pub use parse::parse_job;
+pub use parse::{parse_job, parse_job_json};
 pub use schema::{job_schema, validate_schema};
 
 /// A job whose every field was checked, with its surface loaded.
@@ -237,8 +237,68 @@ pub fn load_job_with(path: &Path, limits: &Limits) -> Result<ResolvedJob, Vec<Jo
             message,
         }]
     })?;
+    load_job_text(path, text, limits)
+}
+
+/// [`load_job_with`] for job text that is not read from `path`: `path` names the job in
+/// messages and its folder is where relative file names (meshes, curve files) are looked
+/// up. The Python bindings load a job given as RON text this way.
+///
+/// # Errors
+/// As [`load_job`].
+///
+/// # Example
+/// ```
+/// let text = r#"Job(name: "t", surface: HeightField(z: "x*y", x: (0, 1), y: (0, 1)), task: Analyze())"#;
+/// let job = hotcut::load::load_job_text(std::path::Path::new("<text>"), text.into(), &Default::default()).unwrap();
+/// assert_eq!(job.context.name, "t");
+/// ```
+pub fn load_job_text(
+    path: &Path,
+    text: String,
+    limits: &Limits,
+) -> Result<ResolvedJob, Vec<JobError>> {
+    if text.len() as u64 > MAX_JOB_BYTES {
+        return Err(vec![JobError::Read {
+            path: path.to_path_buf(),
+            message: format!(
+                "{}: the job is {} bytes, more than a job may have ({MAX_JOB_BYTES})",
+                path.display(),
+                text.len()
+            ),
+        }]);
+    }
     let job = parse_job(path, &text).map_err(|e| vec![e])?;
     validate_schema(path, &job)?;
+    let mut resolved = resolve_with(path, job, limits)?;
+    resolved.context.job_file = Some(text);
+    Ok(resolved)
+}
+
+/// [`load_job_text`] for a job in its JSON form (see [`parse_job_json`]): the Python
+/// bindings turn a `dict` job into it. The job is echoed in `report.html` as RON, every
+/// default filled in.
+///
+/// # Errors
+/// As [`load_job`]; a field that does not fit is named by its JSON pointer.
+pub fn load_job_json(
+    path: &Path,
+    json: &str,
+    limits: &Limits,
+) -> Result<ResolvedJob, Vec<JobError>> {
+    if json.len() as u64 > MAX_JOB_BYTES {
+        return Err(vec![JobError::Read {
+            path: path.to_path_buf(),
+            message: format!(
+                "{}: the job is {} bytes of JSON, more than a job may have ({MAX_JOB_BYTES})",
+                path.display(),
+                json.len()
+            ),
+        }]);
+    }
+    let job = parse_job_json(path, json).map_err(|e| vec![e])?;
+    validate_schema(path, &job)?;
+    let text = pretty_job(&job);
     let mut resolved = resolve_with(path, job, limits)?;
     resolved.context.job_file = Some(text);
     Ok(resolved)

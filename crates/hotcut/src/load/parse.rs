@@ -99,3 +99,38 @@ pub fn parse_job(path: &Path, text: &str) -> Result<Job, JobError> {
         }
     }
 }
+
+/// Layer 1 for a job given as data rather than as a file: its JSON form (the form of
+/// `schemas/job.schema.json`: enum variants as one-key objects, `{"HeightField": {..}}`,
+/// tuples as arrays). The Python bindings hand a `dict` job here.
+///
+/// # Errors
+/// [`JobError::Schema`] with the JSON pointer of the field that does not fit (unknown
+/// field, wrong type, missing field); [`JobError::Syntax`] for text that is not JSON.
+pub fn parse_job_json(path: &Path, text: &str) -> Result<Job, JobError> {
+    let mut de = serde_json::Deserializer::from_str(text);
+    let mut track = serde_path_to_error::Track::new();
+    let result = Job::deserialize(serde_path_to_error::Deserializer::new(&mut de, &mut track));
+    match result.and_then(|job| de.end().map(|()| job)) {
+        Ok(job) => Ok(job),
+        Err(e) if e.is_syntax() || e.is_eof() || e.is_io() => Err(JobError::Syntax {
+            path: path.to_path_buf(),
+            line: e.line(),
+            col: e.column(),
+            message: e.to_string(),
+        }),
+        Err(e) => {
+            // serde_json appends " at line L column C" of its own text: not the user's
+            let message = e.to_string();
+            let message = match message.rfind(" at line ") {
+                Some(i) => message[..i].to_string(),
+                None => message,
+            };
+            Err(JobError::Schema {
+                path: path.to_path_buf(),
+                pointer: pointer_of(&track.path()),
+                message,
+            })
+        }
+    }
+}
