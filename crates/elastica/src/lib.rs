@@ -68,7 +68,7 @@ pub use clearance::{place, Clearance, Section};
 pub use discrete::{discrete_elastica, DiscreteElastica, DiscreteError, DiscreteParams};
 pub use elliptic::{ellip_e, ellip_k, jacobi, Elliptic, EllipticError, JacobiValues};
 pub use fit::{
-    fit_curve, fit_points, fit_points_with_arclength, fit_with_end_tangents, FitConstraint,
+    fit_curve, fit_points, fit_points_with_arclength, fit_with_end_tangents, polish, FitConstraint,
     FitError, FitParams, FitResult,
 };
 pub use segment::{ElasticaParams, Segment, SegmentPoint};

@@ -16,6 +16,15 @@ use nalgebra::Vector2;
 use crate::survey::{violations, SurveyParams, Violation};
 use crate::SegError;
 
+/// Curvature samples of the sign test (eq. 5.2) for a section of `n` points, when the
+/// caller does not choose: two per point, 64 to 2000 (the `Analyze` task reads 2000 per
+/// section, whatever its length). The smoothing spline through `n` points has about `n/2`
+/// cubic spans, so this reads every span at least 4 times, while a dragged curve is
+/// checked within a millisecond.
+pub fn default_samples(n: usize) -> usize {
+    (2 * n).clamp(64, 2000)
+}
+
 /// Parameters of [`check_section`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct CheckParams {

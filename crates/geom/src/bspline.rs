@@ -86,12 +86,40 @@ pub(crate) fn find_span(degree: usize, knots: &[f64], n: usize, t: f64) -> usize
 
 /// The non-zero basis functions `β_{span-p..=span}^p(t)` by the triangular Cox–de Boor scheme.
 pub(crate) fn basis_funs(degree: usize, knots: &[f64], span: usize, t: f64, out: &mut Vec<f64>) {
-    let p = degree;
     out.clear();
-    out.resize(p + 1, 0.0);
+    out.resize(degree + 1, 0.0);
+    basis_into(degree, knots, span, t, out);
+}
+
+/// Degrees below this are evaluated without allocating (the curves of this workspace are
+/// cubic; allocation was most of a section check's time).
+const STACK_DEGREE: usize = 15;
+
+/// [`basis_funs`] into `out[..=degree]`, without allocating for degrees below
+/// [`STACK_DEGREE`].
+fn basis_into(degree: usize, knots: &[f64], span: usize, t: f64, out: &mut [f64]) {
+    if degree < STACK_DEGREE {
+        let (mut left, mut right) = ([0.0; STACK_DEGREE + 1], [0.0; STACK_DEGREE + 1]);
+        basis_scheme(degree, knots, span, t, out, &mut left, &mut right);
+    } else {
+        let (mut left, mut right) = (vec![0.0; degree + 1], vec![0.0; degree + 1]);
+        basis_scheme(degree, knots, span, t, out, &mut left, &mut right);
+    }
+}
+
+/// The triangular scheme itself, with its work arrays.
+fn basis_scheme(
+    degree: usize,
+    knots: &[f64],
+    span: usize,
+    t: f64,
+    out: &mut [f64],
+    left: &mut [f64],
+    right: &mut [f64],
+) {
+    let p = degree;
+    out[..=p].fill(0.0);
     out[0] = 1.0;
-    let mut left = vec![0.0; p + 1];
-    let mut right = vec![0.0; p + 1];
     for j in 1..=p {
         left[j] = t - knots[span + 1 - j];
         right[j] = knots[span + j] - t;
@@ -241,7 +269,18 @@ impl<const D: usize> BSplineCurve<D> {
 
     /// The point `s(t)`; `t` outside the domain evaluates the end polynomial pieces.
     pub fn eval(&self, t: f64) -> SVector<f64, D> {
-        let (first, b) = self.basis_at(t);
+        if self.degree >= STACK_DEGREE {
+            let (first, b) = self.basis_at(t);
+            return self.combine(first, &b);
+        }
+        let span = self.span(t);
+        let mut b = [0.0; STACK_DEGREE + 1];
+        basis_into(self.degree, &self.knots, span, t, &mut b);
+        self.combine(span - self.degree, &b[..=self.degree])
+    }
+
+    /// `Σ b[k] · control[first + k]`.
+    fn combine(&self, first: usize, b: &[f64]) -> SVector<f64, D> {
         let mut p = SVector::<f64, D>::zeros();
         for (k, bk) in b.iter().enumerate() {
             p += self.control[first + k] * *bk;

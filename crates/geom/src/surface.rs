@@ -103,6 +103,12 @@ impl PlanarCurve for SectionCurve {
             Self::Offset(o) => o.jet(t),
         }
     }
+    fn velocity(&self, t: f64) -> Vector2<f64> {
+        match self {
+            Self::Spline(s) => s.velocity(t),
+            other => other.jet(t).d1,
+        }
+    }
 }
 
 /// A planar curve moved by `distance` along its left unit normal `n` (`+90°` from the

@@ -46,20 +46,22 @@ fn out_point(py: Python<'_>, plane: &Option<Plane>, q: [f64; 2]) -> PyResult<Py<
     row(py, &to_caller(plane, q))
 }
 
-/// `check_section(points, blade, tolerance=None, *, units="mm", samples=2000,
+/// `check_section(points, blade, tolerance=None, *, units="mm", samples=None,
 /// plane_tolerance=None)`.
 #[pyfunction]
-#[pyo3(signature = (points, blade, tolerance=None, *, units="mm", samples=2000, plane_tolerance=None))]
+#[pyo3(signature = (points, blade, tolerance=None, *, units="mm", samples=None, plane_tolerance=None))]
 fn check_section(
     py: Python<'_>,
     points: &Bound<'_, PyAny>,
     blade: &Bound<'_, PyAny>,
     tolerance: Option<&Bound<'_, PyAny>>,
     units: &str,
-    samples: usize,
+    samples: Option<usize>,
     plane_tolerance: Option<f64>,
 ) -> PyResult<Py<PyAny>> {
     guarded(|| {
+        let pts = crate::convert::points(points, "points", 3)?;
+        let samples = samples.unwrap_or(facade_seg::check::default_samples(pts.xyz.len()));
         let u = self::units(units)?;
         let blade: BladeSpec = spec(blade, "blade")?;
         let tol: ToleranceSpec = match tolerance {
@@ -72,7 +74,6 @@ fn check_section(
                 "samples: expected 8 to 10⁶, got {samples}"
             )));
         }
-        let pts = crate::convert::points(points, "points", 3)?;
         let (xy, plane) = planar(&pts, plane_tolerance)?;
         let params = CheckParams {
             survey: SurveyParams {

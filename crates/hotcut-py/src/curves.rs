@@ -319,10 +319,12 @@ pub fn planar(
 
 /// `fit(points, constraint="free", *, plane_tolerance=None)`.
 #[pyfunction]
-#[pyo3(signature = (points, constraint="free", *, plane_tolerance=None))]
+#[pyo3(signature = (points, constraint="free", *, arc_length=None, polish=true, plane_tolerance=None))]
 fn fit(
     points: &Bound<'_, PyAny>,
     constraint: &str,
+    arc_length: Option<&Bound<'_, PyAny>>,
+    polish: bool,
     plane_tolerance: Option<f64>,
 ) -> PyResult<Elastica> {
     guarded(|| {
@@ -333,8 +335,37 @@ fn fit(
             constraint: c,
             ..FitParams::default()
         };
-        let f = elastica::fit_points(&xy, &params)
-            .map_err(|e| PyValueError::new_err(format!("fit: {e}")))?;
+        let s = match arc_length {
+            None => geom::polyline::chord_lengths(&xy),
+            Some(s) => {
+                let s = match floats(s)? {
+                    Ok(s) => s,
+                    Err(_) => {
+                        return Err(PyValueError::new_err(
+                            "arc_length: expected one number per point",
+                        ))
+                    }
+                };
+                if s.len() != xy.len() {
+                    return Err(PyValueError::new_err(format!(
+                        "arc_length: {} numbers for {} points",
+                        s.len(),
+                        xy.len()
+                    )));
+                }
+                if !s.iter().all(|v| v.is_finite()) || s.windows(2).any(|w| !(w[1] > w[0])) {
+                    return Err(PyValueError::new_err(
+                        "arc_length: must be finite and strictly increasing",
+                    ));
+                }
+                s
+            }
+        };
+        let error = |e: elastica::FitError| PyValueError::new_err(format!("fit: {e}"));
+        let mut f = elastica::fit_points_with_arclength(&xy, &s, &params).map_err(error)?;
+        if polish {
+            f = elastica::polish(&xy, &s, &f, &params).map_err(error)?;
+        }
         Ok(Elastica {
             segment: f.segment,
             plane,
