@@ -67,7 +67,7 @@ fn value_error(what: &str, message: impl std::fmt::Display) -> PyErr {
 /// Whether `obj` is a numpy array (without importing numpy).
 fn is_ndarray(obj: &Bound<'_, PyAny>) -> bool {
     let ty = obj.get_type();
-    ty.name().is_ok_and(|n| n.to_string() == "ndarray")
+    ty.name().is_ok_and(|n| n == "ndarray")
         && ty
             .module()
             .is_ok_and(|m| m.to_string().starts_with("numpy"))
