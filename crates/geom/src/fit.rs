@@ -102,79 +102,101 @@ fn solve_penalised<const D: usize>(
     n: usize,
     lambda: f64,
 ) -> Option<Vec<SVector<f64, D>>> {
-    let (a, b) = line_through(points, params);
-    let greville: Vec<f64> = (0..n)
-        .map(|i| knots[i + 1..=i + degree].iter().sum::<f64>() / degree.max(1) as f64)
-        .collect();
-    let rest: Vec<SVector<f64, D>> = points
-        .iter()
-        .zip(params)
-        .map(|(p, &t)| p - (a + b * t))
-        .collect();
-    let control = solve_penalised_about(&rest, params, degree, knots, n, lambda)?;
-    Some(
-        control
-            .into_iter()
-            .zip(&greville)
-            .map(|(c, &g)| c + a + b * g)
-            .collect(),
-    )
+    Penalised::new(points, params, degree, knots, n).solve(lambda)
 }
 
-/// [`solve_penalised`] of points already near zero.
-fn solve_penalised_about<const D: usize>(
-    points: &[SVector<f64, D>],
-    params: &[f64],
-    degree: usize,
-    knots: &[f64],
+/// The penalised least-squares system of [`solve_penalised`] with its data part assembled
+/// once, so that a search over λ solves it again without reassembling (the same numbers,
+/// added in the same order).
+struct Penalised<const D: usize> {
+    /// The straight line `a + b·t` the points are fitted about.
+    line: (SVector<f64, D>, SVector<f64, D>),
+    /// Greville abscissae of the control points.
+    greville: Vec<f64>,
+    /// `BᵀB` of the points about the line.
+    data: SymBand,
+    /// `Bᵀy`.
+    rhs: Vec<[f64; D]>,
     n: usize,
-    lambda: f64,
-) -> Option<Vec<SVector<f64, D>>> {
-    let band = degree.max(2);
-    let mut a = SymBand::zeros(n, band);
-    let mut rhs = vec![[0.0; D]; n];
-    let mut b = Vec::new();
-    for (p, &t) in points.iter().zip(params) {
-        let span = find_span(degree, knots, n, t);
-        basis_funs(degree, knots, span, t, &mut b);
-        let first = span - degree;
-        for (i, bi) in b.iter().enumerate() {
-            for (j, bj) in b.iter().enumerate().skip(i) {
-                a.add(first + i, first + j, bi * bj);
-            }
-            for c in 0..D {
-                rhs[first + i][c] += bi * p[c];
-            }
-        }
-    }
-    if lambda > 0.0 && n >= 3 {
-        // Second divided differences over the Greville abscissae gᵢ: their null space is
-        // cᵢ = A + B·gᵢ, i.e. exactly the straight lines parameterised linearly (linear
-        // precision), so a chord-length parameterised straight stretch is not penalised.
-        let g: Vec<f64> = (0..n)
+}
+
+impl<const D: usize> Penalised<D> {
+    fn new(
+        points: &[SVector<f64, D>],
+        params: &[f64],
+        degree: usize,
+        knots: &[f64],
+        n: usize,
+    ) -> Self {
+        let (a, b) = line_through(points, params);
+        let greville: Vec<f64> = (0..n)
             .map(|i| knots[i + 1..=i + degree].iter().sum::<f64>() / degree.max(1) as f64)
             .collect();
-        let mean = (g[n - 1] - g[0]) / (n - 1) as f64;
-        for i in 0..n - 2 {
-            let (h0, h1) = (
-                (g[i + 1] - g[i]).max(1e-300),
-                (g[i + 2] - g[i + 1]).max(1e-300),
-            );
-            let w = [mean / h0, -mean / h0 - mean / h1, mean / h1];
-            for r in 0..3 {
-                for s in r..3 {
-                    a.add(i + r, i + s, lambda * w[r] * w[s]);
+        let band = degree.max(2);
+        let mut data = SymBand::zeros(n, band);
+        let mut rhs = vec![[0.0; D]; n];
+        let mut basis = Vec::new();
+        for (p, &t) in points.iter().zip(params) {
+            let p = p - (a + b * t);
+            let span = find_span(degree, knots, n, t);
+            basis_funs(degree, knots, span, t, &mut basis);
+            let first = span - degree;
+            for (i, bi) in basis.iter().enumerate() {
+                for (j, bj) in basis.iter().enumerate().skip(i) {
+                    data.add(first + i, first + j, bi * bj);
+                }
+                for c in 0..D {
+                    rhs[first + i][c] += bi * p[c];
                 }
             }
         }
+        Self {
+            line: (a, b),
+            greville,
+            data,
+            rhs,
+            n,
+        }
     }
-    // a tiny ridge keeps spans without data solvable; it does not change well-posed fits
-    let scale = a.rows.iter().map(|r| r[0]).fold(0.0, f64::max).max(1.0);
-    for i in 0..n {
-        a.rows[i][0] += 1e-12 * scale;
+
+    /// The control points at smoothing weight `lambda`.
+    fn solve(&self, lambda: f64) -> Option<Vec<SVector<f64, D>>> {
+        let n = self.n;
+        let mut a = self.data.clone();
+        if lambda > 0.0 && n >= 3 {
+            // Second divided differences over the Greville abscissae gᵢ: their null space is
+            // cᵢ = A + B·gᵢ, i.e. exactly the straight lines parameterised linearly (linear
+            // precision), so a chord-length parameterised straight stretch is not penalised.
+            let g = &self.greville;
+            let mean = (g[n - 1] - g[0]) / (n - 1) as f64;
+            for i in 0..n - 2 {
+                let (h0, h1) = (
+                    (g[i + 1] - g[i]).max(1e-300),
+                    (g[i + 2] - g[i + 1]).max(1e-300),
+                );
+                let w = [mean / h0, -mean / h0 - mean / h1, mean / h1];
+                for r in 0..3 {
+                    for s in r..3 {
+                        a.add(i + r, i + s, lambda * w[r] * w[s]);
+                    }
+                }
+            }
+        }
+        // a tiny ridge keeps spans without data solvable; it does not change well-posed fits
+        let scale = a.rows.iter().map(|r| r[0]).fold(0.0, f64::max).max(1.0);
+        for i in 0..n {
+            a.rows[i][0] += 1e-12 * scale;
+        }
+        let sol = a.solve(&self.rhs)?;
+        let (la, lb) = self.line;
+        Some(
+            sol.into_iter()
+                .map(SVector::<f64, D>::from)
+                .zip(&self.greville)
+                .map(|(c, &g)| c + la + lb * g)
+                .collect(),
+        )
     }
-    let sol = a.solve(&rhs)?;
-    Some(sol.into_iter().map(SVector::<f64, D>::from).collect())
 }
 
 /// RMS residual, largest residual, and largest residual relative to each point's allowance.
@@ -438,6 +460,7 @@ fn fit_smoothing_at_origin<const D: usize>(
     }
     let allow: Vec<f64> = precision.iter().map(|p| p.max(opts.tolerance)).collect();
 
+    let system = Penalised::new(points, params, degree, &knots, n);
     // Scale λ so that it is dimensionless: data term ~ m, penalty term ~ n.
     let unit = m as f64 / n as f64;
     let fit_at = |log_lambda: f64| -> Option<(BSplineCurve<D>, f64, f64, f64)> {
@@ -446,7 +469,7 @@ fn fit_smoothing_at_origin<const D: usize>(
         } else {
             0.0
         };
-        let control = solve_penalised(points, params, degree, &knots, n, lambda)?;
+        let control = system.solve(lambda)?;
         let curve = BSplineCurve::try_new(degree, knots.clone(), control).ok()?;
         let (rms, max, ratio) = residuals(&curve, points, params, &allow);
         Some((curve, rms, max, ratio))

@@ -125,6 +125,11 @@ fn points_of_array(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Points> {
 /// One point: a sequence of 2 or 3 numbers, or an object with `X`, `Y` (and `Z`), as
 /// Rhino's points are.
 fn point(item: &Bound<'_, PyAny>, what: &str, i: usize) -> PyResult<(usize, [f64; 3])> {
+    // tuples and lists first: asking them for `X` would raise (and cost) an AttributeError
+    let plain = item.is_instance_of::<PyTuple>() || item.is_instance_of::<PyList>();
+    if plain {
+        return coordinates(item, what, i);
+    }
     if let (Ok(x), Ok(y)) = (item.getattr("X"), item.getattr("Y")) {
         let z = match item.getattr("Z") {
             Ok(z) => Some(z.extract::<f64>()?),
@@ -135,6 +140,11 @@ fn point(item: &Bound<'_, PyAny>, what: &str, i: usize) -> PyResult<(usize, [f64
             [x.extract()?, y.extract()?, z.unwrap_or(0.0)],
         ));
     }
+    coordinates(item, what, i)
+}
+
+/// The 2 or 3 numbers of a point given as a sequence.
+fn coordinates(item: &Bound<'_, PyAny>, what: &str, i: usize) -> PyResult<(usize, [f64; 3])> {
     let mut q = [0.0; 3];
     let mut d = 0;
     let iter = item.try_iter().map_err(|_| {

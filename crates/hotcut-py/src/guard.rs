@@ -38,7 +38,28 @@ fn _panic_for_test(message: &str) -> PyResult<()> {
     guarded(|| panic!("{message}"))
 }
 
-/// Adds the test hook.
+/// Adds the test and benchmark hooks.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(_panic_for_test, m)?)
+    m.add_function(wrap_pyfunction!(_panic_for_test, m)?)?;
+    m.add_function(wrap_pyfunction!(_rust_fit_seconds, m)?)
+}
+
+/// Benchmark hook (`python/bench/overhead.py`): seconds per call of the Rust work behind
+/// `hotcut.elastica.fit(points)` (chord lengths, the fit, its polish) on 2-D `points`,
+/// timed over `repeats` calls inside Rust — the baseline the bindings' overhead is
+/// measured against, in the same process and build.
+#[pyfunction]
+fn _rust_fit_seconds(points: Vec<[f64; 2]>, repeats: usize) -> PyResult<f64> {
+    guarded(|| {
+        let params = elastica::FitParams::default();
+        let s = geom::polyline::chord_lengths(&points);
+        let start = std::time::Instant::now();
+        for _ in 0..repeats.max(1) {
+            let f = elastica::fit_points_with_arclength(&points, &s, &params)
+                .and_then(|f| elastica::polish(&points, &s, &f, &params))
+                .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+            std::hint::black_box(f);
+        }
+        Ok(start.elapsed().as_secs_f64() / repeats.max(1) as f64)
+    })
 }
