@@ -199,3 +199,23 @@ def test_nothing_to_cut_raises_run_error_with_the_report(tmp_path):
         hotcut.run(job, tmp_path)
     written = sorted(p.name for p in (tmp_path / "ruled-wave").iterdir())
     assert not any(n.endswith(".gcode") for n in written) and "report.json" in written
+
+
+def test_run_releases_the_gil():
+    done = threading.Event()
+    result = {}
+
+    def work():
+        result["report"] = hotcut.run(JOBS / "seg-wavy-inflection.ron")
+        done.set()
+
+    t = threading.Thread(target=work)
+    t.start()
+    time.sleep(0.05)
+    # while the run goes on, this thread keeps running Python
+    counted, start = 0, time.monotonic()
+    while not done.is_set() and time.monotonic() - start < 0.3:
+        counted += 1
+    t.join()
+    assert result["report"]
+    assert counted > 10_000, f"only {counted} loops ran beside the run: the GIL was held"
