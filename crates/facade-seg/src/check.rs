@@ -1,6 +1,7 @@
 //! One section checked while it is drawn (thesis §5.1): a designer drags a control point
 //! and asks whether the blade can cut the curve. The points are read as a sectioned
-//! polyline is read (a smoothing spline through them, [`Section::from_points`]), analysed
+//! polyline is read (a smoothing spline through them,
+//! [`Section::from_points`](geom::surface::Section::from_points)), analysed
 //! for length, inflections and curvature like every section of the `Analyze` task, and
 //! fitted by one elastica ([`elastica::fit_points`]), whose distance from the points is
 //! held to the tolerance.
@@ -106,7 +107,8 @@ pub struct SectionCheck {
 /// ```
 ///
 /// # Errors
-/// [`SegError::Invalid`] for fewer than 3 distinct points, non-finite coordinates or
+/// [`SegError::Invalid`] for fewer than 3 distinct points (a repeated consecutive point
+/// counts once, for the analysis and the fit alike), non-finite coordinates or
 /// tolerances; [`SegError::Section`] when the curve cannot be analysed.
 pub fn check_section(points: &[[f64; 2]], params: &CheckParams) -> Result<SectionCheck, SegError> {
     let invalid = |what: &str, message: String| SegError::Invalid {
@@ -132,6 +134,9 @@ pub fn check_section(points: &[[f64; 2]], params: &CheckParams) -> Result<Sectio
         }
     }
     let distinct = distinct(points);
+    // the fit sees the same points as the analysis: a repeated vertex would stop its arc
+    // length from increasing
+    let cleaned: Vec<[f64; 2]> = distinct.iter().map(|p| [p.x, p.y]).collect();
     if distinct.len() < 3 {
         return Err(invalid(
             "points",
@@ -165,7 +170,7 @@ pub fn check_section(points: &[[f64; 2]], params: &CheckParams) -> Result<Sectio
         curvature: p.curvature,
     };
     let violations = violations(&analysis, &params.survey);
-    let elastica = fit_points(points, &FitParams::default()).map_err(|e| e.to_string());
+    let elastica = fit_points(&cleaned, &FitParams::default()).map_err(|e| e.to_string());
     let fit_ok = elastica
         .as_ref()
         .is_ok_and(|f| f.rms <= params.rms && f.max <= params.max);
@@ -182,14 +187,24 @@ pub fn check_section(points: &[[f64; 2]], params: &CheckParams) -> Result<Sectio
     })
 }
 
-/// The points without consecutive repeats (within 10⁻⁹ of their size), as a sectioned
-/// polyline is cleaned.
+/// The points without consecutive repeats: a point within 10⁻¹² of the points' extent of
+/// the one before (a CAD polyline's repeated vertex) is dropped. Relative to the extent,
+/// so a section in metres or at 10³⁰⁰ keeps the same points as in millimetres.
 fn distinct(points: &[[f64; 2]]) -> Vec<Vector2<f64>> {
+    let first = points
+        .first()
+        .map_or(Vector2::zeros(), |p| Vector2::new(p[0], p[1]));
+    // the extent by coordinates, so it does not overflow where the points are finite
+    let gap = |a: &Vector2<f64>, b: &Vector2<f64>| (a.x - b.x).abs().max((a.y - b.y).abs());
+    let extent = points
+        .iter()
+        .map(|p| gap(&Vector2::new(p[0], p[1]), &first))
+        .fold(0.0, f64::max);
     let mut out: Vec<Vector2<f64>> = Vec::with_capacity(points.len());
     for p in points {
         let x = Vector2::new(p[0], p[1]);
         match out.last() {
-            Some(l) if (l - x).norm() <= 1e-9 * (1.0 + x.norm()) => {}
+            Some(l) if gap(l, &x) <= 1e-12 * extent => {}
             _ => out.push(x),
         }
     }

@@ -35,6 +35,40 @@ fn spec<T: serde::de::DeserializeOwned>(obj: &Bound<'_, PyAny>, what: &str) -> P
     serde_json::from_value(v).map_err(|e| PyValueError::new_err(format!("{what}: {e}")))
 }
 
+/// `ValueError` unless `v` is a finite number above 0 (or at 0, when `zero_ok`).
+pub fn positive(what: &str, v: f64, zero_ok: bool) -> PyResult<()> {
+    if v.is_finite() && (v > 0.0 || (zero_ok && v == 0.0)) {
+        return Ok(());
+    }
+    let want = if zero_ok {
+        "a number ≥ 0"
+    } else {
+        "a number > 0"
+    };
+    Err(PyValueError::new_err(format!(
+        "{what}: must be {want}, got {v:?}"
+    )))
+}
+
+/// The ranges a job's schema gives the blade's fields.
+fn check_blade(b: &BladeSpec) -> PyResult<()> {
+    positive("blade/length", b.length, false)?;
+    positive("blade/max_curvature", b.max_curvature, false)?;
+    if let Some(k) = b.kerf {
+        positive("blade/kerf", k, true)?;
+    }
+    Ok(())
+}
+
+/// The ranges a job's schema gives the tolerances.
+fn check_tolerance(t: &hotcut::spec::Tolerance) -> PyResult<()> {
+    positive("tolerance/rms", t.rms, false)?;
+    positive("tolerance/max", t.max, false)?;
+    positive("tolerance/smoothing", t.smoothing, true)?;
+    positive("tolerance/bisection", t.bisection, false)?;
+    positive("tolerance/min_turning", t.min_turning, true)
+}
+
 /// A dict of the serializable `v`, with `extra` entries set after.
 fn dict_of<'py>(py: Python<'py>, v: &impl serde::Serialize) -> PyResult<Bound<'py, PyDict>> {
     let v = serde_json::to_value(v).map_err(|e| PyValueError::new_err(e.to_string()))?;
@@ -56,24 +90,29 @@ fn check_section(
     blade: &Bound<'_, PyAny>,
     tolerance: Option<&Bound<'_, PyAny>>,
     units: &str,
-    samples: Option<usize>,
+    samples: Option<i64>,
     plane_tolerance: Option<f64>,
 ) -> PyResult<Py<PyAny>> {
     guarded(|| {
         let pts = crate::convert::points(points, "points", 3)?;
-        let samples = samples.unwrap_or(facade_seg::check::default_samples(pts.xyz.len()));
+        let samples = match samples {
+            None => facade_seg::check::default_samples(pts.xyz.len()),
+            Some(n) if (8..=1_000_000).contains(&n) => n as usize,
+            Some(n) => {
+                return Err(PyValueError::new_err(format!(
+                    "samples: expected 8 to 10⁶, got {n}"
+                )))
+            }
+        };
         let u = self::units(units)?;
         let blade: BladeSpec = spec(blade, "blade")?;
+        check_blade(&blade)?;
         let tol: ToleranceSpec = match tolerance {
             Some(t) => spec(t, "tolerance")?,
             None => ToleranceSpec::default(),
         };
         let tol = tol.resolve(u);
-        if !(8..=1_000_000).contains(&samples) {
-            return Err(PyValueError::new_err(format!(
-                "samples: expected 8 to 10⁶, got {samples}"
-            )));
-        }
+        check_tolerance(&tol)?;
         let (xy, plane) = planar(&pts, plane_tolerance)?;
         let params = CheckParams {
             survey: SurveyParams {
@@ -156,7 +195,7 @@ fn bezier_to_elastica(
     control_points: &Bound<'_, PyAny>,
     blade_length: f64,
     max_curvature: Option<f64>,
-    max_inflections: Option<usize>,
+    max_inflections: Option<i64>,
     plane_tolerance: Option<f64>,
 ) -> PyResult<Py<PyAny>> {
     guarded(|| {
@@ -167,6 +206,17 @@ fn bezier_to_elastica(
                 pts.xyz.len()
             )));
         }
+        positive("blade_length", blade_length, false)?;
+        let max_inflections = match max_inflections {
+            None => None,
+            Some(n) if (0..=i64::from(u32::MAX)).contains(&n) => Some(n as usize),
+            Some(n) => {
+                return Err(PyValueError::new_err(format!(
+                    "max_inflections: expected 0 to {}, got {n}",
+                    u32::MAX
+                )))
+            }
+        };
         if let Some(k) = max_curvature {
             if !(k.is_finite() && k > 0.0) {
                 return Err(PyValueError::new_err(format!(

@@ -231,13 +231,14 @@ impl Elastica {
     }
 
     /// `n ≥ 2` points at equal arc length from t = 0 to t = 1, (n, dim).
-    fn sample(&self, py: Python<'_>, n: usize) -> PyResult<Py<PyAny>> {
+    fn sample(&self, py: Python<'_>, n: i64) -> PyResult<Py<PyAny>> {
         guarded(|| {
             if !(2..=10_000_000).contains(&n) {
                 return Err(PyValueError::new_err(format!(
                     "sample: n must be between 2 and 10⁷, got {n}"
                 )));
             }
+            let n = n as usize;
             let pts = self
                 .segment
                 .sample(n)
@@ -301,6 +302,9 @@ pub fn planar(
     let (frame, offset, off) = PlaneFrame::fit_points(&v)
         .map_err(|_| PyValueError::new_err("points: they do not span a line, so no plane"))?;
     let extent = v.iter().map(|p| (p - v[0]).norm()).fold(0.0, f64::max);
+    if let Some(t) = plane_tolerance {
+        crate::checks::positive("plane_tolerance", t, true)?;
+    }
     let tol = plane_tolerance.unwrap_or(1e-6 * extent);
     if !(off <= tol) {
         return Err(PyValueError::new_err(format!(
@@ -408,6 +412,13 @@ fn between(
                 "between: p0 and p1 must be 2-D points",
             ));
         }
+        let chord = (b[0] - a[0]).hypot(b[1] - a[1]);
+        if !(chord.is_normal() && chord.is_finite()) {
+            return Err(PyValueError::new_err(format!(
+                "between: p0 and p1 must be distinct points a normal float apart, got a distance of {chord:e}"
+            )));
+        }
+        crate::checks::positive("length", length, false)?;
         let (start_angle, _) = angle_of(t0, "t0")?;
         let (mut end_angle, given) = angle_of(t1, "t1")?;
         if !given {
@@ -424,6 +435,12 @@ fn between(
             length,
         };
         let s = design::solve(&d).map_err(|e| PyValueError::new_err(format!("between: {e}")))?;
+        let l = s.segment.length();
+        if !(l.is_normal() && l.is_finite()) || s.segment.evaluator().is_err() {
+            return Err(PyValueError::new_err(format!(
+                "between: no usable elastica for these end data (length {l:e})"
+            )));
+        }
         Ok(Elastica {
             residuals: Some(s.residuals),
             ..Elastica::new(s.segment, None)

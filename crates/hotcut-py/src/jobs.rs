@@ -76,7 +76,8 @@ fn source(job: &Bound<'_, PyAny>, base: Option<PathBuf>) -> PyResult<Source> {
     }
     if let Ok(s) = job.cast::<PyString>() {
         let s = s.to_string();
-        if s.contains('(') {
+        // RON text holds parentheses; a file that exists is a path even if its name does
+        if s.contains('(') && !base.join(&s).is_file() {
             return Ok(Source::Ron(base.join("<job text>"), s));
         }
         return Ok(Source::File(base.join(s)));
@@ -349,6 +350,26 @@ fn run(
 ) -> PyResult<Py<PyAny>> {
     guarded(|| {
         let limits = limits(max_work, max_memory_gb, max_output_mb)?;
+        if let Some(cb) = &progress {
+            if !cb.is_callable() {
+                return Err(PyTypeError::new_err(
+                    "progress: expected a callable progress(label, done, total)",
+                ));
+            }
+        }
+        if let Some(dir) = &out {
+            if dir.as_os_str().is_empty() {
+                return Err(pyo3::exceptions::PyValueError::new_err(
+                    "out: an empty path; give a folder (\".\" for the current one)",
+                ));
+            }
+            if dir.exists() && !dir.is_dir() {
+                return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                    "out: {} exists and is not a folder",
+                    dir.display()
+                )));
+            }
+        }
         let src = source(job, base)?;
         let shared = Arc::new(Shared::default());
         let (tx, rx) = channel::<Outcome>();

@@ -106,25 +106,27 @@ pub fn parse_job(path: &Path, text: &str) -> Result<Job, JobError> {
 ///
 /// # Errors
 /// [`JobError::Schema`] with the JSON pointer of the field that does not fit (unknown
-/// field, wrong type, missing field); [`JobError::Syntax`] for text that is not JSON.
+/// field, wrong type, missing field, text that is not JSON).
 pub fn parse_job_json(path: &Path, text: &str) -> Result<Job, JobError> {
     let mut de = serde_json::Deserializer::from_str(text);
     let mut track = serde_path_to_error::Track::new();
     let result = Job::deserialize(serde_path_to_error::Deserializer::new(&mut de, &mut track));
     match result.and_then(|job| de.end().map(|()| job)) {
         Ok(job) => Ok(job),
-        Err(e) if e.is_syntax() || e.is_eof() || e.is_io() => Err(JobError::Syntax {
-            path: path.to_path_buf(),
-            line: e.line(),
-            col: e.column(),
-            message: e.to_string(),
-        }),
         Err(e) => {
-            // serde_json appends " at line L column C" of its own text: not the user's
+            // the JSON is made from the caller's data, not written by them: its line and
+            // column mean nothing to them, the field's pointer does (a tuple with an item
+            // too many is a "trailing characters" error of serde_json's, a null task an
+            // "expected value": both are the shape of a field)
             let message = e.to_string();
             let message = match message.rfind(" at line ") {
                 Some(i) => message[..i].to_string(),
                 None => message,
+            };
+            let message = match message.as_str() {
+                "trailing characters" => "more items than the field has".to_string(),
+                "expected value" => "not a value this field takes".to_string(),
+                _ => message,
             };
             Err(JobError::Schema {
                 path: path.to_path_buf(),
