@@ -2,7 +2,9 @@
 //! and asks whether the blade can cut the curve. The points are read as a sectioned
 //! polyline is read (a smoothing spline through them,
 //! [`Section::from_points`](geom::surface::Section::from_points)), analysed
-//! for length, inflections and curvature like every section of the `Analyze` task, and
+//! for length, inflections and curvature as the `Analyze` task analyses its sections (at
+//! the caller's number of curvature samples: [`default_samples`](crate::check::default_samples)
+//! reads fewer than the task's 2000, to answer within a millisecond), and
 //! fitted by one elastica ([`elastica::fit_points`]), whose distance from the points is
 //! held to the tolerance.
 //!

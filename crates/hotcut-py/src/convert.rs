@@ -11,23 +11,28 @@ use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
-/// 0: numpy when installed (and not `HOTCUT_ARRAYS=list`), 1: lists.
+/// 0: not read yet, 1: numpy when importable, 2: lists (`use_numpy(False)`, or
+/// `HOTCUT_ARRAYS=list` in the environment at the first call).
 static MODE: AtomicU8 = AtomicU8::new(0);
 /// numpy, when it could be imported.
 static NUMPY: PyOnceLock<Option<Py<PyModule>>> = PyOnceLock::new();
 
 /// numpy for output arrays, or `None` for lists.
 fn numpy(py: Python<'_>) -> Option<Bound<'_, PyModule>> {
-    if MODE.load(Ordering::Relaxed) == 1 {
+    if MODE.load(Ordering::Relaxed) == 0 {
+        let lists = std::env::var("HOTCUT_ARRAYS").is_ok_and(|v| v.eq_ignore_ascii_case("list"));
+        let _ = MODE.compare_exchange(
+            0,
+            if lists { 2 } else { 1 },
+            Ordering::Relaxed,
+            Ordering::Relaxed,
+        );
+    }
+    if MODE.load(Ordering::Relaxed) == 2 {
         return None;
     }
     NUMPY
-        .get_or_init(py, || {
-            if std::env::var("HOTCUT_ARRAYS").is_ok_and(|v| v.eq_ignore_ascii_case("list")) {
-                return None;
-            }
-            py.import("numpy").ok().map(Bound::unbind)
-        })
+        .get_or_init(py, || py.import("numpy").ok().map(Bound::unbind))
         .as_ref()
         .map(|m| m.bind(py).clone())
 }
@@ -42,7 +47,7 @@ fn arrays_are_numpy(py: Python<'_>) -> bool {
 /// arrays when numpy can be imported.
 #[pyfunction]
 fn use_numpy(flag: bool) {
-    MODE.store(u8::from(!flag), Ordering::Relaxed);
+    MODE.store(if flag { 1 } else { 2 }, Ordering::Relaxed);
 }
 
 /// Points read from Python: `dim` is 2 or 3; 2-D points have z = 0.
@@ -262,6 +267,21 @@ pub fn to_json(
     at: &str,
     depth: usize,
 ) -> Result<serde_json::Value, (String, String)> {
+    let mut budget = MAX_VALUES;
+    to_json_within(obj, at, depth, &mut budget)
+}
+
+/// Most values a dict job or argument may hold (a job is a page of text; this stops a
+/// list that holds itself many times over, which has few levels but no end of values).
+const MAX_VALUES: usize = 1_000_000;
+
+/// [`to_json`], counting the values converted against `budget`.
+fn to_json_within(
+    obj: &Bound<'_, PyAny>,
+    at: &str,
+    depth: usize,
+    budget: &mut usize,
+) -> Result<serde_json::Value, (String, String)> {
     use serde_json::Value;
     let fail = |m: &str| {
         Err((
@@ -276,6 +296,10 @@ pub fn to_json(
     if depth > MAX_DEPTH {
         return fail("nested too deeply (a dict that holds itself?)");
     }
+    if *budget == 0 {
+        return fail(&format!("more than {MAX_VALUES} values: not a job"));
+    }
+    *budget -= 1;
     if obj.is_none() {
         return Ok(Value::Null);
     }
@@ -308,7 +332,7 @@ pub fn to_json(
                 return fail("dict keys must be strings");
             };
             let here = format!("{at}/{}", key.replace('~', "~0").replace('/', "~1"));
-            map.insert(key, to_json(&v, &here, depth + 1)?);
+            map.insert(key, to_json_within(&v, &here, depth + 1, budget)?);
         }
         return Ok(Value::Object(map));
     }
@@ -320,7 +344,7 @@ pub fn to_json(
             .enumerate()
         {
             let v = v.map_err(|e| (at.to_string(), e.to_string()))?;
-            out.push(to_json(&v, &format!("{at}/{i}"), depth + 1)?);
+            out.push(to_json_within(&v, &format!("{at}/{i}"), depth + 1, budget)?);
         }
         return Ok(Value::Array(out));
     }
@@ -329,7 +353,7 @@ pub fn to_json(
         if obj.hasattr(method).unwrap_or(false) {
             if let Ok(v) = obj.call_method0(method) {
                 if !v.is(obj) {
-                    return to_json(&v, at, depth + 1);
+                    return to_json_within(&v, at, depth + 1, budget);
                 }
             }
         }

@@ -125,8 +125,10 @@ impl Elastica {
     /// `curvature`.
     #[getter]
     fn params(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        let v = serde_json::to_value(self.segment).unwrap_or_default();
-        json_to_py(py, &v)
+        guarded(|| {
+            let v = serde_json::to_value(self.segment).unwrap_or_default();
+            json_to_py(py, &v)
+        })
     }
 
     /// 2, or 3 for a curve fitted to 3-D points.
@@ -184,25 +186,25 @@ impl Elastica {
     /// The point at t = 0.
     #[getter]
     fn start(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        row(py, &self.point(self.at(0.0)?.p))
+        guarded(|| row(py, &self.point(self.at(0.0)?.p)))
     }
 
     /// The point at t = 1.
     #[getter]
     fn end(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        row(py, &self.point(self.at(1.0)?.p))
+        guarded(|| row(py, &self.point(self.at(1.0)?.p)))
     }
 
     /// Unit tangent at t = 0.
     #[getter]
     fn start_tangent(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        row(py, &self.direction(self.at(0.0)?.tangent))
+        guarded(|| row(py, &self.direction(self.at(0.0)?.tangent)))
     }
 
     /// Unit tangent at t = 1.
     #[getter]
     fn end_tangent(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        row(py, &self.direction(self.at(1.0)?.tangent))
+        guarded(|| row(py, &self.direction(self.at(1.0)?.tangent)))
     }
 
     /// The point at `t` (a number), or the points at every t of a sequence, (n, dim).
@@ -250,16 +252,20 @@ impl Elastica {
 
     /// The t of its inflections inside (0, 1).
     fn inflections(&self) -> PyResult<Vec<f64>> {
-        self.segment
-            .inflections()
-            .map_err(|e| PyValueError::new_err(e.to_string()))
+        guarded(|| {
+            self.segment
+                .inflections()
+                .map_err(|e| PyValueError::new_err(e.to_string()))
+        })
     }
 
     /// Its largest |curvature|.
     fn max_curvature(&self) -> PyResult<f64> {
-        self.segment
-            .max_abs_curvature()
-            .map_err(|e| PyValueError::new_err(e.to_string()))
+        guarded(|| {
+            self.segment
+                .max_abs_curvature()
+                .map_err(|e| PyValueError::new_err(e.to_string()))
+        })
     }
 
     fn __repr__(&self) -> String {
@@ -301,7 +307,8 @@ pub fn planar(
     let v: Vec<Vector3<f64>> = pts.xyz.iter().map(|p| Vector3::from(*p)).collect();
     let (frame, offset, off) = PlaneFrame::fit_points(&v)
         .map_err(|_| PyValueError::new_err("points: they do not span a line, so no plane"))?;
-    let extent = v.iter().map(|p| (p - v[0]).norm()).fold(0.0, f64::max);
+    // by coordinates: no overflow where the points are finite
+    let extent = v.iter().map(|p| (p - v[0]).amax()).fold(0.0, f64::max);
     if let Some(t) = plane_tolerance {
         crate::checks::positive("plane_tolerance", t, true)?;
     }

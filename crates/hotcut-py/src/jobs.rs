@@ -412,7 +412,16 @@ fn run(
             if let Err(e) = polled {
                 // Ctrl-C, or the callback raised: the run stops, the earlier output stays
                 shared.cancel.store(true, Ordering::SeqCst);
-                let _ = py.detach(|| recv(STOP_WAIT));
+                // a run that got past the last check before the flag was set puts its new
+                // output in place: say so rather than claim the earlier one stayed
+                let late = py.detach(|| recv(STOP_WAIT));
+                if matches!(late, Ok(Outcome::Done(_)))
+                    && e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py)
+                {
+                    return Err(pyo3::exceptions::PyKeyboardInterrupt::new_err(
+                        "the run had finished before it could stop: its new output is in place",
+                    ));
+                }
                 return Err(e);
             }
         };
@@ -467,6 +476,14 @@ fn outcome_to_py(py: Python<'_>, outcome: Outcome) -> PyResult<Py<PyAny>> {
     }
 }
 
+/// Deletes the temporary folders of this process's runs that are still going (Python
+/// calls it at exit, so a script that stops on Ctrl-C leaves no `.<name>.tmp-…` folder
+/// behind on systems where the next run cannot tell a dead process's from a live one's).
+#[pyfunction]
+fn _remove_temporaries() {
+    hotcut::run::remove_temporaries();
+}
+
 /// Test hook: how many runs are still going (a stopped run must reach 0 within a second).
 #[pyfunction]
 fn _active_runs() -> usize {
@@ -481,5 +498,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("RunError", py.get_type::<RunError>())?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(validate, m)?)?;
+    m.add_function(wrap_pyfunction!(_remove_temporaries, m)?)?;
     m.add_function(wrap_pyfunction!(_active_runs, m)?)
 }

@@ -217,8 +217,11 @@ pub fn fit_points_with_arclength(
 /// `fit` refined on the points as given, not rounded to [`FIT_GRID`]: one more solve
 /// started from `fit.segment`. For exact data (points computed on an elastica) the
 /// parameters then come out to the points' own precision instead of the grid's (~10⁻⁸
-/// relative on gently bent shapes). Not unit-invariant to the last digits, which is why
-/// [`fit_points_with_arclength`] does not do it; the better of the two fits is returned.
+/// relative on gently bent shapes). The polished fit is kept only when it lies within
+/// 1000 grid steps (~10⁻⁶ of the length) of `fit` and fits better; elsewhere (noisy data
+/// in a flat valley, where a unit change could send the polish to another minimum) `fit`
+/// is returned as it is. Not unit-invariant to the last digits where it applies, which is
+/// why [`fit_points_with_arclength`] does not do it.
 ///
 /// ```
 /// use elastica::{fit_points_with_arclength, polish, ElasticaParams, Family, FitParams, Segment};
@@ -253,10 +256,31 @@ pub fn polish(
         ..params.clone()
     };
     let fine = frame.result_from_unit(fit_in_frame(&p, &t, &warm, None)?);
-    Ok(if fine.rms <= fit.rms {
+    // kept only where it refines the grid's fit in place: on exact data the two lie within
+    // the grid's reach of each other; where the polish wanders off along a flat valley
+    // (noisy data near the separatrix) a unit change could send it elsewhere, and the
+    // unit-invariant fit stands
+    let close = within(&fit.segment, &fine.segment, POLISH_REACH * frame.scale);
+    Ok(if close && fine.rms <= fit.rms {
         fine
     } else {
         fit.clone()
+    })
+}
+
+/// How far, relative to the curve's length, a polished fit may lie from the grid's fit
+/// and still replace it: 1000 grid steps.
+const POLISH_REACH: f64 = 1000.0 * FIT_GRID;
+
+/// Whether segments `a` and `b` lie within `d` of each other at 17 equal parameters.
+fn within(a: &Segment, b: &Segment, d: f64) -> bool {
+    let (Ok(ea), Ok(eb)) = (a.evaluator(), b.evaluator()) else {
+        return false;
+    };
+    (0..=16).all(|i| {
+        let t = i as f64 / 16.0;
+        let (p, q) = (ea.eval(t).p, eb.eval(t).p);
+        (p[0] - q[0]).hypot(p[1] - q[1]) <= d
     })
 }
 

@@ -7,6 +7,9 @@ is installed, else as lists (Rhino's Python may lack numpy); ``use_numpy(False)`
 lists. See ``__init__.pyi`` for the types and the README's "From Python" for examples.
 """
 
+import atexit
+
+from . import _native
 from ._native import (
     HotcutError,
     JobError,
@@ -20,6 +23,10 @@ from ._native import (
     validate,
 )
 from . import elastica
+
+# a run stopped by Ctrl-C may still be unwinding when the script ends: its temporary
+# folder goes with it
+atexit.register(_native._remove_temporaries)
 
 __all__ = [
     "HotcutError",

@@ -69,8 +69,10 @@ def run(
     the CLI's ``--max-work``, ``--max-memory`` and ``--max-output``.
 
     The run goes on another thread with the GIL released. Ctrl-C (``KeyboardInterrupt``)
-    or an exception raised by ``progress`` stops it within a second and leaves the earlier
-    output whole.
+    or an exception raised by ``progress`` returns within a second; the run stops at its
+    next progress step (``Compare``'s processes and ``RuledBlocks``' per-block strategy
+    report none and finish in the background) and is not put in place, so the earlier
+    output stays whole.
 
     Raises ``JobError`` for an invalid job (nothing written), ``RunError`` when the run
     fails or cuts nothing.
@@ -133,7 +135,8 @@ def check_section(
     ``blade`` and ``tolerance`` are dicts with the job file's ``Blade(..)`` and
     ``Tolerance(..)`` fields (``{"length": 1200, "max_curvature": 0.01}``); omitted
     tolerances take their millimetre defaults scaled by ``units`` (``"mm"`` or ``"m"``).
-    ``samples``: curvature samples of the sign test (default 2 per point, 64 to 2000).
+    ``samples``: curvature samples of the sign test (default 2 per point, 64 to 2000, to
+    answer within a millisecond; the ``Analyze`` task reads 2000 per section).
     """
 
 class BladeEnd(TypedDict):

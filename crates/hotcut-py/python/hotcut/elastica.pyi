@@ -73,8 +73,9 @@ def fit(
     ``constraint``: ``"free"``, ``"end_points"`` (the first and last points are
     interpolated) or ``"end_points_and_length"``. ``arc_length``: the points' arc lengths
     when known (default: chord lengths). ``polish``: refine on the points as given after
-    the fit on the unit-invariant 2⁻³⁰ grid (parameters of exact points to ~1e-11;
-    ``False`` gives the CLI's FitCurves numbers exactly).
+    the fit on the unit-invariant 2⁻³⁰ grid, kept where it moves the curve by less than
+    ~1e-6 of its length (parameters of exact points to ~1e-11; noisy data keep the grid's
+    fit); ``False`` gives the CLI's FitCurves numbers exactly.
     """
 
 def between(

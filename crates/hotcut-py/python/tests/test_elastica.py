@@ -151,3 +151,21 @@ def test_a_panic_in_rust_is_a_runtime_error():
 
     with pytest.raises(RuntimeError, match="internal error.*boom"):
         hotcut._native._panic_for_test("boom")
+
+
+def test_fit_is_the_same_in_mm_and_m_and_under_rigid_motion():
+    rng = np.random.default_rng(7)
+    for case in CASES[:5]:
+        pts, _ = exact.points(*case, 150)
+        size = abs(case[3]) * case[4]
+        noisy = np.array(pts) + rng.normal(scale=1e-3 * size, size=(150, 2))
+        mm = elastica.fit(noisy)
+        m = elastica.fit(noisy / 1000)
+        assert m.family == mm.family
+        assert np.allclose(np.asarray(m.sample(33)) * 1000, mm.sample(33), atol=2e-6 * mm.length)
+        assert m.rms * 1000 == pytest.approx(mm.rms, rel=1e-6)
+        a = 0.8
+        rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+        moved = elastica.fit(noisy @ rot.T + [300.0, -70.0])
+        back = (np.asarray(moved.sample(33)) - [300.0, -70.0]) @ rot
+        assert np.allclose(back, mm.sample(33), atol=2e-6 * mm.length)

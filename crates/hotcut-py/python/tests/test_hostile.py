@@ -107,3 +107,29 @@ def test_a_path_with_parentheses_is_a_path(tmp_path):
     d.mkdir()
     shutil.copy(JOBS / "precut-bump.ron", d / "job (1).ron")
     assert hotcut.validate(str(d / "job (1).ron"))["task"] == "PreCut"
+
+
+def test_a_job_of_shared_lists_is_refused_not_walked_forever():
+    x = [0]
+    for _ in range(40):
+        x = [x, x]  # 40 levels, 2⁴⁰ leaves
+    job = {"name": "x", "surface": {"HeightField": {"z": "1", "x": [0, 1], "y": [0, 1]}},
+           "task": {"Analyze": {}}, "outputs": x}
+    with pytest.raises(hotcut.JobError, match="values"):
+        hotcut.validate(job)
+
+
+def test_the_environment_sets_only_the_start():
+    import subprocess
+    import sys
+
+    code = (
+        "import hotcut; from hotcut import elastica\n"
+        "e = elastica.fit([(0, 0), (1, 0.5), (2, 0.6), (3, 0.5), (4, 0)])\n"
+        "assert type(e.start) is list\n"
+        "hotcut.use_numpy(True)\n"
+        "assert type(e.start).__name__ == 'ndarray'\n"
+    )
+    env = dict(__import__("os").environ, HOTCUT_ARRAYS="list")
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
