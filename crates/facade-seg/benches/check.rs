@@ -26,6 +26,21 @@ fn points() -> Vec<[f64; 2]> {
         .collect()
 }
 
+/// The points as a section's plane coordinates.
+fn vectors() -> Vec<Vector2<f64>> {
+    points().iter().map(|p| Vector2::new(p[0], p[1])).collect()
+}
+
+/// The smoothing spline of the `Analyze` task's sections, 0.05 mm.
+fn smoothing() -> SmoothingParams {
+    SmoothingParams {
+        degree: 3,
+        tolerance: 0.05,
+        max_control: 400,
+        chordal: false,
+    }
+}
+
 fn params(samples: usize) -> CheckParams {
     CheckParams {
         survey: SurveyParams {
@@ -54,13 +69,7 @@ fn check(bencher: divan::Bencher, samples: usize) {
 
 #[divan::bench]
 fn smoothing_spline(bencher: divan::Bencher) {
-    let pts: Vec<Vector2<f64>> = points().iter().map(|p| Vector2::new(p[0], p[1])).collect();
-    let s = SmoothingParams {
-        degree: 3,
-        tolerance: 0.05,
-        max_control: 400,
-        chordal: false,
-    };
+    let (pts, s) = (vectors(), smoothing());
     bencher.bench(|| {
         Section::from_points(divan::black_box(pts.clone()), None, false, &s).map(|s| s.fit_rms)
     });
@@ -68,13 +77,7 @@ fn smoothing_spline(bencher: divan::Bencher) {
 
 #[divan::bench(args = [400, 2000])]
 fn analysis(bencher: divan::Bencher, samples: usize) {
-    let pts: Vec<Vector2<f64>> = points().iter().map(|p| Vector2::new(p[0], p[1])).collect();
-    let s = SmoothingParams {
-        degree: 3,
-        tolerance: 0.05,
-        max_control: 400,
-        chordal: false,
-    };
+    let (pts, s) = (vectors(), smoothing());
     let section = Section::from_points(pts, None, false, &s).expect("a section");
     let p = section.analysis_params(&CurveAnalysisParams {
         samples,
@@ -85,13 +88,7 @@ fn analysis(bencher: divan::Bencher, samples: usize) {
 
 #[divan::bench]
 fn analysis_params(bencher: divan::Bencher) {
-    let pts: Vec<Vector2<f64>> = points().iter().map(|p| Vector2::new(p[0], p[1])).collect();
-    let s = SmoothingParams {
-        degree: 3,
-        tolerance: 0.05,
-        max_control: 400,
-        chordal: false,
-    };
+    let (pts, s) = (vectors(), smoothing());
     let section = Section::from_points(pts, None, false, &s).expect("a section");
     bencher.bench(|| {
         section

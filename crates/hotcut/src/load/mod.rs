@@ -258,21 +258,27 @@ pub fn load_job_text(
     text: String,
     limits: &Limits,
 ) -> Result<ResolvedJob, Vec<JobError>> {
-    if text.len() as u64 > MAX_JOB_BYTES {
-        return Err(vec![JobError::Read {
-            path: path.to_path_buf(),
-            message: format!(
-                "{}: the job is {} bytes, more than a job may have ({MAX_JOB_BYTES})",
-                path.display(),
-                text.len()
-            ),
-        }]);
-    }
+    within_size(path, text.len(), "")?;
     let job = parse_job(path, &text).map_err(|e| vec![e])?;
     validate_schema(path, &job)?;
     let mut resolved = resolve_with(path, job, limits)?;
     resolved.context.job_file = Some(text);
     Ok(resolved)
+}
+
+/// A job given as text of `len` bytes is refused above [`MAX_JOB_BYTES`], as a job file
+/// is.
+fn within_size(path: &Path, len: usize, form: &str) -> Result<(), Vec<JobError>> {
+    if len as u64 <= MAX_JOB_BYTES {
+        return Ok(());
+    }
+    Err(vec![JobError::Read {
+        path: path.to_path_buf(),
+        message: format!(
+            "{}: the job is {len} bytes{form}, more than a job may have ({MAX_JOB_BYTES})",
+            path.display()
+        ),
+    }])
 }
 
 /// [`load_job_text`] for a job in its JSON form (see [`parse_job_json`]): the Python
@@ -286,16 +292,7 @@ pub fn load_job_json(
     json: &str,
     limits: &Limits,
 ) -> Result<ResolvedJob, Vec<JobError>> {
-    if json.len() as u64 > MAX_JOB_BYTES {
-        return Err(vec![JobError::Read {
-            path: path.to_path_buf(),
-            message: format!(
-                "{}: the job is {} bytes of JSON, more than a job may have ({MAX_JOB_BYTES})",
-                path.display(),
-                json.len()
-            ),
-        }]);
-    }
+    within_size(path, json.len(), " of JSON")?;
     let job = parse_job_json(path, json).map_err(|e| vec![e])?;
     validate_schema(path, &job)?;
     let text = pretty_job(&job);
