@@ -58,6 +58,8 @@ pub mod elliptic;
 pub mod fit;
 /// Elastica segments (closed form, line, arc): evaluation, derivatives, inflections.
 pub mod segment;
+/// Whether a held blade keeps its shape: second variation, margin, end forces, continuation.
+pub mod stability;
 /// Elastica-swept patches: parameter interpolation between sections, 3D blade poses.
 pub mod sweep;
 /// The normalized inflectional and non-inflectional elastica.
@@ -72,5 +74,6 @@ pub use fit::{
     FitError, FitParams, FitResult,
 };
 pub use segment::{ElasticaParams, Segment, SegmentPoint};
+pub use stability::{stability, BladeSection, Class, Stability, StabilityParams};
 pub use sweep::{blade_pose, interpolate, BladePose};
 pub use unit::{Family, UnitElastica};
