@@ -134,13 +134,20 @@ fn with_defaults(job: &Job) -> Job {
     j.cell = None;
     j.outputs
         .retain(|o| !matches!(o, hotcut::spec::OutputSpec::Rapid));
-    j.blade.get_or_insert(BladeSpec {
+    let b = j.blade.get_or_insert(BladeSpec {
         length: d::BLADE_LENGTH_MM * u,
         max_curvature: d::BLADE_MAX_CURVATURE_PER_MM / u,
         max_inflections: 2,
         kerf: None,
         kerf_table: None,
+        max_blade_inflections: None,
+        thickness: None,
+        width: None,
+        youngs_modulus: None,
+        min_margin: None,
     });
+    b.thickness.get_or_insert(d::BLADE_THICKNESS_MM * u);
+    b.width.get_or_insert(d::BLADE_WIDTH_MM * u);
     if let Some(w) = j.wire.as_mut() {
         w.speed.get_or_insert(d::WIRE_SPEED_MM_PER_MIN * u);
         w.lead.get_or_insert(d::WIRE_LEAD_MM * u);

@@ -81,3 +81,54 @@ fn baseline_fit_200_points(bencher: divan::Bencher) {
         divan::black_box(elastica::fit::baseline::fit_points_baseline(&cs[i].1, 200).ok())
     });
 }
+
+/// A 1000 mm blade of each kind a facade poses: an arch (non-inflectional), an S with one
+/// inflection, a wave with three (unstable).
+fn blades() -> [elastica::Segment; 3] {
+    use elastica::{ElasticaParams, Family, Segment};
+    let e = |family, k: f64, s0: f64, l: f64| {
+        Segment::Elastica(ElasticaParams {
+            family,
+            k,
+            s0,
+            l,
+            scale: 1000.0 / l,
+            phi: 0.2,
+            x0: 0.0,
+            y0: 0.0,
+            one_minus_k: None,
+        })
+    };
+    [
+        e(Family::NonInflectional, 0.9, -0.4, 0.8),
+        e(Family::Inflectional, 0.3, -1.0, 2.5),
+        e(Family::Inflectional, 0.3, 0.5, 7.0),
+    ]
+}
+
+/// The margin, class, inflections and loads of one held blade (`elastica::stability`).
+#[divan::bench(args = [0, 1, 2])]
+fn stability_of_blade(bencher: divan::Bencher, which: usize) {
+    let b = blades()[which];
+    let p = elastica::StabilityParams::default();
+    bencher.bench_local(|| {
+        elastica::stability(divan::black_box(&b), &p)
+            .unwrap()
+            .margin
+    });
+}
+
+/// Following the discrete blade (128 segments) through one move that turns an arch's ends
+/// by 0.1 rad and closes the chord by 1 %.
+#[divan::bench]
+fn follow_one_move(bencher: divan::Bencher) {
+    use elastica::stability::follow::{follow, DiscreteBlade, FollowParams, HeldEnds, SEGMENTS};
+    let at = |w: f64| HeldEnds {
+        chord: 950.0 - 10.0 * w,
+        angles: [0.3 + 0.1 * w, -0.3 - 0.1 * w],
+    };
+    let start =
+        DiscreteBlade::settle_like(1000.0, at(0.0), |u| 0.3 - 0.6 * u, SEGMENTS, None).unwrap();
+    let p = FollowParams::default();
+    bencher.bench_local(|| follow(divan::black_box(&start), &at, &p).min_margin());
+}

@@ -2,10 +2,12 @@
 //! so that it covers the section with lead-in and lead-out on both sides, and the data the
 //! two robots need — the blade ends' positions and end-tangent angles ("Robotic Hot-Blade
 //! Cutting" §4) — with the checks that keep the blade safe: max |κ| against the limit the
-//! blade tolerates and the number of inflections on the whole blade.
+//! blade tolerates, the number of inflections on the whole blade, and whether the held
+//! blade is a stable equilibrium ([`crate::stability`]).
 
 use crate::elliptic::EllipticError;
 use crate::segment::Segment;
+use crate::stability::{stability, Class, Stability, StabilityError, StabilityParams};
 
 /// How to extend a segment to a blade.
 #[derive(Clone, Debug)]
@@ -18,6 +20,8 @@ pub struct BladeParams {
     pub max_curvature: Option<f64>,
     /// Largest number of inflections on the blade, if limited.
     pub max_inflections: Option<usize>,
+    /// How the blade's stability is judged (the margin below which it is marginal).
+    pub stability: StabilityParams,
 }
 
 impl BladeParams {
@@ -28,6 +32,7 @@ impl BladeParams {
             lead_in_share: 0.5,
             max_curvature: None,
             max_inflections: None,
+            stability: StabilityParams::default(),
         }
     }
 }
@@ -64,6 +69,11 @@ pub struct Blade {
     pub curvature_ok: bool,
     /// Inflection count within the limit (true when there is none).
     pub inflections_ok: bool,
+    /// The held blade's stability: margin, class, total turning, end loads per EI.
+    pub stability: Stability,
+    /// The blade is a stable equilibrium by at least the stated margin
+    /// ([`Class::Stable`]).
+    pub stability_ok: bool,
 }
 
 /// Why a blade could not be made.
@@ -84,6 +94,9 @@ pub enum BladeError {
     /// The segment's parameters are invalid.
     #[error(transparent)]
     Segment(#[from] EllipticError),
+    /// The blade's stability could not be assessed.
+    #[error(transparent)]
+    Stability(#[from] StabilityError),
 }
 
 /// Extend `section` to the blade's length and check it.
@@ -96,6 +109,8 @@ pub enum BladeError {
 /// assert!((blade.segment.length() - 2.0).abs() < 1e-12);
 /// assert!((blade.lead_in - 0.5).abs() < 1e-12);
 /// assert_eq!(blade.inflections, 0);
+/// // an arc holds: stable, no force on the holders
+/// assert!(blade.stability_ok && blade.stability.loads.force == 0.0);
 /// ```
 pub fn extend_to_blade(section: &Segment, params: &BladeParams) -> Result<Blade, BladeError> {
     if !(params.length > 0.0) || !params.length.is_finite() {
@@ -132,7 +147,10 @@ pub fn extend_to_blade(section: &Segment, params: &BladeParams) -> Result<Blade,
     };
     let max_abs_curvature = segment.max_abs_curvature()?;
     let inflections = segment.inflections()?.len();
+    let stability = stability(&segment, &params.stability)?;
     Ok(Blade {
+        stability_ok: stability.class == Class::Stable,
+        stability,
         ends: [end(0.0), end(1.0)],
         curvature_ok: params
             .max_curvature

@@ -228,6 +228,28 @@ pub fn clearance(
 /// extension on one side).
 pub const LEAD_IN_SHARES: [f64; 4] = [0.25, 0.75, 0.0, 1.0];
 
+/// Places tried after [`LEAD_IN_SHARES`] while the blade is still outside its limits or
+/// not a stable equilibrium at every one: every sixteenth of the extension. Where the
+/// piece sits along the blade decides where the extension's inflections fall, and with
+/// them the held blade's stability.
+pub const FINE_SHARES: usize = 16;
+
+/// Every place [`place`] and [`place_all_by`] may try, in order: the blade's own, the
+/// coarse ones, then the fine ones not tried yet.
+fn shares(own: f64) -> impl Iterator<Item = (f64, bool)> {
+    let coarse = LEAD_IN_SHARES.into_iter().map(|s| (s, false));
+    let fine = (0..=FINE_SHARES)
+        .map(|k| k as f64 / FINE_SHARES as f64)
+        .filter(move |s| *s != own && !LEAD_IN_SHARES.contains(s))
+        .map(|s| (s, true));
+    coarse.chain(fine)
+}
+
+/// Within the blade's limits and a stable equilibrium.
+fn within_limits(b: &Blade) -> bool {
+    b.curvature_ok && b.inflections_ok && b.stability_ok
+}
+
 /// `section` extended to the blade and placed along it so that the blade outside the
 /// piece keeps out of what `block` keeps and its held ends out of the block: the blade's
 /// own `lead_in_share` when that is clean (and within the blade's limits), else the first
@@ -263,11 +285,20 @@ pub fn place(
 ) -> Result<(Blade, Clearance), BladeError> {
     let margin = HOLDER_MARGIN * params.length;
     // within the blade's limits first, then the least bad (gouge + holder shortfall)
-    let key = |b: &Blade, c: &Clearance| (!(b.curvature_ok && b.inflections_ok), c.badness(margin));
+    // (outside the limits, least margin, badness): a blade outside its limits that holds
+    // is better than one that does not
+    let key = |b: &Blade, c: &Clearance| {
+        let m = if b.stability_ok {
+            f64::NEG_INFINITY
+        } else {
+            -b.stability.margin
+        };
+        (!within_limits(b), m, c.badness(margin))
+    };
     let first = extend_to_blade(section, params)?;
     let mut best = (clearance(&first, block, tolerance)?, first);
-    for share in LEAD_IN_SHARES {
-        if best.0.is_clean() && best.1.curvature_ok && best.1.inflections_ok {
+    for (share, fine) in shares(params.lead_in_share) {
+        if within_limits(&best.1) && (best.0.is_clean() || fine) {
             break;
         }
         let blade = extend_to_blade(
@@ -280,7 +311,12 @@ pub fn place(
         let c = clearance(&blade, block, tolerance)?;
         let (k, kb) = (key(&blade, &c), key(&best.1, &best.0));
         // (within the limits, then the least bad): tuples compare in that order
-        if k.0.cmp(&kb.0).then(k.1.total_cmp(&kb.1)).is_lt() {
+        if k.0
+            .cmp(&kb.0)
+            .then(k.1.total_cmp(&kb.1))
+            .then(k.2.total_cmp(&kb.2))
+            .is_lt()
+        {
             best = (c, blade);
         }
     }
@@ -340,15 +376,14 @@ pub fn place_all_by(
     blocks: &dyn Fn(&[Blade]) -> Vec<Section>,
 ) -> Result<(Vec<(Blade, Clearance)>, f64), BladeError> {
     let margin = HOLDER_MARGIN * params.length;
-    let at = |share: f64| -> Result<Vec<(Blade, Clearance)>, BladeError> {
+    let blades_at = |share: f64| -> Result<Vec<Blade>, BladeError> {
         let p = BladeParams {
             lead_in_share: share,
             ..params.clone()
         };
-        let blades = sections
-            .iter()
-            .map(|s| extend_to_blade(s, &p))
-            .collect::<Result<Vec<_>, _>>()?;
+        sections.iter().map(|s| extend_to_blade(s, &p)).collect()
+    };
+    let cleared = |blades: Vec<Blade>| -> Result<Vec<(Blade, Clearance)>, BladeError> {
         let secs = blocks(&blades);
         if secs.len() != blades.len() {
             return Err(BladeError::Invalid(format!(
@@ -366,34 +401,60 @@ pub fn place_all_by(
             })
             .collect()
     };
-    let score = |all: &[(Blade, Clearance)]| {
-        let broken = all
+    // the blades' part of the score: (planes outside the limits or not stable, the least
+    // margin among those)
+    let held = |all: &[Blade]| {
+        let broken = all.iter().filter(|b| !within_limits(b)).count();
+        let shaky = all
             .iter()
-            .filter(|(b, _)| !(b.curvature_ok && b.inflections_ok))
-            .count();
+            .filter(|b| !b.stability_ok)
+            .map(|b| -b.stability.margin)
+            .fold(f64::NEG_INFINITY, f64::max);
+        (broken, shaky)
+    };
+    // then (planes not clean, the worst badness)
+    let score = |all: &[(Blade, Clearance)]| {
+        let blades: Vec<Blade> = all.iter().map(|(b, _)| b.clone()).collect();
+        let (broken, shaky) = held(&blades);
         let unclean = all.iter().filter(|(_, c)| !c.is_clean()).count();
         let worst = all
             .iter()
             .map(|(_, c)| c.badness(margin))
             .fold(0.0, f64::max);
-        (broken, unclean, worst)
+        (broken, shaky, unclean, worst)
     };
-    let mut best = (at(params.lead_in_share)?, params.lead_in_share);
+    let better = |a: &(usize, f64, usize, f64), b: &(usize, f64, usize, f64)| {
+        a.0.cmp(&b.0)
+            .then(a.1.total_cmp(&b.1))
+            .then(a.2.cmp(&b.2))
+            .then(a.3.total_cmp(&b.3))
+            .is_lt()
+    };
+    let mut best = (
+        cleared(blades_at(params.lead_in_share)?)?,
+        params.lead_in_share,
+    );
     let mut best_score = score(&best.0);
-    for share in LEAD_IN_SHARES {
-        if best_score.0 == 0 && best_score.1 == 0 {
+    for (share, fine) in shares(params.lead_in_share) {
+        // the fine places are tried only for blades outside the limits or unstable
+        if best_score.0 == 0 && (best_score.2 == 0 || fine) {
             break;
         }
         // a place the blade cannot be extended to (or evaluated at) is not a candidate
-        let Ok(all) = at(share) else {
+        let Ok(blades) = blades_at(share) else {
+            continue;
+        };
+        // the block is slid and the blades cleared only for places whose blades hold at
+        // least as well as the best's
+        let (broken, shaky) = held(&blades);
+        if (broken, shaky) > (best_score.0, best_score.1) {
+            continue;
+        }
+        let Ok(all) = cleared(blades) else {
             continue;
         };
         let s = score(&all);
-        if (s.0, s.1)
-            .cmp(&(best_score.0, best_score.1))
-            .then(s.2.total_cmp(&best_score.2))
-            .is_lt()
-        {
+        if better(&s, &best_score) {
             (best, best_score) = ((all, share), s);
         }
     }

@@ -74,6 +74,8 @@ pub use fit::{
     FitError, FitParams, FitResult,
 };
 pub use segment::{ElasticaParams, Segment, SegmentPoint};
-pub use stability::{stability, BladeSection, Class, Stability, StabilityParams};
+pub use stability::{
+    stability, BladeSection, Class, HolderLoads, Stability, StabilityParams, Stiffness,
+};
 pub use sweep::{blade_pose, interpolate, BladePose};
 pub use unit::{Family, UnitElastica};

@@ -117,7 +117,12 @@ pub struct EndPose {
     pub rotation: [f64; 4],
 }
 
-/// A blade pose: the cutting plane's normal and both held ends.
+/// Stations of a pose's planned shape ([`BladePose::shape`]): every sixteenth of the
+/// blade, both ends included.
+pub const SHAPE_STATIONS: usize = 17;
+
+/// A blade pose: the cutting plane's normal, both held ends and the shape the blade is
+/// planned to take between them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct BladePose {
@@ -125,6 +130,11 @@ pub struct BladePose {
     pub plane_normal: [f64; 3],
     /// The two ends, the blade's start (t = 0) first.
     pub ends: [EndPose; 2],
+    /// The planned shape: the blade's tangent angle against its chord (from the first end
+    /// to the second), turning positive about `plane_normal`, at [`SHAPE_STATIONS`]
+    /// equally spaced stations along it (radians, continuous along the blade). The same
+    /// held ends often allow several equilibria; this tells which one the pose means.
+    pub shape: [f64; SHAPE_STATIONS],
 }
 
 fn arr3(v: &Vector3<f64>) -> [f64; 3] {
@@ -160,6 +170,10 @@ pub fn frame_quaternion(x: &Vector3<f64>, z: &Vector3<f64>) -> [f64; 4] {
 /// let blade = extend_to_blade(&arc, &BladeParams::new(1000.0))?;
 /// let pose = blade_pose(&frame, 250.0, &blade);
 /// assert_eq!(pose.plane_normal, [1.0, 0.0, 0.0]);
+/// // the blade, an arc turning 1 rad: its shape against the chord runs from −0.5 to 0.5
+/// // (or back, as the plane's coordinates turn about its normal)
+/// assert!((pose.shape[0].abs() - 0.5).abs() < 1e-12 && (pose.shape[16] + pose.shape[0]).abs() < 1e-12);
+/// assert!(pose.shape[8].abs() < 1e-12);
 /// for end in &pose.ends {
 ///     assert_eq!(end.position[0], 250.0); // on the plane x = 250
 ///     // the tool's z axis is the plane normal, its x axis the blade's tangent
@@ -183,10 +197,42 @@ pub fn blade_pose(frame: &PlaneFrame, offset: f64, blade: &Blade) -> BladePose {
             rotation: frame_quaternion(&t, &n),
         }
     };
+    let ends = [end(0), end(1)];
     BladePose {
         plane_normal: arr3(&n),
-        ends: [end(0), end(1)],
+        shape: planned_shape(frame, blade, &ends),
+        ends,
     }
+}
+
+/// The blade's tangent angle against its chord at [`SHAPE_STATIONS`] stations, turning
+/// positive about the plane's normal.
+fn planned_shape(frame: &PlaneFrame, blade: &Blade, ends: &[EndPose; 2]) -> [f64; SHAPE_STATIONS] {
+    let n = frame.normal;
+    let chord = Vector3::from(ends[1].position) - Vector3::from(ends[0].position);
+    let x = if chord.norm() > 0.0 {
+        chord.normalize()
+    } else {
+        frame.u
+    };
+    let y = n.cross(&x);
+    let t0 = Vector3::from(ends[0].tangent);
+    let start = t0.dot(&y).atan2(t0.dot(&x));
+    // the plane's coordinates turn with or against the normal
+    let sign = if frame.u.cross(&frame.v).dot(&n) < 0.0 {
+        -1.0
+    } else {
+        1.0
+    };
+    let mut out = [start; SHAPE_STATIONS];
+    if let Ok(eval) = blade.segment.evaluator() {
+        let a0 = eval.eval(0.0).angle;
+        for (k, v) in out.iter_mut().enumerate() {
+            let a = eval.eval(k as f64 / (SHAPE_STATIONS - 1) as f64).angle;
+            *v = start + sign * (a - a0);
+        }
+    }
+    out
 }
 
 /// Rotates `v` by the unit quaternion `q = [w, x, y, z]`.

@@ -275,6 +275,7 @@ fn blade_extends_along_the_elastica_and_counts_inflections() {
         lead_in_share: 0.25,
         max_curvature: Some(2.0),
         max_inflections: Some(1),
+        ..BladeParams::new(3.0)
     };
     let blade = extend_to_blade(&section, &params).unwrap();
     assert!((blade.segment.length() - 3.0).abs() < 1e-12);

@@ -100,12 +100,21 @@ pub struct Verdicts {
     pub shape: bool,
     /// No part (design or elastica) bending beyond `max_curvature` (§5.1.4).
     pub blade_strain: bool,
+    /// Every blade the piece is cut with holds its shape: a stable equilibrium by at least
+    /// the stated margin ([`elastica::stability`]), within the blade's inflection limit
+    /// when one is set (rationalized runs; true otherwise). The seed's "instability of
+    /// the blade due to multiple inflection points", measured.
+    pub stability: bool,
 }
 
 impl Verdicts {
     /// All met (an unfitted approximation counts as met).
     pub fn all(&self) -> bool {
-        self.dimension && self.approximation != Some(false) && self.shape && self.blade_strain
+        self.dimension
+            && self.approximation != Some(false)
+            && self.shape
+            && self.blade_strain
+            && self.stability
     }
 }
 
@@ -172,6 +181,7 @@ impl PartCheck {
                 && self
                     .fit
                     .is_none_or(|f| f.max_abs_curvature <= c.max_curvature),
+            stability: true,
         }
     }
 }

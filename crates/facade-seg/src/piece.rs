@@ -213,6 +213,7 @@ pub fn piece_of(
         approximation: fit.then_some(true),
         shape: true,
         blade_strain: true,
+        stability: true,
     };
     for p in &parts {
         let v = p.check.verdicts(c, fit);

@@ -30,6 +30,9 @@ pub struct RationalizeParams {
     /// Largest-distance tolerance: a length-keeping fit beyond it is restarted from the
     /// end-point fit.
     pub tolerance_max: f64,
+    /// RMS tolerance: with `tolerance_max`, how close the arc through a part's ends must
+    /// come to replace an elastica whose blade would not hold its shape.
+    pub tolerance_rms: f64,
 }
 
 /// One section part of a piece, fitted and posed.
@@ -125,20 +128,22 @@ pub fn pose_piece(
         .iter()
         .map(|(_, _, f)| f.segment.length())
         .fold(0.0, f64::max);
-    // the shape constraint (§5.1.3) counts the cut's inflections, not the whole blade's
+    // the shape constraint (§5.1.3) counts the cut's inflections; the whole blade's are
+    // limited only by `max_blade_inflections` (and its stability)
     let bp = BladeParams {
-        max_inflections: None,
+        max_inflections: params.blade.max_blade_inflections.map(|v| v as usize),
         ..blade_params_over(longest, &params.blade)
     };
+    let first_plane = kept.first().map_or(0, |(k, _, _)| piece.parts[*k].plane);
     let fail_blade = |e: elastica::blade::BladeError| SegError::Rationalize {
         piece: piece.id,
-        plane: kept.first().map_or(0, |(k, _, _)| piece.parts[*k].plane),
+        plane: first_plane,
         message: e.to_string(),
     };
     // one place along the blade for every part (the piece is one block, cut plane after
     // plane), the extension kept out of what the block keeps where it can be; for each
     // place tried the block is slid across the cut to clear the blades' held ends
-    let segments: Vec<_> = kept.iter().map(|(_, _, f)| f.segment).collect();
+    let mut segments: Vec<_> = kept.iter().map(|(_, _, f)| f.segment).collect();
     // the piece's extent across the cut (plane u), which the block must keep holding
     let extent = kept
         .iter()
@@ -152,20 +157,43 @@ pub fn pose_piece(
             .map(|(_, d, _)| block_section(facade, block, d))
             .collect()
     };
-    let (placed, _) = place_all_by(&segments, &bp, 1e-6 * bp.length, &|blades| {
-        sections_in(&slid(blades))
-    })
-    .map_err(fail_blade)?;
+    let place = |segments: &[elastica::Segment]| {
+        place_all_by(segments, &bp, 1e-6 * bp.length, &|blades| {
+            sections_in(&slid(blades))
+        })
+        .map(|(placed, _)| placed)
+        .map_err(fail_blade)
+    };
+    let mut placed = place(&segments)?;
+    // a blade that does not hold its shape at any place: where the arc through its part's
+    // ends is within the tolerance, the blade takes the arc instead (a circle is stable
+    // and carries no force; the elastica it replaces followed noise or a slight wave)
+    let mut arcs: Vec<Option<FitResult>> = vec![None; kept.len()];
+    for (k, (_, design, _)) in kept.iter().enumerate() {
+        if placed[k].0.stability_ok {
+            continue;
+        }
+        if let Some(arc) = elastica::fit::arc_through_ends(&design.points, &design.s) {
+            if arc.max <= params.tolerance_max && arc.rms <= params.tolerance_rms {
+                segments[k] = arc.segment;
+                arcs[k] = Some(arc);
+            }
+        }
+    }
+    if arcs.iter().any(Option::is_some) {
+        placed = place(&segments)?;
+    }
     let blades: Vec<Blade> = placed.iter().map(|(b, _)| b.clone()).collect();
     let block = slid(&blades);
     let parts = kept
         .into_iter()
+        .zip(arcs)
         .zip(placed)
-        .map(|((k, design, fit), (blade, clearance))| PosedPart {
+        .map(|(((k, design, fit), arc), (blade, clearance))| PosedPart {
+            fit: arc.unwrap_or(fit),
             part: k,
             pose: blade_pose(&facade.frame, piece.parts[k].offset, &blade),
             design,
-            fit,
             blade,
             clearance,
         })
@@ -213,8 +241,9 @@ pub fn pose_piece(
 /// let params = RationalizeParams {
 ///     constraint: FitConstraint::EndPointsAndLength,
 ///     samples: 64,
-///     blade: BladeLimits { length: c.blade_length, max_curvature: c.max_curvature, max_inflections: c.max_inflections },
+///     blade: BladeLimits::new(c.blade_length, c.max_curvature, c.max_inflections),
 ///     tolerance_max: c.tolerance_max,
+///     tolerance_rms: c.tolerance_rms,
 /// };
 /// let posed = pose_pieces(&facade, &seg, &params, &|| {})?;
 /// assert_eq!(posed.len(), seg.pieces.len());

@@ -49,7 +49,8 @@ pub struct RefineParams {
 pub struct Unresolved {
     /// The piece's id (1-based, after refinement).
     pub piece: usize,
-    /// The constraint it breaks: `shape`, `approximation`, `dimension` or `blade_strain`.
+    /// The constraint it breaks: `shape`, `approximation`, `dimension`, `blade_strain` or
+    /// `stability`.
     pub constraint: String,
     /// Plane index of the section it names (its worst part's).
     pub plane: usize,
@@ -59,10 +60,10 @@ pub struct Unresolved {
     pub length: f64,
     /// What that part measures against the constraint: its elastica's largest distance
     /// (`approximation`), its inflections (`shape`), the largest |curvature| of the design
-    /// or of its elastica (`blade_strain`), its length (`dimension`).
+    /// or of its elastica (`blade_strain`), its length (`dimension`, `stability`).
     pub measured: f64,
     /// The constraint's limit: `tolerance.max`, `max_inflections`, `max_curvature`, the
-    /// blade's length.
+    /// blade's length (`dimension`, `stability`).
     pub limit: f64,
     /// Why no smaller piece meets it.
     pub reason: String,
@@ -333,6 +334,7 @@ fn counts(pieces: &[Option<Piece>]) -> PieceCounts {
             approximation: n(&|q| q.verdicts.approximation == Some(false)),
             shape: n(&|q| !q.verdicts.shape),
             blade_strain: n(&|q| !q.verdicts.blade_strain),
+            stability: n(&|q| !q.verdicts.stability),
         },
     }
 }
@@ -365,6 +367,10 @@ fn failing(piece: &Piece, c: &Constraints) -> &'static str {
         // only the blade extended beyond its part to its length bends too much (a judge's
         // verdict): a shorter part extends it further
         "blade_extension"
+    } else if !v.stability {
+        // a blade that does not hold its shape at any place along it (a judge's verdict):
+        // a shorter part leaves more places, and its own fit
+        "stability"
     } else {
         "dimension"
     }
@@ -383,6 +389,7 @@ fn worst_part(facade: &Facade, c: &Constraints, piece: &Piece) -> (&'static str,
             }),
             "fit_strain" => k.fit.map_or(0.0, |f| f.max_abs_curvature),
             "blade_extension" => k.length.recip(),
+            "stability" => k.length,
             _ => k.length / c.blade_length,
         }
     };
@@ -581,6 +588,7 @@ fn too_small(what: &str) -> String {
         "approximation" => "no elastica within the tolerance over its part",
         "shape" => "its part has more inflections than the blade makes",
         "fit_strain" => "its part's elastica bends beyond the blade where the design does not",
+        "stability" => "the blade extended from its parts does not hold its shape (an unstable or marginal equilibrium) at any place along it",
         _ => "its part is longer than the blade or the piece wider than its block",
     };
     format!("{cause}, and no split leaves parts of at least min_piece")

@@ -61,6 +61,8 @@ pub struct ConstraintCounts {
     pub shape: usize,
     /// Blade strain (curvature).
     pub blade_strain: usize,
+    /// Blades that do not hold their shape (unstable or marginal equilibria).
+    pub stability: usize,
 }
 
 /// The block a piece is cut from.
@@ -133,6 +135,15 @@ pub struct BladeFit {
     pub holder_clearance: f64,
     /// Both held ends at least 1 % of the blade's length from the block.
     pub holders_clear: bool,
+    /// The held blade's stability margin ([`elastica::stability`]: the second variation's
+    /// smallest eigenvalue over a straight blade's, unit-free).
+    pub margin: f64,
+    /// Stable, marginal or unstable.
+    pub stability: elastica::Class,
+    /// The blade's total turning from its first end to its second, radians.
+    pub turning: f64,
+    /// What the holders carry.
+    pub loads: elastica::HolderLoads,
 }
 
 /// One piece.
@@ -163,6 +174,8 @@ pub struct PieceReport {
     pub min_holder_clearance: Option<f64>,
     /// Every held end of the piece's blades clear of its block (rationalized runs).
     pub holders_clear: Option<bool>,
+    /// The least stability margin of the piece's blades (rationalized runs).
+    pub min_margin: Option<f64>,
 }
 
 /// The pieces of `seg` as reported, with the blade fits of `posed` (empty when the run
@@ -173,12 +186,16 @@ pub fn summarize(
     posed: &[PosedPiece],
     rationalized: bool,
     c: &Constraints,
+    stiffness: &elastica::Stiffness,
 ) -> Pieces {
     let rotation = elastica::sweep::frame_quaternion(&facade.frame.normal, &facade.frame.v);
     let pieces: Vec<PieceReport> = seg
         .pieces
         .iter()
-        .map(|p| piece_report(p, posed.iter().find(|q| q.id == p.id), rotation, c))
+        .map(|p| {
+            let q = posed.iter().find(|q| q.id == p.id);
+            piece_report(p, q, rotation, c, stiffness)
+        })
         .collect();
     let count = |f: &dyn Fn(&Verdicts) -> bool| pieces.iter().filter(|p| f(&p.verdicts)).count();
     let parts: usize = pieces.iter().map(|p| p.sections.len()).sum();
@@ -195,6 +212,7 @@ pub fn summarize(
             approximation: count(&|v| v.approximation == Some(false)),
             shape: count(&|v| !v.shape),
             blade_strain: count(&|v| !v.blade_strain),
+            stability: count(&|v| !v.stability),
         },
         gouges: pieces
             .iter()
@@ -231,6 +249,10 @@ pub fn judged(p: &crate::Piece, posed: Option<&PosedPiece>, c: &Constraints) -> 
         .parts
         .iter()
         .all(|x| x.blade.max_abs_curvature <= c.max_curvature);
+    verdicts.stability &= q
+        .parts
+        .iter()
+        .all(|x| x.blade.stability_ok && x.blade.inflections_ok);
     verdicts
 }
 
@@ -240,6 +262,7 @@ fn piece_report(
     posed: Option<&PosedPiece>,
     rotation: [f64; 4],
     c: &Constraints,
+    stiffness: &elastica::Stiffness,
 ) -> PieceReport {
     let sections: Vec<PieceSection> = p
         .parts
@@ -260,6 +283,10 @@ fn piece_report(
                     gouge_length: x.clearance.gouge_length,
                     holder_clearance: x.clearance.holder_clearance,
                     holders_clear: x.clearance.holders_clear,
+                    margin: x.blade.stability.margin,
+                    stability: x.blade.stability.class,
+                    turning: x.blade.stability.turning,
+                    loads: x.blade.stability.loads.held(stiffness),
                 });
             PieceSection {
                 plane: part.plane,
@@ -288,6 +315,7 @@ fn piece_report(
     let max_gouge_depth = fold(&|f| f.gouge_depth, 0.0, f64::max);
     let min_holder_clearance =
         fold(&|f| f.holder_clearance, f64::INFINITY, f64::min).filter(|c| c.is_finite());
+    let min_margin = fold(&|f| f.margin, f64::INFINITY, f64::min).filter(|m| m.is_finite());
     let holders_clear = posed.map(|_| {
         sections
             .iter()
@@ -310,6 +338,7 @@ fn piece_report(
         max_gouge_depth,
         min_holder_clearance,
         holders_clear,
+        min_margin,
     }
 }
 

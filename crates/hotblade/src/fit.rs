@@ -366,11 +366,16 @@ pub fn blade_params(segment: &Segment, limits: &BladeLimits) -> BladeParams {
 /// [`blade_params`] for sections up to `longest` long: the limits' length, or `longest`
 /// when that is longer.
 pub fn blade_params_over(longest: f64, limits: &BladeLimits) -> BladeParams {
+    let whole = limits.max_blade_inflections.unwrap_or(u32::MAX);
     BladeParams {
         length: limits.length.max(longest),
         lead_in_share: 0.5,
         max_curvature: Some(limits.max_curvature),
-        max_inflections: Some(limits.max_inflections as usize),
+        max_inflections: Some(limits.max_inflections.min(whole) as usize),
+        stability: elastica::StabilityParams {
+            marginal: limits.min_margin,
+            ..elastica::StabilityParams::default()
+        },
     }
 }
 

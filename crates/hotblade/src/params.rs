@@ -25,6 +25,26 @@ pub struct BladeLimits {
     pub max_curvature: f64,
     /// Most inflections a blade shape may have.
     pub max_inflections: u32,
+    /// Most inflections the whole held blade may have, if limited (besides
+    /// `max_inflections`).
+    pub max_blade_inflections: Option<u32>,
+    /// Least stability margin a held blade keeps ([`elastica::stability`]; below it a
+    /// blade is marginal).
+    pub min_margin: f64,
+}
+
+impl BladeLimits {
+    /// A blade of `length` bending to `max_curvature` with `max_inflections`, no separate
+    /// limit on the whole blade's inflections, the default margin.
+    pub fn new(length: f64, max_curvature: f64, max_inflections: u32) -> Self {
+        BladeLimits {
+            length,
+            max_curvature,
+            max_inflections,
+            max_blade_inflections: None,
+            min_margin: elastica::stability::MARGINAL,
+        }
+    }
 }
 
 /// Parameters of [`rationalize`](crate::rationalize). Lengths are in the surface's unit; the defaults are the
@@ -83,11 +103,7 @@ impl Default for Params {
             max_plane_angle: std::f64::consts::FRAC_PI_6,
             refine: 3,
             grid_points: 60,
-            blade: BladeLimits {
-                length: 1000.0,
-                max_curvature: 0.011,
-                max_inflections: 2,
-            },
+            blade: BladeLimits::new(1000.0, 0.011, 2),
             tolerance_rms: 0.5,
             tolerance_max: 2.0,
             sectioning: SectionParams::default(),

@@ -237,6 +237,7 @@ fn bezier_to_elastica(
                 lead_in_share: 0.5,
                 max_curvature,
                 max_inflections,
+                stability: elastica::StabilityParams::default(),
             },
         );
         let d = dict_of(py, &p)?;

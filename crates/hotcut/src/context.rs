@@ -21,18 +21,38 @@ use crate::spec::{CellSpec, Tolerance, Units, WireSpec};
 pub fn blade_of(spec: Option<&BladeSpec>, units: Units) -> BladeLimits {
     match spec {
         Some(b) => BladeLimits {
-            length: b.length,
-            max_curvature: b.max_curvature,
-            max_inflections: b.max_inflections,
+            max_blade_inflections: b.max_blade_inflections,
+            min_margin: b.min_margin.unwrap_or(elastica::stability::MARGINAL),
+            ..BladeLimits::new(b.length, b.max_curvature, b.max_inflections)
         },
         None => {
             let f = units.per_mm();
-            BladeLimits {
-                length: defaults::BLADE_LENGTH_MM * f,
-                max_curvature: defaults::BLADE_MAX_CURVATURE_PER_MM / f,
-                max_inflections: 2,
-            }
+            BladeLimits::new(
+                defaults::BLADE_LENGTH_MM * f,
+                defaults::BLADE_MAX_CURVATURE_PER_MM / f,
+                2,
+            )
         }
+    }
+}
+
+/// Young's modulus of the default blade, GPa (spring steel).
+pub const BLADE_YOUNGS_MODULUS_GPA: f64 = 200.0;
+
+/// The blade's section in job units (its modulus in pascals), defaults applied.
+pub fn blade_section(spec: Option<&BladeSpec>, units: Units) -> elastica::BladeSection {
+    let f = units.per_mm();
+    elastica::BladeSection {
+        thickness: spec
+            .and_then(|b| b.thickness)
+            .unwrap_or(defaults::BLADE_THICKNESS_MM * f),
+        width: spec
+            .and_then(|b| b.width)
+            .unwrap_or(defaults::BLADE_WIDTH_MM * f),
+        youngs_modulus: spec
+            .and_then(|b| b.youngs_modulus)
+            .unwrap_or(BLADE_YOUNGS_MODULUS_GPA)
+            * 1e9,
     }
 }
 
@@ -111,6 +131,8 @@ pub struct Context {
     pub block: Option<BlockSpec>,
     /// Blade constraints (defaults applied, in job units).
     pub blade: BladeLimits,
+    /// The blade's bending stiffness, for the loads on its holders.
+    pub stiffness: elastica::Stiffness,
     /// The blade's kerf, as written.
     pub kerf: Kerf,
     /// The hot-wire machine, as written.

@@ -32,6 +32,8 @@
 // index; iterator zips of four slices read worse.
 #![allow(clippy::needless_range_loop)]
 
+/// The arc through a curve's end points that fits it best (the stable fallback of a blade).
+mod arc;
 /// The generic 7-parameter comparison baseline of the benchmarks.
 pub mod baseline;
 /// A fit described for a report: family, named parameters, quality, sampled curve.
@@ -47,6 +49,7 @@ use crate::segment::{ElasticaParams, Segment};
 use crate::unit::Family;
 use model::{Data, Placement, Shape, C};
 
+pub use arc::arc_through_ends;
 pub use error::FitError;
 pub use tangents::fit_with_end_tangents;
 

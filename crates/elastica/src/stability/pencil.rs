@@ -25,6 +25,8 @@ pub(crate) struct Pencil {
     pub off: Vec<f64>,
     /// The constraint rows, orthonormalised; a row dependent on the others is dropped.
     rows: Vec<Vec<f64>>,
+    /// The matrix's size: largest |diagonal| plus twice the largest |off-diagonal|.
+    scale: f64,
 }
 
 impl Pencil {
@@ -44,10 +46,13 @@ impl Pencil {
                 kept.push(r);
             }
         }
+        let scale = diag.iter().fold(0.0f64, |a, d| a.max(d.abs()))
+            + 2.0 * off.iter().fold(0.0f64, |a, o| a.max(o.abs()));
         Pencil {
             diag,
             off,
             rows: kept,
+            scale: scale.max(f64::MIN_POSITIVE),
         }
     }
 
@@ -56,68 +61,64 @@ impl Pencil {
         self.diag.len()
     }
 
-    /// How many eigenvalues of the restricted matrix are below `nu`.
+    /// How many eigenvalues of the restricted matrix are below `nu`: one pass of the
+    /// `LDLᵀ` recurrence of `T − νI`, which also forward-solves the rows, since the Schur
+    /// complement `−G A⁻¹ Gᵀ = −Σᵢ yᵢ yᵢᵀ / dᵢ` with `y = L⁻¹ Gᵀ` needs no back substitution.
     pub fn count_below(&self, nu: f64) -> usize {
         let m = self.len();
         if m == 0 {
             return 0;
         }
-        let scale = self
-            .diag
-            .iter()
-            .map(|d| (d - nu).abs())
-            .chain(self.off.iter().map(|o| 2.0 * o.abs()))
-            .fold(f64::MIN_POSITIVE, f64::max);
-        let tiny = f64::EPSILON * scale;
-        // LDLᵀ of T − νI: pivots d, multipliers l (a zero pivot is nudged, as tridiagonal
-        // bisection does: the count stays that of a nearby shift)
-        let mut d = vec![0.0; m];
-        let mut l = vec![0.0; m.saturating_sub(1)];
+        let tiny = f64::EPSILON * (self.scale + nu.abs());
+        let r = self.rows.len();
+        let none: &[f64] = &[];
+        let g0 = self.rows.first().map_or(none, |v| v.as_slice());
+        let g1 = self.rows.get(1).map_or(none, |v| v.as_slice());
         let mut negative = 0usize;
+        let (mut l, mut y0, mut y1) = (0.0, 0.0, 0.0);
+        let mut s = [0.0f64; 3];
         for i in 0..m {
             let mut p = self.diag[i] - nu;
             if i > 0 {
-                p -= self.off[i - 1] * l[i - 1];
+                p -= self.off[i - 1] * l;
             }
+            // a zero pivot is nudged, as tridiagonal bisection does: the count stays that
+            // of a nearby shift
             if p.abs() < tiny {
                 p = -tiny;
             }
             if p < 0.0 {
                 negative += 1;
             }
-            d[i] = p;
-            if i + 1 < m {
-                l[i] = self.off[i] / p;
-            }
-        }
-        let r = self.rows.len();
-        if r == 0 {
-            return negative;
-        }
-        // S = −G A⁻¹ Gᵀ
-        let solved: Vec<Vec<f64>> = self.rows.iter().map(|g| ldl_solve(&d, &l, g)).collect();
-        let mut s = [[0.0; 2]; 2];
-        for (row, srow) in self.rows.iter().zip(s.iter_mut()) {
-            for (x, v) in solved.iter().zip(srow.iter_mut()) {
-                *v = -dot(row, x);
-            }
-        }
-        let neg_s = if r == 1 {
-            usize::from(s[0][0] < 0.0)
-        } else {
-            let sym = 0.5 * (s[0][1] + s[1][0]);
-            let det = s[0][0] * s[1][1] - sym * sym;
-            let trace = s[0][0] + s[1][1];
-            if det < 0.0 {
-                1
-            } else if trace < 0.0 {
-                if det > 0.0 {
-                    2
-                } else {
-                    1
+            let inv = 1.0 / p;
+            if r > 0 {
+                y0 = g0[i] - l * y0;
+                s[0] -= y0 * y0 * inv;
+                if r > 1 {
+                    y1 = g1[i] - l * y1;
+                    s[1] -= y0 * y1 * inv;
+                    s[2] -= y1 * y1 * inv;
                 }
-            } else {
-                0
+            }
+            l = if i + 1 < m { self.off[i] * inv } else { 0.0 };
+        }
+        let neg_s = match r {
+            0 => 0,
+            1 => usize::from(s[0] < 0.0),
+            _ => {
+                let det = s[0] * s[2] - s[1] * s[1];
+                let trace = s[0] + s[2];
+                if det < 0.0 {
+                    1
+                } else if trace < 0.0 {
+                    if det > 0.0 {
+                        2
+                    } else {
+                        1
+                    }
+                } else {
+                    0
+                }
             }
         };
         (negative + neg_s).saturating_sub(r).min(m - r)
@@ -143,6 +144,38 @@ impl Pencil {
         (lo, hi)
     }
 
+    /// The Rayleigh quotient of the `k`-th sine mode projected off the rows (`None` when
+    /// nothing of it is left).
+    fn rayleigh_sine(&self, k: usize) -> Option<f64> {
+        let m = self.len();
+        let w = std::f64::consts::PI * k as f64 / (m + 1) as f64;
+        let mut v: Vec<f64> = (1..=m).map(|i| (w * i as f64).sin()).collect();
+        let before = dot(&v, &v);
+        for g in &self.rows {
+            let c = dot(&v, g);
+            v.iter_mut().zip(g).for_each(|(a, b)| *a -= c * b);
+        }
+        let vv = dot(&v, &v);
+        if !(vv > 1e-6 * before) {
+            return None;
+        }
+        let mut vtv = 0.0;
+        for i in 0..m {
+            let mut tv = self.diag[i] * v[i];
+            if i > 0 {
+                tv += self.off[i - 1] * v[i - 1];
+            }
+            if i + 1 < m {
+                tv += self.off[i] * v[i + 1];
+            }
+            vtv += v[i] * tv;
+        }
+        let q = vtv / vv;
+        // a hair above, so that the bracket holds the eigenvalue despite rounding
+        q.is_finite()
+            .then(|| q + 1e-12 * (q.abs() + self.scale * 1e-6))
+    }
+
     /// The smallest eigenvalue of the restricted matrix, to `tol` (absolute); `None` when
     /// the rows leave no vector free or the matrix is not finite.
     pub fn smallest(&self, tol: f64) -> Option<f64> {
@@ -153,6 +186,11 @@ impl Pencil {
         if !(lo.is_finite() && hi.is_finite()) {
             return None;
         }
+        // the Rayleigh quotient of any vector orthogonal to the rows bounds the smallest
+        // restricted eigenvalue from above (min–max): the low sine modes, projected
+        hi = (1..=3)
+            .filter_map(|k| self.rayleigh_sine(k))
+            .fold(hi, f64::min);
         // widen by a hair so that the bounds themselves bracket
         let pad = 1e-12 * (lo.abs() + hi.abs()) + f64::MIN_POSITIVE;
         lo -= pad;
@@ -175,22 +213,6 @@ impl Pencil {
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-/// Solves `L D Lᵀ x = b` for the unit lower-bidiagonal `L` of multipliers `l`.
-fn ldl_solve(d: &[f64], l: &[f64], b: &[f64]) -> Vec<f64> {
-    let m = d.len();
-    let mut x = b.to_vec();
-    for i in 1..m {
-        x[i] -= l[i - 1] * x[i - 1];
-    }
-    for i in 0..m {
-        x[i] /= d[i];
-    }
-    for i in (0..m.saturating_sub(1)).rev() {
-        x[i] -= l[i] * x[i + 1];
-    }
-    x
 }
 
 /// Solves the tridiagonal system `(sub, diag, sup) x = b` by Gaussian elimination with

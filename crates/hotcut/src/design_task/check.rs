@@ -153,6 +153,7 @@ fn check_cut(
             lead_in_share: 0.5,
             max_curvature: None,
             max_inflections: None,
+            stability: elastica::StabilityParams::default(),
         },
         planes,
         offset: 0.0,

@@ -205,6 +205,7 @@ impl Task for Design {
                 lead_in_share: 0.5,
                 max_curvature: Some(job.blade.max_curvature),
                 max_inflections: Some(job.blade.max_inflections as usize),
+                stability: elastica::StabilityParams::default(),
             },
             motion: Motion {
                 speed,

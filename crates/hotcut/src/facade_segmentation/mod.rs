@@ -429,6 +429,7 @@ impl Task for FacadeSegmentation {
             &run.posed,
             params.rationalize,
             c,
+            &job.stiffness,
         );
         SegmentationReport {
             job: job.name.clone(),
@@ -700,7 +701,6 @@ fn segment(
     seg
 }
 
-/// Every piece rationalized, in piece order.
 /// How a run's pieces are rationalized.
 fn rationalize_params(params: &SegmentationParams) -> RationalizeParams {
     RationalizeParams {
@@ -708,6 +708,7 @@ fn rationalize_params(params: &SegmentationParams) -> RationalizeParams {
         samples: params.samples,
         blade: params.blade,
         tolerance_max: params.constraints.tolerance_max,
+        tolerance_rms: params.constraints.tolerance_rms,
     }
 }
 

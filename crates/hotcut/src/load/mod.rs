@@ -122,6 +122,28 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
                 ),
             ));
         }
+        let u = job.units.per_mm();
+        let section = [
+            ("thickness", b.thickness, 50.0 * u, "50 mm"),
+            ("width", b.width, 500.0 * u, "500 mm"),
+            ("youngs_modulus", b.youngs_modulus, 1000.0, "1000 GPa"),
+        ];
+        for (field, v, most, said) in section {
+            if let Some(v) = v.filter(|v| !(*v > 0.0 && *v <= most)) {
+                errors.push(JobError::semantic(
+                    path,
+                    &format!("/blade/{field}"),
+                    format!("must be positive and at most {most} ({said}), got {v:?}"),
+                ));
+            }
+        }
+        if b.min_margin.is_some_and(|m| !(0.0..=1.0).contains(&m)) {
+            errors.push(JobError::semantic(
+                path,
+                "/blade/min_margin",
+                "the least stability margin must be 0–1 (a straight, unloaded blade's is 1)",
+            ));
+        }
     }
     let surface = job
         .surface
@@ -168,6 +190,10 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
         job_file: None,
         path: path.to_path_buf(),
         blade: blade_of(job.blade.as_ref(), job.units),
+        stiffness: elastica::Stiffness::of(
+            &crate::context::blade_section(job.blade.as_ref(), job.units),
+            1e-3 / job.units.per_mm(),
+        ),
         kerf: crate::context::Kerf::of(job.blade.as_ref()),
         name: job.name,
         units: job.units,

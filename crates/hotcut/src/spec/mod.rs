@@ -131,6 +131,35 @@ pub struct BladeSpec {
     /// none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kerf_table: Option<Vec<(f64, f64)>>,
+    /// Most inflections the whole held blade may have, its extension beyond the cut
+    /// included, in every task (> 0). `max_inflections` limits the whole blade in
+    /// `HotBlade` and `Design` and each section part in `FacadeSegmentation` (§5.1.3);
+    /// this limits the whole blade everywhere. Default: none (the blade's stability,
+    /// checked always, is what the inflection count stood for).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1))]
+    pub max_blade_inflections: Option<u32>,
+    /// Thickness of the blade strip in the cutting plane (> 0, job units): with `width`
+    /// and `youngs_modulus` it gives the bending stiffness the forces and moments on the
+    /// holders are reported with. Default: 1 mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub thickness: Option<f64>,
+    /// Width of the blade strip along the cut (> 0, job units). Default: 25 mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub width: Option<f64>,
+    /// Young's modulus of the blade at its working temperature, GPa (> 0). Default: 200
+    /// (spring steel).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub youngs_modulus: Option<f64>,
+    /// Least stability margin every posed blade keeps (0–1): the smallest eigenvalue of
+    /// the held blade's second variation over a straight blade's; below it a pose is
+    /// marginal and the plan avoids it. Default: 0.05.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub min_margin: Option<f64>,
 }
 
 fn default_max_inflections() -> u32 {
@@ -459,6 +488,10 @@ pub mod defaults {
     pub const BLADE_LENGTH_MM: f64 = 1000.0;
     /// `blade.max_curvature`, 1/mm.
     pub const BLADE_MAX_CURVATURE_PER_MM: f64 = 0.011;
+    /// `blade.thickness`, mm: a spring-steel hot blade strip.
+    pub const BLADE_THICKNESS_MM: f64 = 1.0;
+    /// `blade.width`, mm.
+    pub const BLADE_WIDTH_MM: f64 = 25.0;
     /// Cutting speed of the blade (`speed` of `HotBlade` and `FacadeSegmentation`), mm/s.
     pub const BLADE_SPEED_MM_PER_S: f64 = 7.0;
     /// Approach and retreat distance of the blade along the cut (`approach`), mm.
