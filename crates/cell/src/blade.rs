@@ -232,11 +232,29 @@ pub fn angle_between(u: f64, v: f64) -> f64 {
 /// assert!(s.points.iter().all(|p| p[2] >= -1e-9)); // an arch above the chord
 /// ```
 ///
+/// A blade held straight with its ends a blade length apart (as mounted) is a line.
+///
 /// # Errors
-/// [`CellError::Blade`] when the chord is not shorter than the blade or no elastica joins
-/// the ends.
+/// [`CellError::Blade`] when the chord is not shorter than the blade (unless the blade is
+/// straight and taut) or no elastica joins the ends.
 pub fn shape(p: &BladePose, length: f64) -> Result<BladeShape> {
     let q = planar(p)?;
+    let (x, y) = (q.frame * Vector3::x(), q.frame * Vector3::y());
+    // a blade held taut and straight, as mounted (its ends a blade length apart, the
+    // tangents along the chord): a line
+    let taut = (q.chord - length).abs() <= 1e-9 * length;
+    if taut && q.angles.iter().all(|a| a.abs() <= 1e-9) {
+        let points = (0..=SHAPE_SEGMENTS)
+            .map(|i| {
+                let u = i as f64 / SHAPE_SEGMENTS as f64 - 0.5;
+                (q.mid + x * (u * q.chord)).into()
+            })
+            .collect();
+        return Ok(BladeShape {
+            points,
+            max_curvature: 0.0,
+        });
+    }
     if !(q.chord < length) {
         return Err(CellError::Blade(format!(
             "the ends are {:.3} mm apart, not less than the blade's length {length:.3} mm",
@@ -253,7 +271,6 @@ pub fn shape(p: &BladePose, length: f64) -> Result<BladeShape> {
         max_iterations: 200,
     })
     .map_err(|e| CellError::Blade(e.to_string()))?;
-    let (x, y) = (q.frame * Vector3::x(), q.frame * Vector3::y());
     let points = d
         .points
         .iter()

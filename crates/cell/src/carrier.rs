@@ -129,7 +129,7 @@ impl CarriedProgram {
     /// #     chord: 800.0 * turn.sin() / turn * 0.98,
     /// #     angles: [turn, -turn],
     /// # });
-    /// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+    /// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect(), shapes: Vec::new() }];
     /// let program = cell::carrier::plan(&cell, &blocks)?;
     /// // move k's ends, relative to the block, put where the block is
     /// let k = 2;
@@ -236,7 +236,7 @@ pub fn block_pose(station: &Isometry3<f64>, ends: &BladePose) -> Result<Isometry
 ///     chord: 800.0 * turn.sin() / turn * 0.98,
 ///     angles: [turn, -turn],
 /// });
-/// let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect(), shapes: Vec::new() }];
 /// let (m, poses) = cell::carrier::moves(&cell, &blocks)?;
 /// assert_eq!(poses.len(), m.steps.len());
 /// // at every move the block is where the blade, relative to it, sits at the station
@@ -419,7 +419,7 @@ fn per_move(sw: Sweep, owner: &[usize]) -> Sweep {
 /// #     chord: 800.0 * turn.sin() / turn * 0.98,
 /// #     angles: [turn, -turn],
 /// # });
-/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect(), shapes: Vec::new() }];
 /// let (m, poses) = cell::carrier::moves(&cell, &blocks)?;
 /// let program = cell::carrier::solve(&cell, &m, &poses)?;
 /// assert_eq!(program.solutions.len(), 3); // both blade robots and the carrier
@@ -520,7 +520,7 @@ pub fn solve(
 /// #     chord: 800.0 * turn.sin() / turn * 0.98,
 /// #     angles: [turn, -turn],
 /// # });
-/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect(), shapes: Vec::new() }];
 /// let program = cell::carrier::plan(&cell, &blocks)?;
 /// let (m, poses) = cell::carrier::moves(&cell, &blocks)?;
 /// assert_eq!(program, cell::carrier::solve(&cell, &m, &poses)?);

@@ -22,7 +22,10 @@
 
 use nalgebra::{Isometry3, Vector3};
 
+use elastica::sweep::SHAPE_STATIONS;
+
 use crate::blade::{self, BladePose};
+use crate::equilibrium::{follow_steps, follow_steps_with, Follow, ProgramShapes};
 use crate::error::{CellError, Result};
 use crate::kinematics::Joints;
 use crate::plan::{sweep, Holder, PoseSolution, SweepFlag};
@@ -58,14 +61,24 @@ pub struct BlockCut {
     pub size: [f64; 3],
     /// The blade poses through it in cutting order, in the block's frame, mm.
     pub poses: Vec<BladePose>,
+    /// The shape the blade is planned to take at each pose
+    /// ([`elastica::sweep::BladePose::shape`]): its tangent angle against the chord at
+    /// [`SHAPE_STATIONS`] stations. Empty when unknown: the program's moves are then
+    /// followed for folds only.
+    pub shapes: Vec<[f64; SHAPE_STATIONS]>,
 }
 
 /// What a move of the program does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
 pub enum Phase {
-    /// To above the fixture, before anything else (from where the operator left the
-    /// robots; no block stands there yet).
+    /// The blade mounted straight, its ends one blade length apart: the program's first
+    /// target, where the operator mounts it.
+    Load,
+    /// Bending the mounted blade into a gentle arch (circular arcs of growing turn), to
+    /// the side the first cut bends it.
+    Bend,
+    /// To above the fixture, before anything else (no block stands there yet).
     Start,
     /// Down in the approach plane to the approach point.
     Descend,
@@ -92,6 +105,9 @@ pub struct Step {
     pub heat: bool,
     /// Before the move, the operator changes blocks: (block to remove, block to place).
     pub change: Option<(Option<usize>, usize)>,
+    /// The shape the blade is planned to take there (as [`BlockCut::shapes`]), where the
+    /// program means one: at cuts, and wherever the blade keeps a cut's or an arc's shape.
+    pub shape: Option<[f64; SHAPE_STATIONS]>,
 }
 
 /// One robot's summary for one block.
@@ -145,6 +161,8 @@ pub struct CellProgram {
     pub flags: [Vec<SweepFlag>; 2],
     /// Per block.
     pub blocks: Vec<BlockCheck>,
+    /// The blade's equilibrium through every move.
+    pub shapes: ProgramShapes,
 }
 
 fn check(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<()> {
@@ -238,6 +256,8 @@ struct Ends {
     rise: [Vector3<f64>; 2],
     /// Top of the block at the fixture.
     top: f64,
+    /// The planned shapes of the first and the last pose.
+    shapes: [Option<[f64; SHAPE_STATIONS]>; 2],
 }
 
 /// How far the block reaches beyond the plane of world pose `p` along `dir` (the largest
@@ -283,6 +303,7 @@ fn ends_of(cell: &FixtureCell, b: &BlockCut) -> Result<Ends> {
             rise_direction(&last, b.block)?,
         ],
         top: top(cell, b),
+        shapes: [b.shapes.first().copied(), b.shapes.last().copied()],
     })
 }
 
@@ -316,38 +337,233 @@ fn travel_low(
 const RELAXED_RAD: f64 = 0.2;
 
 /// Pose `p` relaxed to a gentle circular arch of the blade's length in the same plane,
-/// about the same midpoint, bulging the same way.
-fn relaxed(cell: &FixtureCell, p: &BladePose) -> Result<BladePose> {
+/// about the same midpoint, bulging to `side` (±1).
+fn relaxed(cell: &FixtureCell, p: &BladePose, side: f64) -> Result<BladePose> {
     let mut q = blade::planar(p)?;
-    let s = if q.angles[0] - q.angles[1] < 0.0 {
-        -1.0
-    } else {
-        1.0
-    };
     q.chord = cell.blade_length * RELAXED_RAD.sin() / RELAXED_RAD;
-    q.angles = [s * RELAXED_RAD, -s * RELAXED_RAD];
+    q.angles = [side * RELAXED_RAD, -side * RELAXED_RAD];
     Ok(blade::from_planar(&q))
 }
 
-/// The travel from `a` to `b`, straight when no pose between bends the blade too much,
-/// else through both relaxed: the poses after `a`, and the lowest blade point.
-fn travel_path(cell: &FixtureCell, a: &BladePose, b: &BladePose) -> Result<(Vec<BladePose>, f64)> {
-    let direct = travel(cell, a, b)?;
-    let worst = match travel_low(cell, a, &direct)? {
-        Ok(low) => return Ok((direct, low)),
-        Err(k) => k,
+/// Whether the blade followed from `a` (planned shape `shapes[0]`) through `path` to its
+/// last pose (planned shape `shapes[1]`) snaps: 1 if it does ([`Follow::Check`]: it
+/// stops at the first snap), else 0.
+fn snaps(
+    cell: &FixtureCell,
+    a: &BladePose,
+    path: &[BladePose],
+    shapes: [Option<[f64; SHAPE_STATIONS]>; 2],
+) -> usize {
+    let poses: Vec<BladePose> = std::iter::once(*a).chain(path.iter().copied()).collect();
+    let mut planned = vec![None; poses.len()];
+    planned[0] = shapes[0];
+    if let Some(last) = planned.last_mut() {
+        *last = shapes[1];
+    }
+    follow_steps_with(cell.blade_length, &poses, &planned, Follow::Check).snaps
+}
+
+/// A waypoint from `a` to `b` that turns one end at a time: the chord, midpoint and plane
+/// halfway, end `end` already at `b`'s angle, the other still at `a`'s. Moving a nearly
+/// taut blade's bulge from one side to the other this way rolls it through an S, where
+/// turning both ends at once would pass its buckling point and snap.
+fn one_end(a: &BladePose, b: &BladePose, end: usize) -> Result<BladePose> {
+    let (pa, pb) = (blade::planar(a)?, blade::planar(b)?);
+    let mut q = blade::interpolate(&pa, &pb, 0.5);
+    let turned = |e: usize| pa.angles[e] + blade::angle_between(pa.angles[e], pb.angles[e]);
+    q.angles = if end == 0 {
+        [turned(0), pa.angles[1]]
+    } else {
+        [pa.angles[0], turned(1)]
     };
-    let (ra, rb) = (relaxed(cell, a)?, relaxed(cell, b)?);
+    Ok(blade::from_planar(&q))
+}
+
+/// The routes the blade may take from `a` to `b` (bulging to `sides`), in order of
+/// preference: straight (interpolated in the blade's plane), through both poses relaxed,
+/// turning one end at a time (either first), and through both relaxed turning one end at
+/// a time between them. Each is the poses after `a`, `b` last.
+fn routes(
+    cell: &FixtureCell,
+    a: &BladePose,
+    b: &BladePose,
+    sides: [f64; 2],
+) -> Result<Vec<Vec<BladePose>>> {
+    let mut out = vec![travel(cell, a, b)?];
+    let (ra, rb) = (relaxed(cell, a, sides[0])?, relaxed(cell, b, sides[1])?);
     let mut path = travel(cell, a, &ra)?;
     path.extend(travel(cell, &ra, &rb)?);
     path.extend(travel(cell, &rb, b)?);
-    match travel_low(cell, a, &path)? {
-        Ok(low) => Ok((path, low)),
-        Err(k) => Err(CellError::Blade(format!(
-            "every travel between two blocks bends the blade too much: to curvature {:.6}/mm directly, {k:.6}/mm relaxed",
-            worst
-        ))),
+    out.push(path);
+    for end in [0, 1] {
+        let w = one_end(a, b, end)?;
+        let mut path = travel(cell, a, &w)?;
+        path.extend(travel(cell, &w, b)?);
+        out.push(path);
     }
+    // relaxed, with room to roll the bulge over one end at a time
+    for end in [0, 1] {
+        let w = one_end(&ra, &rb, end)?;
+        let mut path = travel(cell, a, &ra)?;
+        path.extend(travel(cell, &ra, &w)?);
+        path.extend(travel(cell, &w, &rb)?);
+        path.extend(travel(cell, &rb, b)?);
+        out.push(path);
+    }
+    Ok(out)
+}
+
+/// The travel from `a` to `b`: the first of [`routes`] on which no pose bends the blade
+/// too much and the blade follows without snapping, else the one within the curvature
+/// limit that snaps least (its snaps are the program's report): the poses after `a`, the
+/// lowest blade point, and which route it is. With `route`, that route is taken unchecked
+/// for snaps (a route chosen before, the poses since moved).
+fn travel_path(
+    cell: &FixtureCell,
+    a: &BladePose,
+    b: &BladePose,
+    shapes: [Option<[f64; SHAPE_STATIONS]>; 2],
+    route: Option<usize>,
+) -> Result<(Vec<BladePose>, f64, usize)> {
+    let mut best: Option<(usize, Vec<BladePose>, f64, usize)> = None;
+    let mut worst = 0.0f64;
+    let sides = [bulge(a, shapes[0])?, bulge(b, shapes[1])?];
+    for (i, path) in routes(cell, a, b, sides)?.into_iter().enumerate() {
+        if route.is_some_and(|r| r != i) {
+            continue;
+        }
+        let low = match travel_low(cell, a, &path)? {
+            Ok(low) => low,
+            Err(k) => {
+                worst = worst.max(k);
+                continue;
+            }
+        };
+        let n = if route.is_some() {
+            0
+        } else {
+            snaps(cell, a, &path, shapes)
+        };
+        if n == 0 {
+            return Ok((path, low, i));
+        }
+        if best.as_ref().is_none_or(|(m, _, _, _)| n < *m) {
+            best = Some((n, path, low, i));
+        }
+    }
+    best.map(|(_, path, low, i)| (path, low, i)).ok_or_else(|| {
+        CellError::Blade(format!(
+            "every travel between two blocks bends the blade too much: to curvature {worst:.6}/mm at least"
+        ))
+    })
+}
+
+/// Arcs the mounted blade is bent through before it goes to its first pose.
+pub const BENDS: usize = 4;
+
+/// The planned shape of a circular arc turning `a` at its first end and `−a` at its
+/// second against the chord.
+fn arc_shape(a: f64) -> [f64; SHAPE_STATIONS] {
+    std::array::from_fn(|k| a - 2.0 * a * k as f64 / (SHAPE_STATIONS - 1) as f64)
+}
+
+/// From the blade mounted straight to the pose `above` (planned shape `shape`): the Load
+/// pose (straight, chord = the blade's length, in the plane of `above`, about its
+/// midpoint), [`BENDS`] circular arcs of growing turn up to [`RELAXED_RAD`] bulging to
+/// `side` (±1), then `above` — raised along `up` where an arc would dip below `above`'s
+/// lowest point.
+fn loading(
+    cell: &FixtureCell,
+    above: &BladePose,
+    up: &Vector3<f64>,
+    side: f64,
+) -> Result<Vec<(Phase, BladePose, Option<[f64; SHAPE_STATIONS]>)>> {
+    let q = blade::planar(above)?;
+    let length = cell.blade_length;
+    let mut poses = vec![(
+        Phase::Load,
+        blade::from_planar(&blade::PlanarPose {
+            chord: length,
+            angles: [0.0, 0.0],
+            ..q
+        }),
+        None,
+    )];
+    for k in 1..=BENDS {
+        let a = RELAXED_RAD * k as f64 / BENDS as f64;
+        let pose = blade::from_planar(&blade::PlanarPose {
+            chord: length * a.sin() / a,
+            angles: [side * a, -side * a],
+            ..q
+        });
+        poses.push((Phase::Bend, pose, Some(arc_shape(side * a))));
+    }
+    let low = lowest(cell, above)?;
+    let mut deficit = 0.0f64;
+    for (_, p, _) in &poses {
+        deficit = deficit.max(low - lowest(cell, p)?);
+    }
+    if deficit > 0.0 {
+        let lift = up * (deficit / up.z.max(1e-9));
+        for (_, p, _) in poses.iter_mut() {
+            *p = blade::translated(p, &lift);
+        }
+    }
+    Ok(poses)
+}
+
+/// The side (±1) a planned shape bulges to: the side of its middle point against the
+/// chord (without a shape, the side of an arch with the pose's end angles).
+fn bulge(p: &BladePose, shape: Option<[f64; SHAPE_STATIONS]>) -> Result<f64> {
+    let d = match shape {
+        // the middle's offset from the chord: ∫ sin θ over the first half (trapezoid)
+        Some(s) => (0..(SHAPE_STATIONS - 1) / 2)
+            .map(|k| s[k].sin() + s[k + 1].sin())
+            .sum::<f64>(),
+        None => {
+            let q = blade::planar(p)?;
+            q.angles[0] - q.angles[1]
+        }
+    };
+    Ok(if d < 0.0 { -1.0 } else { 1.0 })
+}
+
+/// The program's first moves: the blade loaded and bent to the side its first pose bulges
+/// to, then to `above` (planned shape `shape`); through poses interpolated in the blade's
+/// plane from the relaxed arc where the direct move snaps, or bent to the other side
+/// where that holds better.
+fn start(
+    cell: &FixtureCell,
+    above: &BladePose,
+    up: &Vector3<f64>,
+    shape: Option<[f64; SHAPE_STATIONS]>,
+) -> Result<Vec<(Phase, BladePose, Option<[f64; SHAPE_STATIONS]>)>> {
+    let side = bulge(above, shape)?;
+    type Moves = Vec<(Phase, BladePose, Option<[f64; SHAPE_STATIONS]>)>;
+    let mut best: Option<(usize, Moves)> = None;
+    for s in [side, -side] {
+        let load = loading(cell, above, up, s)?;
+        let Some(&(_, bent, bent_shape)) = load.last() else {
+            continue;
+        };
+        for path in routes(cell, &bent, above, [s, side])? {
+            let n = snaps(cell, &bent, &path, [bent_shape, shape]);
+            if best.as_ref().is_none_or(|(b, _)| n < *b) {
+                let mut moves = load.clone();
+                let last = path.len() - 1;
+                moves.extend(
+                    path.iter()
+                        .enumerate()
+                        .map(|(k, p)| (Phase::Start, *p, if k == last { shape } else { None })),
+                );
+                best = Some((n, moves));
+            }
+            if best.as_ref().is_some_and(|(b, _)| *b == 0) {
+                return Ok(best.map(|b| b.1).unwrap_or_default());
+            }
+        }
+    }
+    Ok(best.map(|b| b.1).unwrap_or_default())
 }
 
 /// From block `a`'s retreat up to the height where the whole blade is at `z` or above,
@@ -360,12 +576,16 @@ fn transition(
     z: f64,
 ) -> Result<(BladePose, Vec<BladePose>, f64)> {
     let mut target = z;
+    // the route is chosen once: lifting changes where the blade travels, not its shapes
+    let mut route = None;
     // lifting both ends by dz lifts every pose between by dz: one correction is enough
     // unless a pose was already above the height; a few more settle that case
     for _ in 0..8 {
         let risen = lifted(cell, &a.retreat, &a.rise[1], target)?;
         let above = lifted(cell, &b.approach, &b.rise[0], target)?;
-        let (path, low) = travel_path(cell, &risen, &above)?;
+        let (path, low, chosen) =
+            travel_path(cell, &risen, &above, [a.shapes[1], b.shapes[0]], route)?;
+        route = Some(chosen);
         if low >= z - 1e-6 {
             return Ok((risen, path, low));
         }
@@ -386,6 +606,8 @@ pub struct Moves {
     /// Per block (in cutting order): its number and the least height of the blade above
     /// it while it travels to or from it, mm.
     pub clearances: Vec<(usize, f64)>,
+    /// The blade's equilibrium followed through every move ([`crate::equilibrium`]).
+    pub shapes: ProgramShapes,
 }
 
 /// Plans the program of `blocks` (in cutting order; blocks without poses are skipped):
@@ -435,7 +657,7 @@ pub struct Moves {
 /// #     chord: 800.0 * turn.sin() / turn * 0.98,
 /// #     angles: [turn, -turn],
 /// # });
-/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect(), shapes: Vec::new() }];
 /// let program = cell::fixture::plan(&cell, &blocks)?;
 /// let by_hand = cell::fixture::solve(&cell, &cell::fixture::moves(&cell, &blocks)?)?;
 /// assert_eq!(program, by_hand);
@@ -495,12 +717,15 @@ pub fn plan(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<CellProgram> {
 ///     chord: 800.0 * turn.sin() / turn * 0.98,
 ///     angles: [turn, -turn],
 /// });
-/// let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect(), shapes: Vec::new() }];
 /// let m = cell::fixture::moves(&cell, &blocks)?;
 /// let phases: Vec<Phase> = m.steps.iter().map(|s| s.phase).collect();
 /// use Phase::*;
-/// assert_eq!(phases, [Start, Descend, Cut, Cut, Cut, Retreat, Rise]);
-/// assert_eq!(m.steps[1].change, Some((None, 1))); // the block is placed before the descent
+/// // the blade is mounted straight and bent into a gentle arch first
+/// assert_eq!(phases, [Load, Bend, Bend, Bend, Bend, Start, Descend, Cut, Cut, Cut, Retreat, Rise]);
+/// assert_eq!(m.steps[6].change, Some((None, 1))); // the block is placed before the descent
+/// // followed through every move after the mount, the blade never snaps
+/// assert_eq!((m.shapes.transitions, m.shapes.snaps), (10, 0));
 /// assert!(m.steps.iter().all(|s| s.heat == matches!(s.phase, Cut | Retreat)));
 /// // the blade waits above the block by at least the clearance
 /// assert_eq!(m.clearances[0].0, 1);
@@ -520,18 +745,28 @@ pub fn moves(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<Moves> {
         .collect::<Result<Vec<_>>>()?;
     let mut steps: Vec<Step> = Vec::new();
     let mut clearances = vec![f64::INFINITY; blocks.len()];
-    let step = |phase, block: usize, ends: &BladePose, heat| Step {
+    let step = |phase, block: usize, ends: &BladePose, heat, shape| Step {
         phase,
         block,
         ends: local(cell, ends),
         heat,
         change: None,
+        shape,
     };
     for (i, (b, e)) in blocks.iter().zip(&ends).enumerate() {
         if i == 0 {
             let above = lifted(cell, &e.approach, &e.rise[0], e.top + cell.clearance)?;
-            clearances[0] = lowest(cell, &above)? - e.top;
-            steps.push(step(Phase::Start, b.block, &above, false));
+            let first = start(cell, &above, &e.rise[0], e.shapes[0])?;
+            let low = first
+                .iter()
+                .map(|(_, p, _)| lowest(cell, p))
+                .collect::<Result<Vec<f64>>>()?
+                .into_iter()
+                .fold(f64::INFINITY, f64::min);
+            clearances[0] = low - e.top;
+            for (phase, p, shape) in first {
+                steps.push(step(phase, b.block, &p, false, shape));
+            }
         } else {
             let (a, before) = (blocks[i - 1], &ends[i - 1]);
             let tops = before.top.max(e.top);
@@ -539,38 +774,45 @@ pub fn moves(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<Moves> {
             for k in [i - 1, i] {
                 clearances[k] = clearances[k].min(low - tops);
             }
-            steps.push(step(Phase::Rise, a.block, &risen, false));
+            steps.push(step(Phase::Rise, a.block, &risen, false, before.shapes[1]));
+            let last = path.len().saturating_sub(1);
             for (k, p) in path.iter().enumerate() {
+                let shape = if k == last { e.shapes[0] } else { None };
                 steps.push(Step {
                     change: (k == 0).then_some((Some(a.block), b.block)),
-                    ..step(Phase::Travel, b.block, p, false)
+                    ..step(Phase::Travel, b.block, p, false, shape)
                 });
             }
         }
         // the first block is placed once the blade waits above the fixture
         steps.push(Step {
             change: (i == 0).then_some((None, b.block)),
-            ..step(Phase::Descend, b.block, &e.approach, false)
+            ..step(Phase::Descend, b.block, &e.approach, false, e.shapes[0])
         });
-        for p in &b.poses {
+        for (k, p) in b.poses.iter().enumerate() {
             steps.push(Step {
                 phase: Phase::Cut,
                 block: b.block,
                 ends: *p,
                 heat: true,
                 change: None,
+                shape: b.shapes.get(k).copied(),
             });
         }
-        steps.push(step(Phase::Retreat, b.block, &e.retreat, true));
+        steps.push(step(Phase::Retreat, b.block, &e.retreat, true, e.shapes[1]));
     }
     let (b, e) = (blocks[blocks.len() - 1], &ends[ends.len() - 1]);
     let risen = lifted(cell, &e.retreat, &e.rise[1], e.top + cell.clearance)?;
     let k = blocks.len() - 1;
     clearances[k] = clearances[k].min(lowest(cell, &risen)? - e.top);
-    steps.push(step(Phase::Rise, b.block, &risen, false));
+    steps.push(step(Phase::Rise, b.block, &risen, false, e.shapes[1]));
+    let poses: Vec<BladePose> = steps.iter().map(|s| s.ends).collect();
+    let planned: Vec<Option<[f64; SHAPE_STATIONS]>> = steps.iter().map(|s| s.shape).collect();
+    let shapes = follow_steps(cell.blade_length, &poses, &planned);
     Ok(Moves {
         steps,
         clearances: blocks.iter().map(|b| b.block).zip(clearances).collect(),
+        shapes,
     })
 }
 
@@ -620,7 +862,7 @@ pub fn moves(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<Moves> {
 /// #     chord: 800.0 * turn.sin() / turn * 0.98,
 /// #     angles: [turn, -turn],
 /// # });
-/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect(), shapes: Vec::new() }];
 /// let m = cell::fixture::moves(&cell, &blocks)?;
 /// let program = cell::fixture::solve(&cell, &m)?;
 /// // one solution per move and robot; both robots reach every cutting move
@@ -651,6 +893,7 @@ pub fn solve(cell: &FixtureCell, moves: &Moves) -> Result<CellProgram> {
         solutions,
         flags,
         blocks,
+        shapes: moves.shapes.clone(),
     })
 }
 
@@ -701,7 +944,7 @@ pub fn solve(cell: &FixtureCell, moves: &Moves) -> Result<CellProgram> {
 /// #     chord: 800.0 * turn.sin() / turn * 0.98,
 /// #     angles: [turn, -turn],
 /// # });
-/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect() }];
+/// # let blocks = [BlockCut { block: 1, size: [600.0; 3], poses: (0..3).map(|k| arch(300.0 * k as f64)).collect(), shapes: Vec::new() }];
 /// let program = cell::fixture::plan(&cell, &blocks)?;
 /// let m = cell::fixture::moves(&cell, &blocks)?;
 /// // the summary of the robots' solutions along the moves is the program's

@@ -163,6 +163,9 @@ pub struct PlacedBlock {
     pub size: [f64; 3],
     /// The blade's two held ends' tool frames at every pose, in cutting order.
     pub poses: Vec<BladePose>,
+    /// The shape planned at every pose (as [`crate::fixture::BlockCut::shapes`]; empty
+    /// when unknown).
+    pub shapes: Vec<[f64; elastica::sweep::SHAPE_STATIONS]>,
 }
 
 /// How a default holder holds its end of the blade.
@@ -328,6 +331,7 @@ fn default_robots(mid: &Vector3<f64>, dir: &Vector3<f64>, blade: f64, standoff: 
 ///     frame: Isometry3::identity(),
 ///     size: [1000.0, 1000.0, 400.0],
 ///     poses: vec![[end(-100.0), end(1100.0)]],
+///     shapes: Vec::new(),
 /// };
 /// let layout = Layout { table: 200.0, standoff: 800.0, style: HolderStyle::Facing };
 /// let cell = resolve(&CellSettings::default(), &[block], 1200.0, [1000.0, 1000.0, 400.0], layout);

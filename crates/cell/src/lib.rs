@@ -29,6 +29,8 @@
 //!   by forward kinematics; the solution nearest a previous one; margins to the limits.
 //! - [`conf`](mod@conf): ABB configuration data (`cf1`, `cf4`, `cf6`, `cfx`) of a solution.
 //! - [`blade`]: the blade between its two held ends, in its plane, interpolated, rebuilt.
+//! - [`equilibrium`]: the blade's equilibrium followed through every move of a program,
+//!   with its stability margin, and every snap to another shape.
 //! - [`fixture`]: the synchronized program of a cell that cuts blocks one at a time at a
 //!   fixture — descend, cut, retreat, rise, travel — with both robots' joints.
 //! - [`carrier`]: the same program in a three-robot cell where a robot carries the block
@@ -48,6 +50,8 @@ pub mod blade;
 pub mod carrier;
 /// ABB configuration data of a joint solution.
 pub mod conf;
+/// The blade's equilibrium followed through a program's moves: margins and snaps.
+pub mod equilibrium;
 /// Errors of the robot cell.
 pub mod error;
 /// The whole program of a two-robot cell cutting blocks one at a time at a fixture.

@@ -26,6 +26,8 @@ pub struct Program {
     pub solutions: Vec<Vec<PoseSolution>>,
     /// Per block.
     pub blocks: Vec<BlockCheck>,
+    /// The blade's equilibrium through every move ([`crate::equilibrium`]).
+    pub shapes: crate::equilibrium::ProgramShapes,
 }
 
 impl From<CellProgram> for Program {
@@ -35,6 +37,7 @@ impl From<CellProgram> for Program {
             block_poses: None,
             solutions: p.solutions.into(),
             blocks: p.blocks,
+            shapes: p.shapes,
         }
     }
 }
@@ -46,6 +49,7 @@ impl From<CarriedProgram> for Program {
             block_poses: Some(p.block_poses),
             solutions: p.solutions.into(),
             blocks: p.blocks,
+            shapes: p.moves.shapes,
         }
     }
 }
@@ -85,6 +89,7 @@ fn block_cuts(blocks: &[PlacedBlock]) -> Vec<BlockCut> {
                 block: b.block,
                 size: b.size,
                 poses: b.poses.iter().map(|p| p.map(|e| to_block * e)).collect(),
+                shapes: b.shapes.clone(),
             }
         })
         .collect()
@@ -215,6 +220,7 @@ fn travel_step() -> (f64, f64) {
 ///     frame: Isometry3::identity(),
 ///     size: [600.0, 600.0, 400.0],
 ///     poses: (0..=4).map(|i| [end(150.0 * i as f64, -100.0), end(150.0 * i as f64, 700.0)]).collect(),
+///     shapes: Vec::new(),
 /// };
 /// let motion = Motion { blade: 820.0, max_curvature: 1e-2, approach: 50.0 };
 /// let (cell, program) = plan(&CellSettings::default(), &[block], &motion)?;

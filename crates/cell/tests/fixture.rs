@@ -32,9 +32,18 @@ fn cell() -> FixtureCell {
 fn check(cell: &FixtureCell, blocks: &[BlockCut], p: &CellProgram) {
     for (k, s) in p.steps.iter().enumerate() {
         let world: BladePose = [cell.fixture * s.ends[0], cell.fixture * s.ends[1]];
-        // the chord never exceeds the blade, and the blade between is an elastica
+        // the chord never exceeds the blade (the blade is mounted straight, a blade
+        // length apart, only at the first move), and the blade between is an elastica
         let q = planar(&world).unwrap();
-        assert!(q.chord < BLADE, "move {k}: chord {}", q.chord);
+        if s.phase == Phase::Load {
+            assert!(
+                k == 0 && (q.chord - BLADE).abs() < 1e-9,
+                "move {k}: load at {}",
+                q.chord
+            );
+        } else {
+            assert!(q.chord < BLADE, "move {k}: chord {}", q.chord);
+        }
         let blade = shape(&world, BLADE).unwrap();
         // heat exactly on the moves that cut: into the block, through it, out of it
         assert_eq!(
@@ -42,7 +51,10 @@ fn check(cell: &FixtureCell, blocks: &[BlockCut], p: &CellProgram) {
             matches!(s.phase, Phase::Cut | Phase::Retreat),
             "move {k}"
         );
-        if matches!(s.phase, Phase::Rise | Phase::Travel | Phase::Start) {
+        if matches!(
+            s.phase,
+            Phase::Load | Phase::Bend | Phase::Rise | Phase::Travel | Phase::Start
+        ) {
             let top = 200.0 + 600.0;
             assert!(
                 blade.lowest() >= top + cell.clearance - 1e-6,

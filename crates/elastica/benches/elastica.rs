@@ -132,3 +132,23 @@ fn follow_one_move(bencher: divan::Bencher) {
     let p = FollowParams::default();
     bencher.bench_local(|| follow(divan::black_box(&start), &at, &p).min_margin());
 }
+
+/// One blade carried to the next plane's (`stability::follow::transition`): an arch
+/// flattening slightly, as between two neighbouring cutting planes.
+#[divan::bench]
+fn transition_between_planes(bencher: divan::Bencher) {
+    use elastica::Segment;
+    let arc = |c: f64| Segment::Arc {
+        x0: 0.0,
+        y0: 0.0,
+        phi: 0.5 * c * 1000.0,
+        curvature: -c,
+        length: 1000.0,
+    };
+    let (a, b) = (arc(4e-4), arc(3.9e-4));
+    bencher.bench_local(|| {
+        elastica::stability::follow::transition(divan::black_box(&a), &b)
+            .unwrap()
+            .snap
+    });
+}

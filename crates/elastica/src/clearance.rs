@@ -245,6 +245,19 @@ fn shares(own: f64) -> impl Iterator<Item = (f64, bool)> {
     coarse.chain(fine)
 }
 
+/// How many of the moves from one blade to the next (consecutive cutting planes, the
+/// robots moving both ends straight) snap the blade to another shape
+/// ([`crate::stability::follow::transition`]; a move that cannot be assessed counts).
+pub fn snapping_moves(blades: &[Blade]) -> usize {
+    blades
+        .windows(2)
+        .filter(|w| {
+            crate::stability::follow::transition(&w[0].segment, &w[1].segment)
+                .map_or(true, |t| t.snap.is_some())
+        })
+        .count()
+}
+
 /// Within the blade's limits and a stable equilibrium.
 fn within_limits(b: &Blade) -> bool {
     b.curvature_ok && b.inflections_ok && b.stability_ok
@@ -401,16 +414,18 @@ pub fn place_all_by(
             })
             .collect()
     };
-    // the blades' part of the score: (planes outside the limits or not stable, the least
-    // margin among those)
+    // the blades' part of the score: (planes outside the limits or not stable, and — when
+    // every blade holds — the moves from one plane's blade to the next that snap; the
+    // least margin among those)
     let held = |all: &[Blade]| {
         let broken = all.iter().filter(|b| !within_limits(b)).count();
+        let snaps = if broken == 0 { snapping_moves(all) } else { 0 };
         let shaky = all
             .iter()
             .filter(|b| !b.stability_ok)
             .map(|b| -b.stability.margin)
             .fold(f64::NEG_INFINITY, f64::max);
-        (broken, shaky)
+        (broken + snaps, shaky)
     };
     // then (planes not clean, the worst badness)
     let score = |all: &[(Blade, Clearance)]| {

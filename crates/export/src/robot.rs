@@ -21,13 +21,46 @@ pub struct EndPose {
     pub rotation: [f64; 4],
 }
 
-/// A blade pose: the cutting plane's normal and both held ends, the blade's start first.
+/// A blade pose: the cutting plane's normal and both held ends, the blade's start first,
+/// and the blade planned between them.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct Pose {
     /// Unit normal of the cutting plane.
     pub plane_normal: [f64; 3],
     /// The two ends.
     pub ends: [EndPose; 2],
+    /// The blade between them: its planned shape, its stability and its loads.
+    pub blade: PoseBlade,
+}
+
+/// Stations of [`PoseBlade::shape`]: every sixteenth of the blade, both ends included.
+pub const SHAPE_STATIONS: usize = 17;
+
+/// The blade a pose plans: which of the equilibria its held ends allow it means, whether
+/// that equilibrium holds, and what the holders carry.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+pub struct PoseBlade {
+    /// The blade's tangent angle against its chord (from the first end to the second),
+    /// turning positive about `plane_normal`, at 17 equally spaced stations along it,
+    /// radians: the planned shape (the same ends often hold several).
+    pub shape: [f64; SHAPE_STATIONS],
+    /// Total turning from the first end to the second, radians.
+    pub turning: f64,
+    /// Inflections of the whole blade.
+    pub inflections: usize,
+    /// Stability margin: the smallest eigenvalue of the held blade's second variation over
+    /// a straight blade's (`4π²/L²`); unit-free, 1 for a straight unloaded blade, ≤ 0
+    /// where it buckles out of the shape.
+    pub margin: f64,
+    /// `Stable`, `Marginal` (below the job's `blade.min_margin`) or `Unstable`.
+    pub stability: &'static str,
+    /// The force on either holder, N.
+    pub force_n: f64,
+    /// The blade's tension at the first and the second end, N (positive pulls the holder
+    /// in along the blade).
+    pub tension_n: [f64; 2],
+    /// The bending moment at the first and the second end, N·m.
+    pub moment_nm: [f64; 2],
 }
 
 /// The poses of a run, `targets.json`.

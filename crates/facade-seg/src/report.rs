@@ -249,10 +249,12 @@ pub fn judged(p: &crate::Piece, posed: Option<&PosedPiece>, c: &Constraints) -> 
         .parts
         .iter()
         .all(|x| x.blade.max_abs_curvature <= c.max_curvature);
+    let blades: Vec<elastica::Blade> = q.parts.iter().map(|x| x.blade.clone()).collect();
     verdicts.stability &= q
         .parts
         .iter()
-        .all(|x| x.blade.stability_ok && x.blade.inflections_ok);
+        .all(|x| x.blade.stability_ok && x.blade.inflections_ok)
+        && elastica::clearance::snapping_moves(&blades) == 0;
     verdicts
 }
 

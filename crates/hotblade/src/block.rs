@@ -61,6 +61,10 @@ pub(crate) fn build_block(
             .map(|s| s.blade.inflections)
             .max()
             .unwrap_or(0),
+        min_margin: sections
+            .iter()
+            .map(|s| s.blade.stability.margin)
+            .reduce(f64::min),
         max_plane_angle: fold(&sections, |s| s.plane_angle),
         worst_section: worst_section(&sections),
         blended_planes: swept.blended,
@@ -125,6 +129,10 @@ fn flags(ctx: &Context<'_>, r: &BlockReport, sections: &[FittedSection]) -> Flag
         approximation: r.max_rms > p.tolerance_rms || r.max_fit_distance > p.tolerance_max,
         blade_strain: sections.iter().any(|s| !s.blade.curvature_ok),
         shape: sections.iter().any(|s| !s.blade.inflections_ok),
+        stability: sections.iter().any(|s| !s.blade.stability_ok) || {
+            let blades: Vec<elastica::Blade> = sections.iter().map(|s| s.blade.clone()).collect();
+            elastica::clearance::snapping_moves(&blades) > 0
+        },
         blade_length: sections.iter().any(|s| s.design.length > p.blade.length),
         flat_blade: r.max_plane_angle > p.max_plane_angle,
         block_height,

@@ -191,6 +191,10 @@ pub struct Flags {
     /// The blade outside a section runs into what the block keeps, or a held end lies
     /// inside the block (issue 37).
     pub gouge: bool,
+    /// A blade does not hold its shape: an unstable or marginal equilibrium
+    /// ([`elastica::stability`]), or one that snaps to another shape as the robots carry
+    /// it to the next plane's.
+    pub stability: bool,
 }
 
 impl Flags {
@@ -204,6 +208,7 @@ impl Flags {
             || self.block_height
             || self.overlap
             || self.gouge
+            || self.stability
     }
 }
 
@@ -244,6 +249,9 @@ pub struct BlockReport {
     pub max_abs_curvature: f64,
     /// Most inflections on a blade.
     pub max_inflections: usize,
+    /// The least stability margin of a blade (unit-free; [`elastica::stability`]; `None`
+    /// without sections).
+    pub min_margin: Option<f64>,
     /// Largest angle between a cutting plane and the surface normal.
     pub max_plane_angle: f64,
     /// Index (among the block's targets) of the section with the largest L2 distance.
@@ -348,6 +356,8 @@ pub struct FlagCounts {
     pub overlap: usize,
     /// The blade outside a section in what the block keeps, or a holder inside it.
     pub gouge: usize,
+    /// A blade that does not hold its shape.
+    pub stability: usize,
 }
 
 impl FlagCounts {
@@ -364,6 +374,7 @@ impl FlagCounts {
             block_height: c(&|f| f.block_height),
             overlap: c(&|f| f.overlap),
             gouge: c(&|f| f.gouge),
+            stability: c(&|f| f.stability),
         }
     }
 }

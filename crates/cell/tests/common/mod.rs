@@ -39,6 +39,7 @@ pub fn block(number: usize, turn: f64, tilt: f64, height: f64, n: usize) -> Bloc
         block: number,
         size: [600.0, 600.0, 600.0],
         poses,
+        shapes: Vec::new(),
     }
 }
 

@@ -75,37 +75,59 @@ impl Model<'_> {
 
     /// The Lagrangian's gradient and the constraint residual.
     fn residual(&self, th: &[f64], load: [f64; 2]) -> (Vec<f64>, [f64; 2]) {
+        self.residual_at(th, &Trig::of(th), load)
+    }
+
+    /// [`Model::residual`] with the directions' sines and cosines given.
+    fn residual_at(&self, th: &[f64], t: &Trig, load: [f64; 2]) -> (Vec<f64>, [f64; 2]) {
         let n = th.len();
         let a = self.alphas(th);
         let h = self.h;
         let g = (0..n)
             .map(|i| {
-                let (s, c) = th[i].sin_cos();
                 (self.weight(i, n) * a[i] - self.weight(i + 1, n) * a[i + 1]) / h
-                    + h * (-load[0] * s + load[1] * c)
+                    + h * (-load[0] * t.sin[i] + load[1] * t.cos[i])
             })
             .collect();
-        let cx = h * th.iter().map(|t| t.cos()).sum::<f64>() - self.ends.chord;
-        let cy = h * th.iter().map(|t| t.sin()).sum::<f64>();
+        let cx = h * t.cos.iter().sum::<f64>() - self.ends.chord;
+        let cy = h * t.sin.iter().sum::<f64>();
         (g, [cx, cy])
     }
 
     /// The Lagrangian's tridiagonal Hessian `(diag, off)` and the constraint rows.
     fn hessian(&self, th: &[f64], load: [f64; 2]) -> (Vec<f64>, Vec<f64>, [Vec<f64>; 2]) {
-        let n = th.len();
+        self.hessian_at(&Trig::of(th), load)
+    }
+
+    /// [`Model::hessian`] with the directions' sines and cosines given.
+    fn hessian_at(&self, t: &Trig, load: [f64; 2]) -> (Vec<f64>, Vec<f64>, [Vec<f64>; 2]) {
+        let n = t.sin.len();
         let h = self.h;
         let diag = (0..n)
             .map(|i| {
-                let (s, c) = th[i].sin_cos();
-                (self.weight(i, n) + self.weight(i + 1, n)) / h - h * (load[0] * c + load[1] * s)
+                (self.weight(i, n) + self.weight(i + 1, n)) / h
+                    - h * (load[0] * t.cos[i] + load[1] * t.sin[i])
             })
             .collect();
         let off = vec![-1.0 / h; n.saturating_sub(1)];
         let rows = [
-            th.iter().map(|t| -h * t.sin()).collect(),
-            th.iter().map(|t| h * t.cos()).collect(),
+            t.sin.iter().map(|v| -h * v).collect(),
+            t.cos.iter().map(|v| h * v).collect(),
         ];
         (diag, off, rows)
+    }
+}
+
+/// The sines and cosines of a blade's segment directions, computed once per iterate.
+struct Trig {
+    sin: Vec<f64>,
+    cos: Vec<f64>,
+}
+
+impl Trig {
+    fn of(th: &[f64]) -> Self {
+        let (sin, cos) = th.iter().map(|t| t.sin_cos()).unzip();
+        Trig { sin, cos }
     }
 }
 
@@ -290,13 +312,14 @@ fn newton(
     length: f64,
     iterations: usize,
 ) -> Option<(Vec<f64>, [f64; 2])> {
-    let (mut g, mut c) = model.residual(&th, load);
+    let mut trig = Trig::of(&th);
+    let (mut g, mut c) = model.residual_at(&th, &trig, load);
     let mut r = size(&g, c, length);
     for _ in 0..iterations {
         if r < CONVERGED {
             return Some((th, load));
         }
-        let (diag, off, rows) = model.hessian(&th, load);
+        let (diag, off, rows) = model.hessian_at(&trig, load);
         let f: Vec<f64> = g.iter().map(|v| -v).collect();
         let (dx, dy) = bordered_solve(&diag, &off, [&rows[0], &rows[1]], &f, [-c[0], -c[1]])?;
         let mut step = 1.0;
@@ -304,10 +327,11 @@ fn newton(
         for _ in 0..20 {
             let t: Vec<f64> = th.iter().zip(&dx).map(|(a, d)| a + step * d).collect();
             let l = [load[0] + step * dy[0], load[1] + step * dy[1]];
-            let (gt, ct) = model.residual(&t, l);
+            let tt = Trig::of(&t);
+            let (gt, ct) = model.residual_at(&t, &tt, l);
             let rt = size(&gt, ct, length);
             if rt.is_finite() && rt < (1.0 - 1e-4 * step) * r {
-                (th, load, g, c, r) = (t, l, gt, ct, rt);
+                (th, load, g, c, r, trig) = (t, l, gt, ct, rt, tt);
                 improved = true;
                 break;
             }
@@ -329,6 +353,9 @@ pub struct FollowParams {
     /// Smallest step, as a fraction of the move: a blade that cannot be followed by a
     /// step this small has no equilibrium nearby (it snaps).
     pub min_step: f64,
+    /// Whether to measure the margin at every step (else stability is only checked, by
+    /// one Sturm count, and every margin recorded is 1 while stable).
+    pub margins: bool,
 }
 
 impl Default for FollowParams {
@@ -336,6 +363,7 @@ impl Default for FollowParams {
         FollowParams {
             max_turn: 0.05,
             min_step: 1e-5,
+            margins: true,
         }
     }
 }
@@ -367,15 +395,15 @@ pub enum Snap {
 pub struct Followed {
     /// The last equilibrium reached (at the move's end unless it snapped).
     pub blade: DiscreteBlade,
-    /// The margin at every accepted step: `(fraction of the move, margin)`, the start
-    /// first.
+    /// The margin at the move's start and at its end (where it got there): `(fraction of
+    /// the move, margin)`. Between them stability is checked at every step.
     pub margins: Vec<(f64, f64)>,
     /// How it snapped, if it did.
     pub snap: Option<Snap>,
 }
 
 impl Followed {
-    /// The smallest margin along the move.
+    /// The smaller margin of the move's start and end.
     pub fn min_margin(&self) -> f64 {
         self.margins
             .iter()
@@ -410,7 +438,17 @@ pub fn follow(
     let length = start.length;
     let n = start.theta.len();
     let h = length / n as f64;
-    let margin = |b: &DiscreteBlade| b.margin().unwrap_or(f64::NAN);
+    // the margin where it is reported (the move's start and end, with `margins`, and
+    // where it snaps); elsewhere stability is checked by one Sturm count
+    let margin = |b: &DiscreteBlade| {
+        if params.margins {
+            b.margin().unwrap_or(f64::NAN)
+        } else if b.is_stable() {
+            1.0
+        } else {
+            -1.0
+        }
+    };
     let first = margin(start);
     let mut out = Followed {
         blade: start.clone(),
@@ -477,8 +515,7 @@ pub fn follow(
         });
         match accepted {
             Some(b) => {
-                let m = margin(&b);
-                if !(m >= 0.0) {
+                if !b.is_stable() {
                     // stability lost between w and to: a fold or a bifurcation, unless a
                     // smaller step finds the stable side still reaching on
                     if dw > min_step {
@@ -487,19 +524,23 @@ pub fn follow(
                     }
                     out.snap = Some(Snap::Fold {
                         at: w,
-                        margin: last,
+                        margin: margin(&out.blade),
                     });
                     return out;
                 }
                 previous = Some((out.blade.theta.clone(), out.blade.load, to - w));
+                if to >= 1.0 {
+                    let m = margin(&b);
+                    out.margins.push((to, m));
+                    last = m;
+                }
                 out.blade = b;
-                out.margins.push((to, m));
-                last = m;
                 w = to;
                 dw = (2.0 * dw * reach.min(1.0)).min(1.0);
             }
             None => {
                 if dw <= min_step {
+                    let last = margin(&out.blade);
                     out.snap = Some(if last < 2.0 * super::MARGINAL {
                         Snap::Fold {
                             at: w,
@@ -525,6 +566,117 @@ pub fn follow(
         });
     }
     out
+}
+
+/// How a move lost the planned shape.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize, schemars::JsonSchema)
+)]
+pub enum SnapKind {
+    /// The equilibrium lost its stability on the way (a fold or a bifurcation).
+    Fold,
+    /// No equilibrium could be followed on the way.
+    Lost,
+    /// The move arrived on another equilibrium than the planned shape.
+    OtherShape,
+}
+
+impl From<Snap> for SnapKind {
+    fn from(s: Snap) -> Self {
+        match s {
+            Snap::Fold { .. } => SnapKind::Fold,
+            Snap::Lost { .. } => SnapKind::Lost,
+        }
+    }
+}
+
+/// A blade of the same length carried from one shape to another.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Transition {
+    /// How it snapped, if it did.
+    pub snap: Option<SnapKind>,
+}
+
+/// The blade held as `a` (a whole blade, both ends held) carried to `b` (the same
+/// length) while its ends move as robots move them between two poses on parallel planes:
+/// both end points linearly, both end tangents turning at a constant rate. Whether it
+/// arrives on `b` without snapping ([`follow`] on [`SEGMENTS`] segments; `b` is reached
+/// when the discrete blade settled from it is the one followed).
+///
+/// ```
+/// use elastica::stability::follow::transition;
+/// use elastica::Segment;
+/// // an arch flattening a little: it follows; turned over at once: it snaps
+/// let arc = |c: f64| Segment::Arc { x0: 0.0, y0: 0.0, phi: 0.5 * c * 1000.0, curvature: -c, length: 1000.0 };
+/// let t = transition(&arc(4e-4), &arc(3e-4))?;
+/// assert!(t.snap.is_none());
+/// let flip = transition(&arc(4e-4), &arc(-4e-4))?;
+/// assert!(flip.snap.is_some());
+/// # Ok::<(), elastica::stability::StabilityError>(())
+/// ```
+///
+/// # Errors
+/// [`StabilityError`] when the blades differ in length, cannot be evaluated or `a` is not
+/// an equilibrium the discrete blade finds.
+pub fn transition(a: &crate::Segment, b: &crate::Segment) -> Result<Transition, StabilityError> {
+    let length = a.length();
+    if !((b.length() - length).abs() <= 1e-9 * length) {
+        return Err(StabilityError::Invalid(format!(
+            "the blades differ in length: {length} and {}",
+            b.length()
+        )));
+    }
+    let (ea, eb) = (a.evaluator()?, b.evaluator()?);
+    let (a0, a1, b0, b1) = (ea.eval(0.0), ea.eval(1.0), eb.eval(0.0), eb.eval(1.0));
+    let chord_of = |p: [f64; 2], q: [f64; 2]| (q[1] - p[1]).atan2(q[0] - p[0]);
+    let start_chord = chord_of(a0.p, a1.p);
+    let turn = |x: f64, y: f64| {
+        let pi = std::f64::consts::PI;
+        pi - (pi - (y - x)).rem_euclid(2.0 * pi)
+    };
+    let (d0, d1) = (turn(a0.angle, b0.angle), turn(a1.angle, b1.angle));
+    let path = |w: f64| {
+        let lerp = |p: [f64; 2], q: [f64; 2]| [p[0] + w * (q[0] - p[0]), p[1] + w * (q[1] - p[1])];
+        let (p, q) = (lerp(a0.p, b0.p), lerp(a1.p, b1.p));
+        let c = start_chord + turn(start_chord, chord_of(p, q));
+        HeldEnds {
+            chord: (q[0] - p[0]).hypot(q[1] - p[1]),
+            angles: [a0.angle + w * d0 - c, a1.angle + w * d1 - c],
+        }
+    };
+    let start = DiscreteBlade::settle_like(
+        length,
+        path(0.0),
+        |u| ea.eval(u).angle - start_chord,
+        SEGMENTS,
+        None,
+    )?;
+    let quick = FollowParams {
+        margins: false,
+        ..FollowParams::default()
+    };
+    let f = follow(&start, &path, &quick);
+    let mut snap = f.snap.map(SnapKind::from);
+    if snap.is_none() {
+        let end = path(1.0);
+        let c = start_chord + turn(start_chord, chord_of(b0.p, b1.p));
+        // b's own angles moved by the whole turns the path took
+        let shift = end.angles[0] - (b0.angle - c);
+        let planned = DiscreteBlade::settle_like(
+            length,
+            end,
+            |u| eb.eval(u).angle - c + shift,
+            SEGMENTS,
+            None,
+        );
+        let same = planned.is_ok_and(|p| p.distance(&f.blade) <= 1e-6 * length);
+        if !same {
+            snap = Some(SnapKind::OtherShape);
+        }
+    }
+    Ok(Transition { snap })
 }
 
 #[cfg(test)]

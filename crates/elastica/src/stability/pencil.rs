@@ -215,6 +215,48 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
+/// Solves the symmetric tridiagonal system `(diag, off) x = b` by `LDLᵀ` without
+/// pivoting (one division per row): `None` when a pivot is small enough that pivoting
+/// would be needed (then [`tridiagonal_solve`]).
+fn symmetric_solve(diag: &[f64], off: &[f64], b: &[&[f64]]) -> Option<Vec<Vec<f64>>> {
+    let m = diag.len();
+    let scale = diag.iter().chain(off).fold(0.0f64, |a, v| a.max(v.abs()));
+    if !(scale > 0.0) || !scale.is_finite() {
+        return None;
+    }
+    let mut d = Vec::with_capacity(m);
+    let mut l = Vec::with_capacity(m);
+    for i in 0..m {
+        let p = if i > 0 {
+            diag[i] - off[i - 1] * l[i - 1]
+        } else {
+            diag[0]
+        };
+        if !(p.abs() > 1e-6 * scale) {
+            return None;
+        }
+        d.push(p);
+        l.push(if i + 1 < m { off[i] / p } else { 0.0 });
+    }
+    Some(
+        b.iter()
+            .map(|rhs| {
+                let mut x = rhs.to_vec();
+                for i in 1..m {
+                    x[i] -= l[i - 1] * x[i - 1];
+                }
+                for i in 0..m {
+                    x[i] /= d[i];
+                }
+                for i in (0..m.saturating_sub(1)).rev() {
+                    x[i] -= l[i] * x[i + 1];
+                }
+                x
+            })
+            .collect(),
+    )
+}
+
 /// Solves the tridiagonal system `(sub, diag, sup) x = b` by Gaussian elimination with
 /// partial pivoting (the matrix may be indefinite); `None` when it is singular.
 fn tridiagonal_solve(
@@ -292,7 +334,10 @@ pub(crate) fn bordered_solve(
     f: &[f64],
     g: [f64; 2],
 ) -> Option<(Vec<f64>, [f64; 2])> {
-    let sol = tridiagonal_solve(off, diag, off, &[f, rows[0], rows[1]])?;
+    let sol = match symmetric_solve(diag, off, &[f, rows[0], rows[1]]) {
+        Some(s) => s,
+        None => tridiagonal_solve(off, diag, off, &[f, rows[0], rows[1]])?,
+    };
     let (u, x0, x1) = (&sol[0], &sol[1], &sol[2]);
     // G x = g with x = u − X y: (G X) y = G u − g
     let s = [

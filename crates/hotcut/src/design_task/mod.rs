@@ -307,6 +307,7 @@ impl Task for Design {
                     &order,
                     params.blade.length,
                     job.units,
+                    &job.stiffness,
                 ))
             },
         )?;

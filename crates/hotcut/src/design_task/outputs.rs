@@ -30,6 +30,7 @@ pub(super) fn targets(
     order: &[(usize, usize)],
     blade_length: f64,
     units: Units,
+    stiffness: &elastica::Stiffness,
 ) -> (Targets, Vec<[f64; 3]>) {
     let (mut out, mut sizes) = (Vec::new(), Vec::new());
     for (number, &(c, piece)) in order.iter().enumerate() {
@@ -45,7 +46,7 @@ pub(super) fn targets(
             poses: res
                 .planes
                 .iter()
-                .map(|p| robot::pose(&p.pieces[piece].pose))
+                .map(|p| robot::pose(&p.pieces[piece].pose, &p.pieces[piece].blade, stiffness))
                 .collect(),
         });
         sizes.push([r.span.1 - r.span.0, hi - lo, b.max.z - b.min.z]);
@@ -61,6 +62,7 @@ pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> expor
         &done.run.order,
         done.params.blade.length,
         done.job.units,
+        &done.job.stiffness,
     );
     robot::write(files, &t, done.run.cell.as_ref(), &done.job.name, o.kind())
 }

@@ -397,7 +397,7 @@ impl Task for FacadeSegmentation {
             run.posed.iter().any(|p| !p.parts.is_empty()),
             || worst_clearance(&run.posed),
             || {
-                outputs::targets(&run, params.blade.length, job.units)
+                outputs::targets(&run, params.blade.length, job.units, &job.stiffness)
                     .map_err(|e| job.fail(e.to_string()))
             },
         )?;

@@ -52,6 +52,7 @@ pub(super) fn targets(
     run: &SegmentationRun,
     blade_length: f64,
     units: Units,
+    stiffness: &elastica::Stiffness,
 ) -> export::Result<(Targets, Vec<[f64; 3]>)> {
     let mut blocks = Vec::new();
     let mut sizes = Vec::new();
@@ -67,7 +68,11 @@ pub(super) fn targets(
             block: p.id,
             origin: piece.block.origin,
             rotation: p.rotation,
-            poses: p.parts.iter().map(|q| robot::pose(&q.pose)).collect(),
+            poses: p
+                .parts
+                .iter()
+                .map(|q| robot::pose(&q.pose, &q.blade, stiffness))
+                .collect(),
         });
     }
     Ok((robot::targets(units, blade_length, blocks), sizes))
@@ -75,7 +80,12 @@ pub(super) fn targets(
 
 /// `targets.json` and `targets.csv`, or the RAPID modules `<job>_T_ROB<n>.mod/.pgf`.
 pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> export::Result<()> {
-    let (t, _) = targets(done.run, done.params.blade.length, done.job.units)?;
+    let (t, _) = targets(
+        done.run,
+        done.params.blade.length,
+        done.job.units,
+        &done.job.stiffness,
+    )?;
     robot::write(files, &t, done.run.cell.as_ref(), &done.job.name, o.kind())
 }
 

@@ -309,6 +309,7 @@ impl Task for HotBlade {
                     &cut,
                     params.pipeline.blade.length,
                     job.units,
+                    &job.stiffness,
                 ))
             },
         )?;

@@ -24,6 +24,7 @@ pub(super) fn targets(
     cut: &Rationalization,
     blade_length: f64,
     units: Units,
+    stiffness: &elastica::Stiffness,
 ) -> (Targets, Vec<[f64; 3]>) {
     let blocks = cut
         .blocks
@@ -32,7 +33,11 @@ pub(super) fn targets(
             block: b.report.block,
             origin: b.report.origin,
             rotation: b.rotation,
-            poses: b.sections.iter().map(|s| robot::pose(&s.pose)).collect(),
+            poses: b
+                .sections
+                .iter()
+                .map(|s| robot::pose(&s.pose, &s.blade, stiffness))
+                .collect(),
         })
         .collect();
     let sizes = cut.blocks.iter().map(|b| b.report.size).collect();
@@ -45,6 +50,7 @@ pub(super) fn robot(done: &Done<'_>, o: &OutputSpec, files: &mut Files) -> expor
         &done.run.cut,
         done.params.pipeline.blade.length,
         done.job.units,
+        &done.job.stiffness,
     );
     robot::write(files, &t, done.run.cell.as_ref(), &done.job.name, o.kind())
 }

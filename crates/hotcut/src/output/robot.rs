@@ -3,14 +3,14 @@
 //! ([`crate::robot_cell`]) one ABB RAPID module and `.pgf` per robot task
 //! ([`export::rapid`]) with `cell.csv`, every move's joints for every robot.
 
-use cell::fixture::{Phase, Step};
+use cell::fixture::Phase;
 use elastica::sweep::BladePose;
 use export::csv::Table;
 use export::rapid::{
     identifier, write_module, write_pgf, RapidMove, RapidProgram, RapidTarget, RapidTool, RapidWobj,
 };
 use export::robot::TARGET_DIGITS;
-use export::robot::{targets_csv, EndPose, Pose, Targets, TargetsBlock};
+use export::robot::{targets_csv, EndPose, Pose, PoseBlade, Targets, TargetsBlock};
 use nalgebra::Isometry3;
 
 use super::Files;
@@ -29,16 +29,37 @@ pub fn targets(units: Units, blade_length: f64, blocks: Vec<TargetsBlock>) -> Ta
     }
 }
 
-/// A pose as the robot files take it.
-pub fn pose(p: &BladePose) -> Pose {
+/// A pose as the robot files take it, with its blade (stiffness `s`).
+pub fn pose(p: &BladePose, blade: &elastica::Blade, s: &elastica::Stiffness) -> Pose {
     let end = |k: usize| EndPose {
         position: p.ends[k].position,
         tangent: p.ends[k].tangent,
         rotation: p.ends[k].rotation,
     };
+    let st = &blade.stability;
+    let loads = st.loads.held(s);
     Pose {
         plane_normal: p.plane_normal,
         ends: [end(0), end(1)],
+        blade: PoseBlade {
+            shape: p.shape,
+            turning: st.turning,
+            inflections: blade.inflections,
+            margin: st.margin,
+            stability: class_name(st.class),
+            force_n: loads.force_n,
+            tension_n: loads.tension_n,
+            moment_nm: loads.moment_nm,
+        },
+    }
+}
+
+/// The name of a stability class as reports write it.
+pub fn class_name(c: elastica::Class) -> &'static str {
+    match c {
+        elastica::Class::Stable => "Stable",
+        elastica::Class::Marginal => "Marginal",
+        elastica::Class::Unstable => "Unstable",
     }
 }
 
@@ -50,36 +71,12 @@ fn target(f: &Isometry3<f64>) -> RapidTarget {
     }
 }
 
-fn letter(p: Phase) -> &'static str {
-    match p {
-        Phase::Start => "S",
-        Phase::Descend => "D",
-        Phase::Cut => "C",
-        Phase::Retreat => "R",
-        Phase::Rise => "U",
-        Phase::Travel => "T",
-    }
-}
-
-/// The robtarget names of the steps: `pB<block>_<phase letter><n>`.
-fn names(steps: &[Step]) -> Vec<String> {
-    let mut count = std::collections::HashMap::new();
-    steps
-        .iter()
-        .map(|s| {
-            let n = count.entry((s.block, letter(s.phase))).or_insert(0);
-            *n += 1;
-            format!("pB{}_{}{}", s.block, letter(s.phase), n)
-        })
-        .collect()
-}
-
 /// Task `r`'s moves (0, 1: the blade's ends in the work object; 2: the carried block in
 /// the world).
 fn moves(plan: &CellPlan, r: usize) -> Vec<RapidMove> {
     let steps = &plan.program.steps;
     let poses = plan.program.block_poses.as_deref().unwrap_or(&[]);
-    let names = names(steps);
+    let names = crate::robot_cell::equilibrium::target_names(steps);
     steps
         .iter()
         .enumerate()

@@ -3,6 +3,8 @@
 //! program planned by [`cell::fixture`], and its report. Shared by both tasks, which call
 //! it with their blade poses.
 
+/// The report's `cell.equilibrium` section: the blade followed through the program.
+pub mod equilibrium;
 /// The report's `cell` section.
 pub mod report;
 /// The cell in millimetres, with its defaults.
@@ -304,7 +306,36 @@ pub fn program(
         return Ok(None);
     }
     let (t, sizes) = targets()?;
+    if strict {
+        if let Some(m) = not_holding(&t) {
+            return Err(job.fail(format!("strict: no robot program for a blade that {m}")));
+        }
+    }
     plan(job, &t, &sizes, speed, approach).map(Some)
+}
+
+/// Why the blade would not hold the shape a pose of `t` plans (the first such pose, named
+/// by its block and number), if one would not: unstable or marginal.
+pub fn not_holding(t: &Targets) -> Option<String> {
+    let bad: Vec<(usize, usize, &export::robot::PoseBlade)> = t
+        .blocks
+        .iter()
+        .flat_map(|b| {
+            b.poses
+                .iter()
+                .enumerate()
+                .map(move |(k, p)| (b.block, k + 1, &p.blade))
+        })
+        .filter(|(_, _, b)| b.stability != "Stable")
+        .collect();
+    let (block, pose, b) = bad.first()?;
+    Some(format!(
+        "does not hold its shape: block {block}, pose {pose} is {} (margin {:.3}, {} inflections); {} such pose(s) in all",
+        b.stability.to_lowercase(),
+        b.margin,
+        b.inflections,
+        bad.len()
+    ))
 }
 
 /// The blocks of `t` (sizes `sizes`, job units) with the blade's ends, in mm.
@@ -322,6 +353,7 @@ fn placed_blocks(t: &Targets, sizes: &[[f64; 3]]) -> Vec<PlacedBlock> {
                 .iter()
                 .map(|p| p.ends.map(|e| end_frame(&e, mm)))
                 .collect(),
+            shapes: b.poses.iter().map(|p| p.blade.shape).collect(),
         })
         .collect()
 }
@@ -350,10 +382,12 @@ pub fn plan(
     let (cell, program) = cell::program::plan(&settings, &placed, &motion)
         .map_err(|e| job.fail(format!("robot cell: {e}")))?;
     let report = report::report(&cell, &program, speed * mm);
-    if cell.strict && !report.clean {
+    if cell.strict && !(report.clean && report.equilibrium.snaps == 0) {
+        let mut problems = report.problems();
+        problems.extend(report.equilibrium.problems());
         return Err(HotcutError::Task {
             path: job.path.clone(),
-            message: format!("robot cell (strict): {}", report.problems().join("; ")),
+            message: format!("robot cell (strict): {}", problems.join("; ")),
         });
     }
     Ok(CellPlan {

@@ -106,6 +106,8 @@ pub struct CellReport {
     pub clean: bool,
     /// Per block.
     pub blocks: Vec<BlockCheck>,
+    /// The blade's equilibrium followed through every move: margins and snaps.
+    pub equilibrium: super::equilibrium::EquilibriumReport,
 }
 
 impl CellReport {
@@ -125,11 +127,25 @@ impl CellReport {
     /// One line for the run's summary: the robots, the moves, the verdict.
     pub fn summary(&self) -> String {
         let models: Vec<&str> = self.robots.iter().map(|r| r.model.as_str()).collect();
-        let verdict = if self.clean {
+        let mut verdict = if self.clean {
             "every move reached, no flip".to_string()
         } else {
             format!("warning: {}", self.problems().join("; "))
         };
+        let e = &self.equilibrium;
+        verdict.push_str(&if e.snaps == 0 {
+            format!(
+                "; the blade holds its shape through all {} moves (least margin {:.3})",
+                e.transitions, e.min_margin
+            )
+        } else {
+            format!(
+                "; warning: the blade snaps on {} of {} moves: {}",
+                e.snaps,
+                e.transitions,
+                e.problems().join("; ")
+            )
+        });
         let assumed = if self.assumed {
             " (default cell: placement and tool data assumed, check them on the controller)"
         } else {
@@ -299,5 +315,6 @@ pub fn report(cell: &ResolvedCell, program: &Program, cut_speed: f64) -> CellRep
         moves: program.steps.len(),
         clean,
         blocks: program.blocks.clone(),
+        equilibrium: super::equilibrium::report(&program.steps, &program.shapes),
     }
 }
