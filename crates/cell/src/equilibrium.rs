@@ -263,13 +263,13 @@ pub fn follow_steps_with(
                 }
             }
         } else {
-            // after a snap the blade is wherever it landed: continue from the plan
+            // after a snap the blade is wherever it landed, which is not followed: the
+            // program is followed again from the next step with a planned shape
             next = shapes
                 .get(k)
                 .copied()
                 .flatten()
-                .and_then(|s| planned_blade(length, ends, &s))
-                .or(next.filter(|b| b.ends.chord < length * (1.0 - TAUT)));
+                .and_then(|s| planned_blade(length, ends, &s));
         }
         let margin = f.margins.last().map_or(f64::NAN, |m| m.1);
         let min_margin = f.min_margin();

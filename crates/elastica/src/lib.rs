@@ -56,6 +56,8 @@ pub mod discrete;
 pub mod elliptic;
 /// Fitting curves by elastica segments (variable projection + Levenberg–Marquardt).
 pub mod fit;
+/// Where along the blade a piece sits: clear of its block, stable, without snapping.
+pub mod place;
 /// Elastica segments (closed form, line, arc): evaluation, derivatives, inflections.
 pub mod segment;
 /// Whether a held blade keeps its shape: second variation, margin, end forces, continuation.

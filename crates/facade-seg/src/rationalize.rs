@@ -143,7 +143,7 @@ pub fn pose_piece(
     // one place along the blade for every part (the piece is one block, cut plane after
     // plane), the extension kept out of what the block keeps where it can be; for each
     // place tried the block is slid across the cut to clear the blades' held ends
-    let mut segments: Vec<_> = kept.iter().map(|(_, _, f)| f.segment).collect();
+    let segments: Vec<_> = kept.iter().map(|(_, _, f)| f.segment).collect();
     // the piece's extent across the cut (plane u), which the block must keep holding
     let extent = kept
         .iter()
@@ -165,23 +165,40 @@ pub fn pose_piece(
         .map_err(fail_blade)
     };
     let mut placed = place(&segments)?;
-    // a blade that does not hold its shape at any place: where the arc through its part's
-    // ends is within the tolerance, the blade takes the arc instead (a circle is stable
-    // and carries no force; the elastica it replaces followed noise or a slight wave)
+    // blades that do not hold their shape, and moves between planes that snap
+    let trouble = |placed: &[(Blade, elastica::Clearance)]| {
+        let blades: Vec<Blade> = placed.iter().map(|(b, _)| b.clone()).collect();
+        let unstable = blades.iter().filter(|b| !b.stability_ok).count();
+        unstable + elastica::clearance::snapping_moves(&blades)
+    };
+    let before = trouble(&placed);
+    // where a blade does not hold its shape at any place, or the blades snap from plane to
+    // plane: each such part (every part, for snaps) whose arc through its ends is within
+    // the tolerance takes the arc instead (a circle is stable and carries no force; the
+    // elastica it replaces followed noise or a slight wave), kept when that holds better
     let mut arcs: Vec<Option<FitResult>> = vec![None; kept.len()];
-    for (k, (_, design, _)) in kept.iter().enumerate() {
-        if placed[k].0.stability_ok {
-            continue;
-        }
-        if let Some(arc) = elastica::fit::arc_through_ends(&design.points, &design.s) {
-            if arc.max <= params.tolerance_max && arc.rms <= params.tolerance_rms {
-                segments[k] = arc.segment;
-                arcs[k] = Some(arc);
+    if before > 0 {
+        let snapping = placed.iter().all(|(b, _)| b.stability_ok);
+        let mut tried = segments.clone();
+        for (k, (_, design, _)) in kept.iter().enumerate() {
+            if placed[k].0.stability_ok && !snapping {
+                continue;
+            }
+            if let Some(arc) = elastica::fit::arc_through_ends(&design.points, &design.s) {
+                if arc.max <= params.tolerance_max && arc.rms <= params.tolerance_rms {
+                    tried[k] = arc.segment;
+                    arcs[k] = Some(arc);
+                }
             }
         }
-    }
-    if arcs.iter().any(Option::is_some) {
-        placed = place(&segments)?;
+        if arcs.iter().any(Option::is_some) {
+            let again = place(&tried)?;
+            if trouble(&again) < before {
+                placed = again;
+            } else {
+                arcs.iter_mut().for_each(|a| *a = None);
+            }
+        }
     }
     let blades: Vec<Blade> = placed.iter().map(|(b, _)| b.clone()).collect();
     let block = slid(&blades);

@@ -363,14 +363,14 @@ fn failing(piece: &Piece, c: &Constraints) -> &'static str {
         })
     {
         "fit_strain"
-    } else if !v.blade_strain {
-        // only the blade extended beyond its part to its length bends too much (a judge's
-        // verdict): a shorter part extends it further
-        "blade_extension"
     } else if !v.stability {
         // a blade that does not hold its shape at any place along it (a judge's verdict):
         // a shorter part leaves more places, and its own fit
         "stability"
+    } else if !v.blade_strain {
+        // only the blade extended beyond its part to its length bends too much (a judge's
+        // verdict): a shorter part extends it further
+        "blade_extension"
     } else {
         "dimension"
     }
