@@ -17,6 +17,8 @@
 //!   the robot's base and the tool, lands on it (to the precision the file prints), the
 //!   joints are within the robot's limits, and its configuration data are theirs.
 
+#[path = "rapid/equilibrium.rs"]
+mod equilibrium;
 #[path = "rapid/kept.rs"]
 mod kept;
 #[path = "rapid/reader.rs"]
@@ -71,6 +73,9 @@ struct Cell {
     /// What the blocks keep, rebuilt from the job's surface (`HotBlade`,
     /// `FacadeSegmentation`).
     kept: Option<kept::Kept>,
+    /// `targets.json`, where the job writes it: the shape planned at every cutting target
+    /// (issue 52), which tells the blade the program means from the others its ends allow.
+    targets: Option<serde_json::Value>,
 }
 
 fn run(path: &Path) -> Cell {
@@ -122,6 +127,9 @@ fn run(path: &Path) -> Cell {
         grip,
         gouge: gouge_figure(&report),
         kept: kept::Kept::of(&job, &report),
+        targets: std::fs::read_to_string(outcome.dir.join("targets.json"))
+            .ok()
+            .and_then(|t| serde_json::from_str(&t).ok()),
     }
 }
 
@@ -375,16 +383,26 @@ fn check_heated(
     b: &reader::Task,
     blade: f64,
     kept: &kept::Kept,
+    targets: Option<&serde_json::Value>,
     r: &mut Replay,
 ) -> Result<(), String> {
     for (ma, mb, block, size) in heated(a, b)? {
         let to_block = ma.wobj.inverse();
         let normal = to_block.rotation * (ma.pose.rotation * nalgebra::Vector3::z());
-        // the blades the ends allow (a turning off by whole turns too): the one through
-        // the cut is the one the program means
+        // the blade the program means: the shape targets.json plans at a cutting target,
+        // else, of the blades the ends allow (a turning off by whole turns too), the one
+        // through the cut
+        let planned = targets
+            .and_then(|t| planned_shape(t, &ma.target))
+            .and_then(|s| equilibrium::planned_points([&ma.pose, &mb.pose], blade, &s, 128));
         let mut found: Vec<(f64, f64)> = Vec::new();
-        for turns in [0.0, -1.0, 1.0] {
-            let Ok(points) = robot::blade_turned([&ma.pose, &mb.pose], blade, 128, turns) else {
+        let blades = planned.into_iter().map(Ok).chain(
+            [0.0, -1.0, 1.0]
+                .into_iter()
+                .map(|turns| robot::blade_turned([&ma.pose, &mb.pose], blade, 128, turns)),
+        );
+        for points in blades {
+            let Ok(points) = points else {
                 continue;
             };
             let local: Vec<nalgebra::Vector3<f64>> = points
@@ -431,6 +449,21 @@ fn check_heated(
         r.farthest_touch = r.farthest_touch.max(nearest);
     }
     Ok(())
+}
+
+/// The shape targets.json plans at cutting target `pB<block>_C<k>` (pose k of the block).
+fn planned_shape(t: &serde_json::Value, target: &str) -> Option<Vec<f64>> {
+    let (b, k) = target.strip_prefix("pB")?.split_once("_C")?;
+    let (b, k): (u64, usize) = (b.parse().ok()?, k.parse().ok()?);
+    let block = t["blocks"]
+        .as_array()?
+        .iter()
+        .find(|x| x["block"].as_u64() == Some(b))?;
+    block["poses"].as_array()?.get(k.checked_sub(1)?)?["blade"]["shape"]
+        .as_array()?
+        .iter()
+        .map(|v| v.as_f64())
+        .collect()
 }
 
 /// The signed distance (mm; negative inside) of `p` from the box `[0, size]`.
@@ -587,7 +620,7 @@ fn check_with(cell: &Cell, joints: bool) -> Result<Replay, String> {
     };
     check_blade(a, b, cell.blade, &mut r)?;
     if let Some(kept) = &cell.kept {
-        check_heated(a, b, cell.blade, kept, &mut r)?;
+        check_heated(a, b, cell.blade, kept, cell.targets.as_ref(), &mut r)?;
     }
     r.nearest_holder = nearest_holder(a, b)?;
     let world = vec![Isometry3::identity(); parents.len()];

@@ -56,6 +56,7 @@ fn params(samples: usize) -> CheckParams {
         smoothing: 0.05,
         rms: 0.5,
         max: 2.0,
+        min_margin: elastica::stability::MARGINAL,
     }
 }
 

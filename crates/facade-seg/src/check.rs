@@ -6,7 +6,9 @@
 //! the caller's number of curvature samples: [`default_samples`](crate::check::default_samples)
 //! reads fewer than the task's 2000, to answer within a millisecond), and
 //! fitted by one elastica ([`elastica::fit_points`]), whose distance from the points is
-//! held to the tolerance.
+//! held to the tolerance; the elastica is then extended to the blade's length where along
+//! it the blade holds its shape best ([`elastica::stability`]), as the segmentation places
+//! its pieces.
 //!
 //! Entry point: [`check_section`](crate::check::check_section).
 
@@ -41,6 +43,9 @@ pub struct CheckParams {
     pub rms: f64,
     /// Largest distance allowed between a point and its elastica (> 0).
     pub max: f64,
+    /// The least stability margin the blade keeps (`elastica::stability::MARGINAL` by
+    /// default).
+    pub min_margin: f64,
 }
 
 /// A point on the checked section.
@@ -75,7 +80,13 @@ pub struct SectionCheck {
     pub elastica: Result<FitResult, String>,
     /// The elastica lies within the tolerance of the points (RMS and largest distance).
     pub fit_ok: bool,
-    /// No constraint broken and the elastica within tolerance: one blade cuts it.
+    /// The elastica extended to the blade's length, at the place along the blade (of
+    /// every sixteenth of the extension, the middle first) where it holds its shape best:
+    /// its stability, inflections and loads per EI. `None` without an elastica or when
+    /// the section is longer than the blade.
+    pub blade: Option<elastica::Blade>,
+    /// No constraint broken, the elastica within tolerance and its blade holding its
+    /// shape: one blade cuts it.
     pub cuttable: bool,
 }
 
@@ -101,10 +112,14 @@ pub struct SectionCheck {
 ///     smoothing: 0.05,
 ///     rms: 0.5,
 ///     max: 2.0,
+///     min_margin: 0.05,
 /// };
 /// let c = check_section(&pts, &params)?;
 /// assert!(c.violations.is_empty() && c.inflections.is_empty());
 /// assert!(c.fit_ok && c.cuttable);
+/// // the arch extended to the 1000 mm blade holds its shape
+/// let blade = c.blade.unwrap();
+/// assert!(blade.stability_ok && blade.stability.margin > 0.5);
 /// # Ok::<(), facade_seg::SegError>(())
 /// ```
 ///
@@ -176,17 +191,56 @@ pub fn check_section(points: &[[f64; 2]], params: &CheckParams) -> Result<Sectio
     let fit_ok = elastica
         .as_ref()
         .is_ok_and(|f| f.rms <= params.rms && f.max <= params.max);
+    let blade = elastica
+        .as_ref()
+        .ok()
+        .and_then(|f| held_blade(&f.segment, params));
+    let holds = blade.as_ref().is_none_or(|b| b.stability_ok);
     Ok(SectionCheck {
         length: analysis.length,
         inflections: analysis.inflections.iter().map(point).collect(),
         max_abs_curvature: point(&analysis.max_abs_curvature),
         suppressed_inflections: analysis.suppressed_inflections,
         smoothing_rms: section.fit_rms,
-        cuttable: fit_ok && violations.is_empty(),
+        cuttable: fit_ok && violations.is_empty() && holds,
         violations,
         elastica,
         fit_ok,
+        blade,
     })
+}
+
+/// `segment` extended to the blade at the place along it where the blade holds best: the
+/// middle when it holds there, else the largest margin of every sixteenth of the
+/// extension.
+fn held_blade(segment: &elastica::Segment, params: &CheckParams) -> Option<elastica::Blade> {
+    let length = params.survey.blade_length;
+    if !(segment.length() <= length) {
+        return None;
+    }
+    let at = |share: f64| {
+        elastica::extend_to_blade(
+            segment,
+            &elastica::BladeParams {
+                lead_in_share: share,
+                stability: elastica::StabilityParams {
+                    marginal: params.min_margin,
+                    ..Default::default()
+                },
+                ..elastica::BladeParams::new(length)
+            },
+        )
+        .ok()
+    };
+    let middle = at(0.5)?;
+    if middle.stability_ok {
+        return Some(middle);
+    }
+    let n = elastica::clearance::FINE_SHARES;
+    (0..=n)
+        .filter_map(|k| at(k as f64 / n as f64))
+        .chain(std::iter::once(middle))
+        .max_by(|a, b| a.stability.margin.total_cmp(&b.stability.margin))
 }
 
 /// The points without consecutive repeats: a point within 10⁻¹² of the points' extent of

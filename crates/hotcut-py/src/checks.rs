@@ -130,10 +130,15 @@ fn check_section(
             smoothing: tol.smoothing,
             rms: tol.rms,
             max: tol.max,
+            min_margin: blade.min_margin.unwrap_or(elastica::stability::MARGINAL),
         };
         let c = facade_seg::check::check_section(&xy, &params)
             .map_err(|e| PyValueError::new_err(format!("check_section: {e}")))?;
-        section_dict(py, c, &plane, &tol)
+        let stiffness = elastica::Stiffness::of(
+            &hotcut::context::blade_section(Some(&blade), u),
+            1e-3 / u.per_mm(),
+        );
+        section_dict(py, c, &plane, &tol, &stiffness)
     })
 }
 
@@ -143,9 +148,27 @@ fn section_dict(
     c: SectionCheck,
     plane: &Option<Plane>,
     tol: &hotcut::spec::Tolerance,
+    stiffness: &elastica::Stiffness,
 ) -> PyResult<Py<PyAny>> {
     let d = PyDict::new(py);
     d.set_item("cuttable", c.cuttable)?;
+    match &c.blade {
+        Some(b) => {
+            let e = PyDict::new(py);
+            let s = &b.stability;
+            let loads = s.loads.held(stiffness);
+            e.set_item("margin", s.margin)?;
+            e.set_item("stability", format!("{:?}", s.class))?;
+            e.set_item("inflections", b.inflections)?;
+            e.set_item("turning", s.turning)?;
+            e.set_item("lead_in", b.lead_in)?;
+            e.set_item("force_n", loads.force_n)?;
+            e.set_item("tension_n", loads.tension_n.to_vec())?;
+            e.set_item("moment_nm", loads.moment_nm.to_vec())?;
+            d.set_item("blade", e)?;
+        }
+        None => d.set_item("blade", py.None())?,
+    }
     d.set_item("fit_ok", c.fit_ok)?;
     d.set_item("length", c.length)?;
     let point = |p: &facade_seg::check::CheckPoint| -> PyResult<Bound<'_, PyDict>> {

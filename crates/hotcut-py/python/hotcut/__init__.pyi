@@ -101,9 +101,30 @@ class SectionPoint(TypedDict):
     point: Sequence[float]
     curvature: float
 
+class HeldBlade(TypedDict):
+    margin: float
+    """Stability margin: the smallest eigenvalue of the held blade's second variation over a
+    straight, unloaded blade's (unit-free; ≤ 0 where it buckles out of the shape)."""
+    stability: str
+    """``"Stable"``, ``"Marginal"`` (below ``blade["min_margin"]``, default 0.05) or
+    ``"Unstable"``."""
+    inflections: int
+    """Inflections of the whole blade, its extension included."""
+    turning: float
+    lead_in: float
+    """Where the section sits along the blade: the blade's length before it."""
+    force_n: float
+    """The force on either holder, N (the blade's section from ``blade``: thickness, width,
+    youngs_modulus, or a 1 mm × 25 mm spring-steel strip)."""
+    tension_n: Sequence[float]
+    moment_nm: Sequence[float]
+
 class SectionCheck(TypedDict):
     cuttable: bool
-    """No constraint broken and the elastica within tolerance: one blade cuts it."""
+    """No constraint broken, the elastica within tolerance and its blade holding its shape:
+    one blade cuts it."""
+    blade: Optional[HeldBlade]
+    """The elastica extended to the blade's length where along it the blade holds best."""
     fit_ok: bool
     length: float
     inflections: List[SectionPoint]
@@ -130,7 +151,8 @@ def check_section(
     """One section (points of a plane, 2-D or 3-D) against the production constraints of
     the thesis §5.1 — its length against the blade's, its inflections against
     ``max_inflections``, its curvature against ``max_curvature`` — and how close one
-    elastica comes (RMS and largest distance against the tolerance).
+    elastica comes (RMS and largest distance against the tolerance), and whether the blade
+    extended along that elastica holds its shape, with the loads on its holders.
 
     ``blade`` and ``tolerance`` are dicts with the job file's ``Blade(..)`` and
     ``Tolerance(..)`` fields (``{"length": 1200, "max_curvature": 0.01}``); omitted

@@ -419,10 +419,10 @@ impl Task for Design {
         }
         let verdict = {
             let mut v = Vec::new();
-            if s.strain_flags + s.inflection_flags > 0 {
+            if s.strain_flags + s.inflection_flags + s.stability_flags > 0 {
                 v.push(format!(
-                    "  warning: blades breaking a limit — strain {}, inflections {}",
-                    s.strain_flags, s.inflection_flags
+                    "  warning: blades breaking a limit — strain {}, inflections {}, stability {}",
+                    s.strain_flags, s.inflection_flags, s.stability_flags
                 ));
             }
             if let Some(first) = first_gouge(r) {

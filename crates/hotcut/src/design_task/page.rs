@@ -16,15 +16,15 @@ pub fn body(r: &DesignReport, job: &Context) -> Body {
         s.all_ok,
         r.cell.as_ref().map(|k| k.clean),
         format!(
-            "{} cut(s) over {} block(s), {} blade pose(s); every blade within its curvature and inflection limits",
+            "{} cut(s) over {} block(s), {} blade pose(s); every blade within its curvature and inflection limits and holding its shape",
             s.cuts,
             r.blocks.len(),
             s.poses
         ),
         || {
             format!(
-                "Not cuttable as designed: blades break a limit (strain {}, inflections {}).",
-                s.strain_flags, s.inflection_flags
+                "Not cuttable as designed: blades break a limit (strain {}, inflections {}, stability {}).",
+                s.strain_flags, s.inflection_flags, s.stability_flags
             )
         },
     );
@@ -66,6 +66,15 @@ pub fn body(r: &DesignReport, job: &Context) -> Body {
             measured: format!("{} plane(s) above; most {inflections}", s.inflection_flags),
             ok: s.inflection_flags == 0,
         },
+        crate::output::page::stability_constraint(
+            format!("{} plane(s) fail", s.stability_flags),
+            r.cuts
+                .iter()
+                .filter_map(|c| c.planes.min_margin)
+                .fold(f64::INFINITY, f64::min),
+            job.blade.min_margin,
+            s.stability_flags == 0,
+        ),
     ];
     let mut tables = vec![curves(r, job), blocks(r, job)];
     CellReport::add_to_page(r.cell.as_ref(), &mut constraints, &mut tables);

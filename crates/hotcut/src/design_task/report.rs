@@ -175,6 +175,10 @@ pub struct CurveReport {
     pub strain_flag: bool,
     /// The blade has more inflections than allowed.
     pub inflection_flag: bool,
+    /// The held blade's stability margin (unit-free; `elastica::stability`).
+    pub blade_margin: f64,
+    /// The blade does not hold its shape: an unstable or marginal equilibrium.
+    pub stability_flag: bool,
 }
 
 /// How two neighbouring elastica meet on a face.
@@ -217,6 +221,11 @@ pub struct PlanesReport {
     pub strain_flags: usize,
     /// Planes on which a blade has too many inflections.
     pub inflection_flags: usize,
+    /// Planes on which a blade does not hold its shape (unstable or marginal), or is
+    /// carried from the plane before without keeping it (a snap).
+    pub stability_flags: usize,
+    /// The least stability margin of a blade over the planes (`None` without planes).
+    pub min_margin: Option<f64>,
     /// Deepest the blade outside its piece runs into material a block keeps, over the
     /// planes (0: nowhere).
     pub max_gouge_depth: f64,
@@ -272,6 +281,8 @@ pub struct DesignSummary {
     pub strain_flags: usize,
     /// Planes or stations whose blade has too many inflections.
     pub inflection_flags: usize,
+    /// Planes whose blade does not hold its shape, or snaps from the plane before.
+    pub stability_flags: usize,
     /// Deepest gouge of a blade outside its piece into kept material (0: none).
     pub max_gouge_depth: f64,
     /// Planes on which a blade outside its piece gouges kept material.
@@ -317,6 +328,8 @@ fn curves(station: usize, c: &CurveResult, names: &[String]) -> Vec<CurveReport>
                 blade_inflections: p.blade.inflections,
                 strain_flag: !p.blade.curvature_ok,
                 inflection_flag: !p.blade.inflections_ok,
+                blade_margin: p.blade.stability.margin,
+                stability_flag: !p.blade.stability_ok,
             }
         })
         .collect()
@@ -334,6 +347,8 @@ fn planes(r: &CutResult, names: &[String]) -> PlanesReport {
         max_curvature_jump: 0.0,
         strain_flags: 0,
         inflection_flags: 0,
+        stability_flags: 0,
+        min_margin: None,
         max_gouge_depth: 0.0,
         gouge_flags: 0,
         min_holder_clearance: 0.0,
@@ -365,6 +380,25 @@ fn planes(r: &CutResult, names: &[String]) -> PlanesReport {
     if least.is_finite() {
         out.min_holder_clearance = least;
     }
+    // a plane fails stability where a blade is unstable or marginal, or the move into it
+    // from the plane before (the same block's blade) snaps
+    let pieces = r.planes.first().map_or(0, |c| c.pieces.len());
+    let mut snapping = vec![false; r.planes.len()];
+    for k in 0..pieces {
+        for j in 1..r.planes.len() {
+            let (Some(a), Some(b)) = (r.planes[j - 1].pieces.get(k), r.planes[j].pieces.get(k))
+            else {
+                continue;
+            };
+            if elastica::clearance::snapping_moves(&[a.blade.clone(), b.blade.clone()]) > 0 {
+                snapping[j] = true;
+            }
+        }
+    }
+    for (j, c) in r.planes.iter().enumerate() {
+        out.stability_flags +=
+            usize::from(snapping[j] || c.pieces.iter().any(|p| !p.blade.stability_ok));
+    }
     for c in &r.planes {
         for p in &c.pieces {
             out.max_deviation = out.max_deviation.max(p.proxy.max_deviation);
@@ -376,6 +410,10 @@ fn planes(r: &CutResult, names: &[String]) -> PlanesReport {
         }
         out.strain_flags += usize::from(c.pieces.iter().any(|p| !p.blade.curvature_ok));
         out.inflection_flags += usize::from(c.pieces.iter().any(|p| !p.blade.inflections_ok));
+        for p in &c.pieces {
+            let m = p.blade.stability.margin;
+            out.min_margin = Some(out.min_margin.map_or(m, |v: f64| v.min(m)));
+        }
         for j in &c.joints {
             out.max_gap = out.max_gap.max(j.gap);
             out.max_tangent_jump = out.max_tangent_jump.max(j.tangent_jump.abs());
@@ -432,6 +470,7 @@ pub fn summary(cuts: &[CutReport]) -> DesignSummary {
         blade_max_curvature: 0.0,
         strain_flags: 0,
         inflection_flags: 0,
+        stability_flags: 0,
         max_gouge_depth: 0.0,
         gouge_flags: 0,
         collision_flags: 0,
@@ -444,6 +483,7 @@ pub fn summary(cuts: &[CutReport]) -> DesignSummary {
         s.blade_max_curvature = s.blade_max_curvature.max(c.planes.blade_max_curvature);
         s.strain_flags += c.planes.strain_flags;
         s.inflection_flags += c.planes.inflection_flags;
+        s.stability_flags += c.planes.stability_flags;
         s.max_gouge_depth = s.max_gouge_depth.max(c.planes.max_gouge_depth);
         s.gouge_flags += c.planes.gouge_flags;
         s.collision_flags += c.planes.collision_flags;
@@ -457,6 +497,7 @@ pub fn summary(cuts: &[CutReport]) -> DesignSummary {
     }
     s.all_ok = s.strain_flags == 0
         && s.inflection_flags == 0
+        && s.stability_flags == 0
         && s.gouge_flags == 0
         && s.collision_flags == 0;
     s

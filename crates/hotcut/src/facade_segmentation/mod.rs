@@ -548,11 +548,11 @@ impl Task for FacadeSegmentation {
             ));
         }
         let f = &c.failing;
-        let broken = f.dimension + f.approximation + f.shape + f.blade_strain;
+        let broken = f.dimension + f.approximation + f.shape + f.blade_strain + f.stability;
         if broken > 0 {
             out.push_str(&format!(
-                "\n  warning: pieces breaking a constraint — dimension {}, approximation {}, shape {}, blade strain {}",
-                f.dimension, f.approximation, f.shape, f.blade_strain
+                "\n  warning: pieces breaking a constraint — dimension {}, approximation {}, shape {}, blade strain {}, blade stability {}",
+                f.dimension, f.approximation, f.shape, f.blade_strain, f.stability
             ));
         }
         if c.gouges + c.collisions > 0 {

@@ -97,6 +97,19 @@ pub fn body(r: &SegmentationReport, job: &Context) -> Body {
             ok: f.blade_strain == 0,
         },
     ];
+    if s.rationalized {
+        let least = r
+            .pieces
+            .iter()
+            .filter_map(|p| p.min_margin)
+            .fold(f64::INFINITY, f64::min);
+        constraints.push(crate::output::page::stability_constraint(
+            of(f.stability),
+            least,
+            job.blade.min_margin,
+            f.stability == 0,
+        ));
+    }
     constraints.extend(clearance(r, job));
     let mut tables = vec![pieces(r, job)];
     CellReport::add_to_page(r.cell.as_ref(), &mut constraints, &mut tables);

@@ -436,8 +436,8 @@ impl Task for HotBlade {
             String::new()
         } else {
             format!(
-                "\n  warning: blocks breaking a constraint — approximation {}, blade strain {}, shape {}, blade length {}, flat blade {}, block height {}, overlap {}, gouge {}",
-                f.approximation, f.blade_strain, f.shape, f.blade_length, f.flat_blade, f.block_height, f.overlap, f.gouge
+                "\n  warning: blocks breaking a constraint — approximation {}, blade strain {}, shape {}, blade length {}, flat blade {}, block height {}, overlap {}, gouge {}, blade stability {}",
+                f.approximation, f.blade_strain, f.shape, f.blade_length, f.flat_blade, f.block_height, f.overlap, f.gouge, f.stability
             )
         };
         let cell = r

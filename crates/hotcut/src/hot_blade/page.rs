@@ -10,7 +10,6 @@ use crate::output::page::{blade_verdict, curv, deg, len, num};
 /// The verdict, the constraints the blocks are flagged by (and the cell), a row per block.
 pub fn body(r: &HotBladeReport, job: &Context) -> Body {
     let s = &r.summary;
-    let f = &s.flagged;
     let set = &r.settings;
     let verdict = blade_verdict(
         s.all_ok,
@@ -37,8 +36,25 @@ pub fn body(r: &HotBladeReport, job: &Context) -> Body {
         ("column splits".into(), r.splits.len().to_string()),
         ("poses per block".into(), set.targets_per_block.to_string()),
     ];
+    let mut constraints = constraints(r, job);
+    let mut tables = vec![blocks(r, job)];
+    CellReport::add_to_page(r.cell.as_ref(), &mut constraints, &mut tables);
+    Body {
+        verdict,
+        counts,
+        constraints,
+        notes: r.surface.warnings.clone(),
+        tables,
+    }
+}
+
+/// The constraints the blocks are flagged by, one row each.
+fn constraints(r: &HotBladeReport, job: &Context) -> Vec<Constraint> {
+    let s = &r.summary;
+    let f = &s.flagged;
+    let set = &r.settings;
     let n = |k: usize| format!("{k} of {} block(s) flagged", s.blocks);
-    let mut constraints = vec![
+    vec![
         Constraint {
             name: "approximation: largest fit distance".into(),
             limit: format!(
@@ -110,16 +126,16 @@ pub fn body(r: &HotBladeReport, job: &Context) -> Body {
             measured: n(f.gouge),
             ok: f.gouge == 0,
         },
-    ];
-    let mut tables = vec![blocks(r, job)];
-    CellReport::add_to_page(r.cell.as_ref(), &mut constraints, &mut tables);
-    Body {
-        verdict,
-        counts,
-        constraints,
-        notes: r.surface.warnings.clone(),
-        tables,
-    }
+        crate::output::page::stability_constraint(
+            n(f.stability),
+            r.blocks
+                .iter()
+                .filter_map(|b| b.min_margin)
+                .fold(f64::INFINITY, f64::min),
+            job.blade.min_margin,
+            f.stability == 0,
+        ),
+    ]
 }
 
 /// The flags a block raises, if any.
@@ -134,6 +150,7 @@ fn flags(b: &hotblade::result::BlockReport) -> Option<Vec<&'static str>> {
         (f.block_height, "block height"),
         (f.overlap, "overlap"),
         (f.gouge, "gouge"),
+        (f.stability, "blade stability"),
     ]
     .into_iter()
     .filter_map(|(on, what)| on.then_some(what))

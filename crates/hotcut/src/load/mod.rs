@@ -89,6 +89,46 @@ pub fn resolve(path: &Path, job: Job) -> Result<ResolvedJob, Vec<JobError>> {
     resolve_with(path, job, &Limits::default())
 }
 
+/// The blade's own checks: its length within a robot cell's, its section and least
+/// margin in range.
+fn check_blade(path: &Path, job: &Job, errors: &mut Vec<JobError>) {
+    let Some(b) = &job.blade else { return };
+    let most = MAX_BLADE_MM * job.units.per_mm();
+    if !(b.length <= most) {
+        errors.push(JobError::semantic(
+            path,
+            "/blade/length",
+            format!(
+                "a blade of {:e} is longer than any a robot cell holds: at most {most:e} ({} m)",
+                b.length,
+                MAX_BLADE_MM / 1e3
+            ),
+        ));
+    }
+    let u = job.units.per_mm();
+    let section = [
+        ("thickness", b.thickness, 50.0 * u, "50 mm"),
+        ("width", b.width, 500.0 * u, "500 mm"),
+        ("youngs_modulus", b.youngs_modulus, 1000.0, "1000 GPa"),
+    ];
+    for (field, v, most, said) in section {
+        if let Some(v) = v.filter(|v| !(*v > 0.0 && *v <= most)) {
+            errors.push(JobError::semantic(
+                path,
+                &format!("/blade/{field}"),
+                format!("must be positive and at most {most} ({said}), got {v:?}"),
+            ));
+        }
+    }
+    if b.min_margin.is_some_and(|m| !(0.0..=1.0).contains(&m)) {
+        errors.push(JobError::semantic(
+            path,
+            "/blade/min_margin",
+            "the least stability margin must be 0–1 (a straight, unloaded blade's is 1)",
+        ));
+    }
+}
+
 /// [`resolve`], with the run's estimated work and memory checked against `limits`.
 ///
 /// # Errors
@@ -109,42 +149,7 @@ pub fn resolve_with(path: &Path, job: Job, limits: &Limits) -> Result<ResolvedJo
             }
         }
     }
-    if let Some(b) = &job.blade {
-        let most = MAX_BLADE_MM * job.units.per_mm();
-        if !(b.length <= most) {
-            errors.push(JobError::semantic(
-                path,
-                "/blade/length",
-                format!(
-                    "a blade of {:e} is longer than any a robot cell holds: at most {most:e} ({} m)",
-                    b.length,
-                    MAX_BLADE_MM / 1e3
-                ),
-            ));
-        }
-        let u = job.units.per_mm();
-        let section = [
-            ("thickness", b.thickness, 50.0 * u, "50 mm"),
-            ("width", b.width, 500.0 * u, "500 mm"),
-            ("youngs_modulus", b.youngs_modulus, 1000.0, "1000 GPa"),
-        ];
-        for (field, v, most, said) in section {
-            if let Some(v) = v.filter(|v| !(*v > 0.0 && *v <= most)) {
-                errors.push(JobError::semantic(
-                    path,
-                    &format!("/blade/{field}"),
-                    format!("must be positive and at most {most} ({said}), got {v:?}"),
-                ));
-            }
-        }
-        if b.min_margin.is_some_and(|m| !(0.0..=1.0).contains(&m)) {
-            errors.push(JobError::semantic(
-                path,
-                "/blade/min_margin",
-                "the least stability margin must be 0–1 (a straight, unloaded blade's is 1)",
-            ));
-        }
-    }
+    check_blade(path, &job, &mut errors);
     let surface = job
         .surface
         .as_ref()

@@ -29,6 +29,25 @@ pub fn blade_verdict(
     export::html::Verdict { ok, text }
 }
 
+/// The constraint row of the blade's stability over a task's poses: `failing` (what fails,
+/// e.g. "2 of 9 pieces fail"), the least margin of a pose, the job's least margin.
+pub fn stability_constraint(
+    failing: String,
+    least: f64,
+    marginal: f64,
+    ok: bool,
+) -> export::html::Constraint {
+    export::html::Constraint {
+        name: "blade stability: every posed blade holds its shape".into(),
+        limit: format!(
+            "margin ≥ {} (1 = a straight, unloaded blade), no snap from pose to pose",
+            num(marginal)
+        ),
+        measured: format!("{failing}; least margin {}", num(least)),
+        ok,
+    }
+}
+
 /// A number for people: 4 significant digits, plain notation between 1e-3 and 1e6, else
 /// scientific; `—` when not finite.
 pub fn num(v: f64) -> String {

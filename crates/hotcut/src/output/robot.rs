@@ -153,7 +153,9 @@ fn comment(plan: &CellPlan, job: &str, r: usize) -> Vec<String> {
     c.extend([
         "The whole program is one synchronized motion: all ends move in step, the blade never stretches.".into(),
         format!("Heat: {} on before each approach (preheat {} s), off after each retreat.", cell.heat.0, export::fmt_float(cell.heat.1, 3)),
-        "Start with the blade mounted and the robots where the first move pB*_S1 can be reached in a straight line.".into(),
+        "The first target pB*_L1 is the blade mounted straight (its ends a blade length apart): mount it there,".into(),
+        "then the program bends it into a gentle arch (pB*_B*) before its first approach; from there every move".into(),
+        "keeps the blade on the planned shape (report: cell.equilibrium; the margin along the program in stability.svg).".into(),
     ]);
     if cell.assumed {
         c.push("WARNING: the robots' placement and tool data are hotcut's default cell, not yours: check the base".into());
@@ -261,10 +263,121 @@ pub fn write(
                 files.add(&mod_file, |buf| write_module(&program, buf))?;
                 files.add(format!("{module}.pgf"), |buf| write_pgf(&mod_file, buf))?;
             }
-            files.text("cell.csv", cell_csv(plan))
+            files.text("cell.csv", cell_csv(plan))?;
+            files.add("stability.svg", |buf| stability_svg(plan, job).write(buf))
         }
         _ => Ok(()),
     }
+}
+
+/// `stability.svg`: the blade's stability margin along the program — the least along each
+/// synchronized move — with the moves that snap marked, the blocks' moves apart, and the
+/// marginal line.
+fn stability_svg(plan: &CellPlan, job: &str) -> export::svg::SvgDoc {
+    let e = &plan.report.equilibrium;
+    let (w, h) = (900.0, 400.0);
+    let frame = (70.0, 90.0, w - 100.0, h - 150.0);
+    let (x0, y0, pw, ph) = frame;
+    let mut doc = export::svg::SvgDoc::new(w, h);
+    let n = e.margins.len().max(1);
+    let known: Vec<f64> = e.margins.iter().flatten().copied().collect();
+    let top = known
+        .iter()
+        .copied()
+        .fold(e.marginal * 2.0, f64::max)
+        .min(10.0);
+    let bottom = known.iter().copied().fold(0.0, f64::min).max(-top);
+    let x = |k: usize| x0 + pw * (k as f64 + 0.5) / n as f64;
+    let y = |m: f64| y0 + ph - ph * (m.clamp(bottom, top) - bottom) / (top - bottom);
+    let mut title: String = job.chars().take(40).collect();
+    title.push_str(": the blade's stability margin along the program");
+    doc.text((10.0, 20.0), 13.0, "black", &title);
+    doc.text(
+        (10.0, 38.0),
+        11.0,
+        "#333333",
+        &format!(
+            "{} moves followed, {} snap(s), least margin {}",
+            e.transitions,
+            e.snaps,
+            crate::output::page::num(e.min_margin)
+        ),
+    );
+    use export::svg::{Legend, Mark};
+    doc.legend(
+        (10.0, 48.0),
+        w - 20.0,
+        &[
+            Legend::new(Mark::Line, "#1f5fa8", "least margin along each move"),
+            Legend::new(Mark::Dashed, "#cc8800", "the least margin a pose keeps"),
+            Legend::new(Mark::Dot, "#cc0000", "a move that snaps"),
+            Legend::new(Mark::Line, "#dddddd", "a block's moves begin"),
+        ],
+    );
+    doc.chart_axes(
+        frame,
+        (1.0, n as f64),
+        (bottom, top),
+        "move",
+        "margin (1 = a straight, unloaded blade)",
+    );
+    // where the blocks' moves begin
+    let steps = &plan.program.steps;
+    for k in 1..steps.len() {
+        if steps[k].block != steps[k - 1].block {
+            let px = x(k) - 0.5 * pw / n as f64;
+            doc.polyline(
+                &[(px, y0), (px, y0 + ph)],
+                "#dddddd",
+                1.0,
+                Some(&format!("block {}", steps[k].block)),
+            );
+        }
+    }
+    let marginal = y(e.marginal);
+    doc.dashed_polyline(
+        &[(x0, marginal), (x0 + pw, marginal)],
+        "#cc8800",
+        1.0,
+        4.0,
+        Some("the least margin a pose keeps (blade.min_margin)"),
+    );
+    if bottom < 0.0 {
+        let zero = y(0.0);
+        doc.polyline(
+            &[(x0, zero), (x0 + pw, zero)],
+            "#cc0000",
+            1.0,
+            Some("0: unstable below"),
+        );
+    }
+    // the margin, in runs of followed moves
+    let mut run: Vec<(f64, f64)> = Vec::new();
+    for (k, m) in e.margins.iter().enumerate() {
+        match m {
+            Some(m) if m.is_finite() => run.push((x(k), y(*m))),
+            _ => {
+                if run.len() > 1 {
+                    doc.polyline(&run, "#1f5fa8", 1.2, Some("margin"));
+                }
+                run.clear();
+            }
+        }
+    }
+    if run.len() > 1 {
+        doc.polyline(&run, "#1f5fa8", 1.2, Some("margin"));
+    }
+    for s in &e.snap_moves {
+        let k = s.r#move - 1;
+        let m = e.margins.get(k).copied().flatten().unwrap_or(0.0);
+        doc.circle(
+            (x(k), y(m)),
+            4.0,
+            "#cc0000",
+            Some(&format!("{}: {:?}", s.target, s.kind)),
+        );
+    }
+    doc
 }
 
 /// `cell.csv`: one row per move and robot.

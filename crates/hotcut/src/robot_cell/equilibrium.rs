@@ -46,6 +46,9 @@ pub struct EquilibriumReport {
     pub snaps: usize,
     /// The least stability margin along the whole program.
     pub min_margin: f64,
+    /// The least margin a pose keeps (the job's `blade.min_margin`): below it a pose is
+    /// marginal.
+    pub marginal: f64,
     /// Per block.
     pub blocks: Vec<BlockMargin>,
     /// Every move that snaps.
@@ -83,7 +86,7 @@ pub fn letter(p: Phase) -> &'static str {
 }
 
 /// The section of a program's `steps` and the blade followed through them.
-pub fn report(steps: &[Step], shapes: &ProgramShapes) -> EquilibriumReport {
+pub fn report(steps: &[Step], shapes: &ProgramShapes, marginal: f64) -> EquilibriumReport {
     let names = target_names(steps);
     let mut blocks: Vec<BlockMargin> = Vec::new();
     let mut snap_moves = Vec::new();
@@ -117,6 +120,7 @@ pub fn report(steps: &[Step], shapes: &ProgramShapes) -> EquilibriumReport {
         transitions: shapes.transitions,
         snaps: shapes.snaps,
         min_margin: shapes.min_margin,
+        marginal,
         blocks,
         snap_moves,
         margins: shapes

@@ -381,7 +381,7 @@ pub fn plan(
     let settings = resolve::settings(job.cell.as_ref(), mm);
     let (cell, program) = cell::program::plan(&settings, &placed, &motion)
         .map_err(|e| job.fail(format!("robot cell: {e}")))?;
-    let report = report::report(&cell, &program, speed * mm);
+    let report = report::report(&cell, &program, speed * mm, job.blade.min_margin);
     if cell.strict && !(report.clean && report.equilibrium.snaps == 0) {
         let mut problems = report.problems();
         problems.extend(report.equilibrium.problems());

@@ -120,6 +120,16 @@ impl CellReport {
     ) {
         if let Some(cell) = cell {
             constraints.push(cell.constraint());
+            let e = &cell.equilibrium;
+            constraints.push(export::html::Constraint {
+                name: "the blade through the robot program (stability.svg)".into(),
+                limit: "no snap: every move keeps the blade on the planned shape".into(),
+                measured: format!(
+                    "{} of {} moves snap; least margin {:.3}",
+                    e.snaps, e.transitions, e.min_margin
+                ),
+                ok: e.snaps == 0,
+            });
             tables.push(cell.table());
         }
     }
@@ -253,7 +263,7 @@ impl CellReport {
 }
 
 /// The report of a planned cell.
-pub fn report(cell: &ResolvedCell, program: &Program, cut_speed: f64) -> CellReport {
+pub fn report(cell: &ResolvedCell, program: &Program, cut_speed: f64, marginal: f64) -> CellReport {
     // the holder of end e is task T_ROB<e+1>, the carrier T_ROB3
     let task = |i: usize| {
         let n = match cell.holders.iter().position(|h| h.robot == i) {
@@ -315,6 +325,6 @@ pub fn report(cell: &ResolvedCell, program: &Program, cut_speed: f64) -> CellRep
         moves: program.steps.len(),
         clean,
         blocks: program.blocks.clone(),
-        equilibrium: super::equilibrium::report(&program.steps, &program.shapes),
+        equilibrium: super::equilibrium::report(&program.steps, &program.shapes, marginal),
     }
 }
