@@ -179,6 +179,7 @@ fn replay(w: &Written) -> Result<Replayed, String> {
         least_margin: f64::INFINITY,
         ..Replayed::default()
     };
+    #[allow(clippy::needless_range_loop)] // k also names the move and its previous pose
     for k in 2..a.len() {
         r.moves += 1;
         blade = follow(&blade, &pose(k - 1), &pose(k))

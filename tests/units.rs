@@ -245,6 +245,8 @@ fn convert(job: &Job, base: &Path, units: Units, f: f64, dir: &Path) -> Job {
     if let Some(b) = j.blade.as_mut() {
         b.length *= f;
         b.max_curvature /= f;
+        b.thickness = b.thickness.map(|v| v * f);
+        b.width = b.width.map(|v| v * f);
         b.kerf = b.kerf.map(|k| sc(k, f));
         b.kerf_table = b
             .kerf_table

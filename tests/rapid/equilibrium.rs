@@ -285,7 +285,6 @@ pub fn follow(
     };
     let mut blade = from.clone();
     let (mut w, mut dw) = (0.0f64, 0.25f64);
-    let mut unstable = false;
     for _ in 0..100_000 {
         if w >= 1.0 - 1e-12 {
             return Ok(blade);
@@ -303,10 +302,9 @@ pub fn follow(
                 blade = b;
                 w = to;
                 dw = (2.0 * dw).min(0.25);
-                unstable = false;
             }
             other => {
-                unstable = other.is_some();
+                let unstable = other.is_some();
                 dw *= 0.5;
                 if dw < 1e-4 {
                     return Err(if unstable {

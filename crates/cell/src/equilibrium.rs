@@ -197,6 +197,7 @@ pub fn follow_steps_with(
     let taut = |h: &HeldEnds| h.chord >= length * (1.0 - TAUT);
     // the blade's state after each step: its equilibrium, or None when taut or unknown
     let mut state: Option<DiscreteBlade> = None;
+    let mut was_taut = false;
     let straight_or_planned = |k: usize, ends: HeldEnds| -> Option<DiscreteBlade> {
         shapes
             .get(k)
@@ -211,6 +212,26 @@ pub fn follow_steps_with(
             state = None;
             continue;
         };
+        // out of a taut, straight blade (after the mount) the blade may go either way: a
+        // snap unless it stays straight
+        if k > 1 && state.is_none() && was_taut && !taut(&ends) {
+            out.moves.push(Some(MoveShape {
+                min_margin: f64::NAN,
+                margin: f64::NAN,
+                snap: Some(SnapKind::Lost),
+                snap_at: Some(0.0),
+                profile: Vec::new(),
+            }));
+            out.transitions += 1;
+            out.snaps += 1;
+            was_taut = false;
+            state = straight_or_planned(k, ends);
+            if check {
+                break;
+            }
+            continue;
+        }
+        was_taut = taut(&ends);
         let Some(from) = state.take().filter(|_| k > 0) else {
             // the first step, or after a taut or unknown state: the blade takes the
             // planned shape (or, straight, none)

@@ -110,6 +110,9 @@ pub struct Step {
     pub shape: Option<[f64; SHAPE_STATIONS]>,
 }
 
+/// A move of the program being built: its phase, both tool frames, and the planned shape.
+type PlannedMove = (Phase, BladePose, Option<[f64; SHAPE_STATIONS]>);
+
 /// One robot's summary for one block.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, schemars::JsonSchema))]
@@ -477,7 +480,7 @@ fn loading(
     above: &BladePose,
     up: &Vector3<f64>,
     side: f64,
-) -> Result<Vec<(Phase, BladePose, Option<[f64; SHAPE_STATIONS]>)>> {
+) -> Result<Vec<PlannedMove>> {
     let q = blade::planar(above)?;
     let length = cell.blade_length;
     let mut poses = vec![(
@@ -537,9 +540,9 @@ fn start(
     above: &BladePose,
     up: &Vector3<f64>,
     shape: Option<[f64; SHAPE_STATIONS]>,
-) -> Result<Vec<(Phase, BladePose, Option<[f64; SHAPE_STATIONS]>)>> {
+) -> Result<Vec<PlannedMove>> {
     let side = bulge(above, shape)?;
-    type Moves = Vec<(Phase, BladePose, Option<[f64; SHAPE_STATIONS]>)>;
+    type Moves = Vec<PlannedMove>;
     let mut best: Option<(usize, Moves)> = None;
     for s in [side, -side] {
         let load = loading(cell, above, up, s)?;
@@ -721,11 +724,12 @@ pub fn plan(cell: &FixtureCell, blocks: &[BlockCut]) -> Result<CellProgram> {
 /// let m = cell::fixture::moves(&cell, &blocks)?;
 /// let phases: Vec<Phase> = m.steps.iter().map(|s| s.phase).collect();
 /// use Phase::*;
-/// // the blade is mounted straight and bent into a gentle arch first
-/// assert_eq!(phases, [Load, Bend, Bend, Bend, Bend, Start, Descend, Cut, Cut, Cut, Retreat, Rise]);
-/// assert_eq!(m.steps[6].change, Some((None, 1))); // the block is placed before the descent
+/// // the blade is mounted straight and bent into a gentle arch first, then turned in its
+/// // plane to the first pose above the block (in steps of at most 5°)
+/// assert_eq!(phases, [Load, Bend, Bend, Bend, Bend, Start, Start, Descend, Cut, Cut, Cut, Retreat, Rise]);
+/// assert_eq!(m.steps[7].change, Some((None, 1))); // the block is placed before the descent
 /// // followed through every move after the mount, the blade never snaps
-/// assert_eq!((m.shapes.transitions, m.shapes.snaps), (10, 0));
+/// assert_eq!((m.shapes.transitions, m.shapes.snaps), (11, 0));
 /// assert!(m.steps.iter().all(|s| s.heat == matches!(s.phase, Cut | Retreat)));
 /// // the blade waits above the block by at least the clearance
 /// assert_eq!(m.clearances[0].0, 1);

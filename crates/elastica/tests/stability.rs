@@ -444,3 +444,36 @@ fn a_smooth_move_is_followed_to_its_end_in_either_unit() {
         assert!(f.min_margin() > 0.3);
     }
 }
+
+#[test]
+fn loads_are_the_same_newtons_in_millimetres_and_metres() {
+    use elastica::stability::{BladeSection, Stiffness};
+    // one physical blade (1 mm × 25 mm spring steel, 800 mm) bent into the same S, in
+    // millimetres and in metres
+    let mm = elastica(Family::Inflectional, 0.5, -0.6, 2.4, 800.0 / 2.4, 0.3);
+    let m = mm.similar(1e-3, [0.0, 0.0]);
+    let p = StabilityParams::default();
+    let (a, b) = (stability(&mm, &p).unwrap(), stability(&m, &p).unwrap());
+    let steel = |unit: f64| BladeSection {
+        thickness: 1.0 * unit,
+        width: 25.0 * unit,
+        youngs_modulus: 200e9,
+    };
+    let la = a.loads.held(&Stiffness::of(&steel(1.0), 1e-3));
+    let lb = b.loads.held(&Stiffness::of(&steel(1e-3), 1.0));
+    let close = |x: f64, y: f64| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1e-12);
+    assert!(
+        close(la.force_n, lb.force_n),
+        "{} N vs {} N",
+        la.force_n,
+        lb.force_n
+    );
+    for e in 0..2 {
+        assert!(close(la.tension_n[e], lb.tension_n[e]));
+        assert!(close(la.moment_nm[e], lb.moment_nm[e]));
+    }
+    // and the force is EI·|λ| in newtons: EI = 200e9 · 0.025 · 1e-9 / 12 N·m², λ = 1/S²
+    let ei = 200e9 * 0.025 * 1e-9 / 12.0;
+    let s_m = 0.8 / 2.4;
+    assert!(close(lb.force_n, ei / (s_m * s_m)));
+}

@@ -46,6 +46,9 @@ pub struct PoseBlade {
     pub shape: [f64; SHAPE_STATIONS],
     /// Total turning from the first end to the second, radians.
     pub turning: f64,
+    /// The blade's length less the distance between its ends (job units): a nearly taut
+    /// blade's shape and stability hang on fractions of a millimetre of it.
+    pub slack: f64,
     /// Inflections of the whole blade.
     pub inflections: usize,
     /// Stability margin: the smallest eigenvalue of the held blade's second variation over

@@ -48,7 +48,7 @@ pub fn arc_through_ends(points: &[[f64; 2]], s: &[f64]) -> Option<FitResult> {
     let (p0, p1) = (points[0], points[n - 1]);
     let (dx, dy) = (p1[0] - p0[0], p1[1] - p0[1]);
     let c = dx.hypot(dy);
-    if !(c > 0.0 && c.is_finite()) || !points.iter().flatten().all(|v| v.is_finite()) {
+    if !(c > 0.0 && c.is_finite() && points.iter().flatten().all(|v| v.is_finite())) {
         return None;
     }
     let (ux, uy) = (dx / c, dy / c);

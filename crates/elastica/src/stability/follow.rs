@@ -603,7 +603,9 @@ pub struct Transition {
 /// length) while its ends move as robots move them between two poses on parallel planes:
 /// both end points linearly, both end tangents turning at a constant rate. Whether it
 /// arrives on `b` without snapping ([`follow`] on [`SEGMENTS`] segments; `b` is reached
-/// when the discrete blade settled from it is the one followed).
+/// when the discrete blade settled from it is the one followed). A move into or out of a
+/// taut, straight blade passes through straight, where the blade may go either way: it
+/// counts as a snap ([`SnapKind::Lost`]); from straight to straight it does not.
 ///
 /// ```
 /// use elastica::stability::follow::transition;
@@ -630,6 +632,19 @@ pub fn transition(a: &crate::Segment, b: &crate::Segment) -> Result<Transition, 
     }
     let (ea, eb) = (a.evaluator()?, b.evaluator()?);
     let (a0, a1, b0, b1) = (ea.eval(0.0), ea.eval(1.0), eb.eval(0.0), eb.eval(1.0));
+    // a blade held taut and straight: its tension undetermined, it goes either way from
+    // there; into or out of such a pose the blade passes through straight (flagged), two
+    // straight poses in a row keep it straight
+    let taut = |p: [f64; 2], q: [f64; 2]| (q[0] - p[0]).hypot(q[1] - p[1]) >= length * (1.0 - 1e-9);
+    match (taut(a0.p, a1.p), taut(b0.p, b1.p)) {
+        (true, true) => return Ok(Transition { snap: None }),
+        (true, false) | (false, true) => {
+            return Ok(Transition {
+                snap: Some(SnapKind::Lost),
+            })
+        }
+        (false, false) => {}
+    }
     let chord_of = |p: [f64; 2], q: [f64; 2]| (q[1] - p[1]).atan2(q[0] - p[0]);
     let start_chord = chord_of(a0.p, a1.p);
     let turn = |x: f64, y: f64| {

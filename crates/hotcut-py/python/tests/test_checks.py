@@ -55,6 +55,29 @@ def test_each_constraint_is_reported():
     assert any(v["constraint"] == "shape" and v["inflections"] == 5 for v in five["violations"])
 
 
+def test_the_held_blade_is_judged_with_its_loads():
+    # the arch extended to the 1200 mm blade: stable, pushing on its holders
+    c = hotcut.check_section(arch(), blade=BLADE)
+    b = c["blade"]
+    assert b["stability"] == "Stable" and b["margin"] > 0.5
+    assert b["inflections"] >= 0 and b["force_n"] >= 0.0
+    assert len(b["tension_n"]) == 2 and len(b["moment_nm"]) == 2
+    # the same blade in metres: the same margin, newtons and newton-metres
+    m = hotcut.check_section(
+        [(x / 1000, y / 1000) for x, y in arch()], blade={"length": 1.2, "max_curvature": 10.0}, units="m"
+    )["blade"]
+    assert m["margin"] == pytest.approx(b["margin"], rel=1e-6)
+    assert m["force_n"] == pytest.approx(b["force_n"], rel=1e-6, abs=1e-12)
+    assert m["moment_nm"] == pytest.approx(b["moment_nm"], rel=1e-6, abs=1e-12)
+    # a stiffer section: the loads scale with E·w·t³
+    thick = hotcut.check_section(arch(), blade={**BLADE, "thickness": 2.0})["blade"]
+    assert thick["moment_nm"][0] == pytest.approx(8 * b["moment_nm"][0], rel=1e-9)
+    # three waves on a blade with no room: it cannot hold them, so the section is not
+    # cuttable as one piece
+    waves = hotcut.check_section(wave(400, 1200, height=20.0, waves=3.25), blade={"length": 1250, "max_curvature": 0.01})
+    assert waves["blade"]["stability"] != "Stable" and not waves["cuttable"]
+
+
 def test_units_and_rigid_motion_do_not_change_the_verdict():
     mm = hotcut.check_section(wave(), blade=BLADE)
     m = hotcut.check_section(

@@ -112,6 +112,9 @@ fn curves(r: &DesignReport, job: &Context) -> Table {
             if x.inflection_flag {
                 why.push("shape");
             }
+            if x.stability_flag {
+                why.push("blade stability");
+            }
             Row::new(
                 vec![
                     c.id.clone(),

@@ -385,13 +385,12 @@ fn planes(r: &CutResult, names: &[String]) -> PlanesReport {
     let pieces = r.planes.first().map_or(0, |c| c.pieces.len());
     let mut snapping = vec![false; r.planes.len()];
     for k in 0..pieces {
-        for j in 1..r.planes.len() {
-            let (Some(a), Some(b)) = (r.planes[j - 1].pieces.get(k), r.planes[j].pieces.get(k))
-            else {
+        for (j, pair) in r.planes.windows(2).enumerate() {
+            let (Some(a), Some(b)) = (pair[0].pieces.get(k), pair[1].pieces.get(k)) else {
                 continue;
             };
             if elastica::clearance::snapping_moves(&[a.blade.clone(), b.blade.clone()]) > 0 {
-                snapping[j] = true;
+                snapping[j + 1] = true;
             }
         }
     }

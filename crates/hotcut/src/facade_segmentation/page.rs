@@ -211,6 +211,9 @@ fn pieces(r: &SegmentationReport, job: &Context) -> Table {
             if !v.shape {
                 why.push("shape");
             }
+            if !v.stability {
+                why.push("blade stability");
+            }
             if !v.blade_strain {
                 why.push("blade strain");
             }
@@ -242,6 +245,7 @@ fn pieces(r: &SegmentationReport, job: &Context) -> Table {
                     p.max_blade_fit.map_or("—".into(), num),
                     p.max_gouge_depth.map_or("—".into(), num),
                     p.min_holder_clearance.map_or("—".into(), num),
+                    p.min_margin.map_or("—".into(), num),
                 ],
                 why,
             )
@@ -262,6 +266,7 @@ fn pieces(r: &SegmentationReport, job: &Context) -> Table {
             format!("blade fit max ({u})"),
             format!("gouge ({u})"),
             format!("holder clearance ({u})"),
+            "least blade margin".into(),
         ],
         rows,
     }

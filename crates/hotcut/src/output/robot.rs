@@ -44,6 +44,9 @@ pub fn pose(p: &BladePose, blade: &elastica::Blade, s: &elastica::Stiffness) -> 
         blade: PoseBlade {
             shape: p.shape,
             turning: st.turning,
+            slack: blade.segment.length()
+                - nalgebra::Vector3::from(p.ends[1].position)
+                    .metric_distance(&nalgebra::Vector3::from(p.ends[0].position)),
             inflections: blade.inflections,
             margin: st.margin,
             stability: class_name(st.class),

@@ -49,6 +49,13 @@ pub struct EquilibriumReport {
     /// The least margin a pose keeps (the job's `blade.min_margin`): below it a pose is
     /// marginal.
     pub marginal: f64,
+    /// Cutting poses that hold the blade nearly taut: its slack (length less chord) below
+    /// [`TAUT_SLACK_MM`]. Such a blade's shape and stability hang on less than the robots'
+    /// path accuracy and the blade's heating (a steel blade grows ~0.4 % at 350 °C): they
+    /// are flagged, not refused.
+    pub taut_poses: usize,
+    /// The least slack of a cutting pose, mm.
+    pub min_slack_mm: f64,
     /// Per block.
     pub blocks: Vec<BlockMargin>,
     /// Every move that snaps.
@@ -86,7 +93,17 @@ pub fn letter(p: Phase) -> &'static str {
 }
 
 /// The section of a program's `steps` and the blade followed through them.
-pub fn report(steps: &[Step], shapes: &ProgramShapes, marginal: f64) -> EquilibriumReport {
+/// Slack below which a cutting pose holds the blade nearly taut, mm.
+pub const TAUT_SLACK_MM: f64 = 0.5;
+
+/// The section of a program's `steps` and the blade followed through them; `slacks` are
+/// the cutting poses' slacks, mm.
+pub fn report(
+    steps: &[Step],
+    shapes: &ProgramShapes,
+    marginal: f64,
+    slacks: &[f64],
+) -> EquilibriumReport {
     let names = target_names(steps);
     let mut blocks: Vec<BlockMargin> = Vec::new();
     let mut snap_moves = Vec::new();
@@ -121,12 +138,18 @@ pub fn report(steps: &[Step], shapes: &ProgramShapes, marginal: f64) -> Equilibr
         snaps: shapes.snaps,
         min_margin: shapes.min_margin,
         marginal,
+        taut_poses: slacks.iter().filter(|s| **s < TAUT_SLACK_MM).count(),
+        min_slack_mm: slacks
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min)
+            .min(1e6),
         blocks,
         snap_moves,
         margins: shapes
             .moves
             .iter()
-            .map(|m| m.as_ref().map(|m| m.min_margin))
+            .map(|m| m.as_ref().map(|m| m.min_margin).filter(|v| v.is_finite()))
             .collect(),
     }
 }
@@ -151,5 +174,15 @@ impl EquilibriumReport {
             out.push(format!("… {} snaps in all", self.snap_moves.len()));
         }
         out
+    }
+
+    /// The warning about nearly taut poses, if any.
+    pub fn taut_warning(&self) -> Option<String> {
+        (self.taut_poses > 0).then(|| {
+            format!(
+                "{} cutting pose(s) hold the blade nearly taut (slack down to {:.4} mm, below {TAUT_SLACK_MM} mm): its shape and stability there hang on less than the robots' path accuracy and the blade's heating",
+                self.taut_poses, self.min_slack_mm
+            )
+        })
     }
 }

@@ -381,7 +381,13 @@ pub fn plan(
     let settings = resolve::settings(job.cell.as_ref(), mm);
     let (cell, program) = cell::program::plan(&settings, &placed, &motion)
         .map_err(|e| job.fail(format!("robot cell: {e}")))?;
-    let report = report::report(&cell, &program, speed * mm, job.blade.min_margin);
+    let slacks: Vec<f64> = t
+        .blocks
+        .iter()
+        .flat_map(|b| &b.poses)
+        .map(|p| p.blade.slack * mm)
+        .collect();
+    let report = report::report(&cell, &program, speed * mm, job.blade.min_margin, &slacks);
     if cell.strict && !(report.clean && report.equilibrium.snaps == 0) {
         let mut problems = report.problems();
         problems.extend(report.equilibrium.problems());

@@ -125,8 +125,12 @@ impl CellReport {
                 name: "the blade through the robot program (stability.svg)".into(),
                 limit: "no snap: every move keeps the blade on the planned shape".into(),
                 measured: format!(
-                    "{} of {} moves snap; least margin {:.3}",
-                    e.snaps, e.transitions, e.min_margin
+                    "{} of {} moves snap; least margin {:.3}; {} cutting pose(s) nearly taut (slack below {} mm)",
+                    e.snaps,
+                    e.transitions,
+                    e.min_margin,
+                    e.taut_poses,
+                    super::equilibrium::TAUT_SLACK_MM
                 ),
                 ok: e.snaps == 0,
             });
@@ -143,6 +147,9 @@ impl CellReport {
             format!("warning: {}", self.problems().join("; "))
         };
         let e = &self.equilibrium;
+        if let Some(w) = e.taut_warning() {
+            verdict.push_str(&format!("; warning: {w}"));
+        }
         verdict.push_str(&if e.snaps == 0 {
             format!(
                 "; the blade holds its shape through all {} moves (least margin {:.3})",
@@ -263,7 +270,13 @@ impl CellReport {
 }
 
 /// The report of a planned cell.
-pub fn report(cell: &ResolvedCell, program: &Program, cut_speed: f64, marginal: f64) -> CellReport {
+pub fn report(
+    cell: &ResolvedCell,
+    program: &Program,
+    cut_speed: f64,
+    marginal: f64,
+    slacks: &[f64],
+) -> CellReport {
     // the holder of end e is task T_ROB<e+1>, the carrier T_ROB3
     let task = |i: usize| {
         let n = match cell.holders.iter().position(|h| h.robot == i) {
@@ -325,6 +338,6 @@ pub fn report(cell: &ResolvedCell, program: &Program, cut_speed: f64, marginal: 
         moves: program.steps.len(),
         clean,
         blocks: program.blocks.clone(),
-        equilibrium: super::equilibrium::report(&program.steps, &program.shapes, marginal),
+        equilibrium: super::equilibrium::report(&program.steps, &program.shapes, marginal, slacks),
     }
 }
