@@ -311,3 +311,119 @@ fn a_program_that_must_snap_is_caught() {
         "{err}"
     );
 }
+
+/// What [`measure`] finds along one program.
+#[derive(Debug, Default)]
+struct Measured {
+    poses: usize,
+    unstable: usize,
+    marginal: usize,
+    least_margin: f64,
+    moves: usize,
+    snaps: usize,
+}
+
+/// Follows the program of the modules `[rob1, rob2]` (blade `length`, mm) with the replay's
+/// solver, whatever it was planned to do: from its first target where the blade is bent
+/// (settled from the shape turning evenly between its end angles), through every move; a
+/// move that snaps (a fold, or no equilibrium to follow) is counted and the blade settled
+/// afresh at its target. At each cutting target the margin of the blade the robots hold.
+/// For programs planned before issue 52 (no shapes in targets.json), this is what their
+/// blade does when the robots run them.
+fn measure(modules: &[String; 2], length: f64) -> Result<Measured, String> {
+    let tasks: Vec<reader::Task> = modules
+        .iter()
+        .map(|m| reader::read(m))
+        .collect::<Result<_, _>>()?;
+    let (a, b) = (&tasks[0].moves, &tasks[1].moves);
+    if a.len() != b.len() {
+        return Err("the tasks' moves differ in number".into());
+    }
+    let pose = |k: usize| [a[k].pose, b[k].pose];
+    let even = |k: usize| {
+        let e = ends_of(&a[k].pose, &b[k].pose);
+        let shape: Vec<f64> = (0..=16)
+            .map(|i| e.angles[0] + (e.angles[1] - e.angles[0]) * i as f64 / 16.0)
+            .collect();
+        (e.chord < length - 1e-6)
+            .then(|| settle_like(length, e, &shape, N))
+            .flatten()
+    };
+    let mut m = Measured {
+        least_margin: f64::INFINITY,
+        ..Measured::default()
+    };
+    let mut blade: Option<equilibrium::Blade> = None;
+    for k in 0..a.len() {
+        blade = match blade {
+            Some(from) if k > 0 => {
+                m.moves += 1;
+                match follow(&from, &pose(k - 1), &pose(k)) {
+                    Ok(b) => Some(b),
+                    Err(_) => {
+                        m.snaps += 1;
+                        even(k)
+                    }
+                }
+            }
+            _ => even(k),
+        };
+        if let (Some(bl), Some(_)) = (&blade, cut_target(&a[k].target)) {
+            let margin = bl.margin();
+            m.poses += 1;
+            m.unstable += usize::from(margin < 0.0);
+            m.marginal += usize::from((0.0..0.05).contains(&margin));
+            m.least_margin = m.least_margin.min(margin);
+        }
+    }
+    Ok(m)
+}
+
+/// Measures every program in `HOTCUT_MEASURE_DIR` (a directory of run outputs, one
+/// directory per job, e.g. written by an older hotcut) for BENCHMARKS.md's "Blade
+/// stability": `HOTCUT_MEASURE_DIR=/tmp/out cargo test --test stability_replay --
+/// --ignored --nocapture`.
+#[test]
+#[ignore = "a measurement for BENCHMARKS.md: set HOTCUT_MEASURE_DIR"]
+fn measure_programs_in_a_directory() {
+    let Ok(dir) = std::env::var("HOTCUT_MEASURE_DIR") else {
+        println!("SKIPPED: HOTCUT_MEASURE_DIR is not set");
+        return;
+    };
+    let mut jobs: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .collect();
+    jobs.sort();
+    for job in jobs {
+        let Ok(t) = std::fs::read_to_string(job.join("targets.json")) else {
+            continue;
+        };
+        let t: serde_json::Value = serde_json::from_str(&t).unwrap();
+        let per_mm = if t["units"] == "Metre" { 1e-3 } else { 1.0 };
+        let length = t["blade_length"].as_f64().unwrap() / per_mm;
+        let files: Vec<PathBuf> = std::fs::read_dir(&job)
+            .unwrap()
+            .flatten()
+            .map(|e| e.path())
+            .collect();
+        let module = |task: &str| {
+            files
+                .iter()
+                .find(|f| f.to_string_lossy().ends_with(&format!("_{task}.mod")))
+                .and_then(|f| std::fs::read_to_string(f).ok())
+        };
+        let (Some(r1), Some(r2)) = (module("T_ROB1"), module("T_ROB2")) else {
+            continue;
+        };
+        let name = job.file_name().unwrap().to_string_lossy().to_string();
+        match measure(&[r1, r2], length) {
+            Ok(m) => println!(
+                "| `{name}` | {} | {} / {} | {:.3} | {} | {} |",
+                m.poses, m.unstable, m.marginal, m.least_margin, m.moves, m.snaps
+            ),
+            Err(e) => println!("| `{name}` | {e} |"),
+        }
+    }
+}
