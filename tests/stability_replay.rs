@@ -354,6 +354,7 @@ fn measure(modules: &[String; 2], length: f64) -> Result<Measured, String> {
         ..Measured::default()
     };
     let mut blade: Option<equilibrium::Blade> = None;
+    #[allow(clippy::needless_range_loop)] // k indexes both tasks' moves
     for k in 0..a.len() {
         blade = match blade {
             Some(from) if k > 0 => {
