@@ -176,45 +176,151 @@ pub enum Follow {
 }
 
 /// [`follow_steps`] as `how` says.
+///
+/// A program is followed in parallel (with the `parallel` feature) in stretches, from
+/// each step with a planned shape to the next: the blade arrives on its planned shape
+/// there or snaps, and either way the stretch after it starts from the planned shape —
+/// the discrete blade settled from it, within 1e-6 of the blade's length of the one
+/// followed into it. Where that shape does not settle, the stretch is followed again
+/// from the blade that arrived, after the stretch before. The result is the same on any
+/// number of threads.
 pub fn follow_steps_with(
     length: f64,
     poses: &[BladePose],
     shapes: &[Option<[f64; SHAPE_STATIONS]>],
     how: Follow,
 ) -> ProgramShapes {
-    let check = how == Follow::Check;
-    let params = FollowParams {
-        margins: !check,
-        min_step: if check { 1e-3 } else { 1e-5 },
-        ..FollowParams::default()
-    };
+    let n = poses.len();
     let mut out = ProgramShapes {
-        moves: Vec::with_capacity(poses.len()),
+        moves: Vec::with_capacity(n),
         transitions: 0,
         snaps: 0,
         min_margin: f64::INFINITY,
     };
-    let taut = |h: &HeldEnds| h.chord >= length * (1.0 - TAUT);
-    // the blade's state after each step: its equilibrium, or None when taut or unknown
-    let mut state: Option<DiscreteBlade> = None;
-    let mut was_taut = false;
-    let straight_or_planned = |k: usize, ends: HeldEnds| -> Option<DiscreteBlade> {
-        shapes
+    let f = Follower::new(length, shapes, how);
+    if how == Follow::Check || n < 3 {
+        let mut state = Walk::default();
+        for k in 0..n {
+            if f.step(&mut state, poses, k, &mut out) && state.snapped && how == Follow::Check {
+                break;
+            }
+        }
+        return out;
+    }
+    // stretches: (first step, last step); each but the first starts at a planned step
+    let mut bounds: Vec<usize> = vec![0];
+    bounds.extend((1..n).filter(|&k| shapes.get(k).is_some_and(Option::is_some)));
+    bounds.push(n.saturating_sub(1));
+    bounds.dedup();
+    let stretches: Vec<(usize, usize)> = bounds.windows(2).map(|w| (w[0], w[1])).collect();
+    let walk = |&(a, b): &(usize, usize), mut state: Walk| {
+        let mut part = ProgramShapes {
+            moves: Vec::new(),
+            transitions: 0,
+            snaps: 0,
+            min_margin: f64::INFINITY,
+        };
+        for k in a + 1..=b {
+            f.step(&mut state, poses, k, &mut part);
+        }
+        (part, state)
+    };
+    let started = |a: usize| {
+        let mut state = Walk::default();
+        let mut first = ProgramShapes {
+            moves: Vec::new(),
+            transitions: 0,
+            snaps: 0,
+            min_margin: f64::INFINITY,
+        };
+        f.step(&mut state, poses, a, &mut first);
+        (first, state)
+    };
+    let parts = crate::map_in_order(&stretches, |r| {
+        let (first, state) = started(r.0);
+        let missing = r.0 > 0 && state.blade.is_none() && !state.was_taut;
+        (first, missing, walk(r, state))
+    });
+    let mut last: Option<Walk> = None;
+    for (i, (first, missing, (mut part, mut end))) in parts.into_iter().enumerate() {
+        if i == 0 {
+            out.moves.extend(first.moves);
+        } else if missing {
+            if let Some(before) = last.take().filter(|w| w.blade.is_some()) {
+                (part, end) = walk(&stretches[i], before);
+            }
+        }
+        out.moves.extend(part.moves);
+        out.transitions += part.transitions;
+        out.snaps += part.snaps;
+        out.min_margin = out.min_margin.min(part.min_margin);
+        last = Some(end);
+    }
+    out
+}
+
+/// The blade's state along a program: its equilibrium after the last step (`None` when
+/// taut or unknown), whether that step held it taut, whether the last move snapped.
+#[derive(Debug, Clone, Default)]
+struct Walk {
+    blade: Option<DiscreteBlade>,
+    was_taut: bool,
+    snapped: bool,
+}
+
+/// One program's blade, shapes and follow parameters.
+struct Follower<'a> {
+    length: f64,
+    shapes: &'a [Option<[f64; SHAPE_STATIONS]>],
+    params: FollowParams,
+}
+
+impl Follower<'_> {
+    fn new(length: f64, shapes: &[Option<[f64; SHAPE_STATIONS]>], how: Follow) -> Follower<'_> {
+        let check = how == Follow::Check;
+        Follower {
+            length,
+            shapes,
+            params: FollowParams {
+                margins: !check,
+                min_step: if check { 1e-3 } else { 1e-5 },
+                ..FollowParams::default()
+            },
+        }
+    }
+
+    fn taut(&self, h: &HeldEnds) -> bool {
+        h.chord >= self.length * (1.0 - TAUT)
+    }
+
+    /// The planned shape of step `k` settled at `ends`.
+    fn planned(&self, k: usize, ends: HeldEnds) -> Option<DiscreteBlade> {
+        self.shapes
             .get(k)
             .copied()
             .flatten()
-            .and_then(|s| planned_blade(length, ends, &s))
-    };
-    for k in 0..poses.len() {
-        let ends = held(&poses[k], state.as_ref().map(|s| s.ends.angles));
-        let Some(ends) = ends else {
+            .and_then(|s| planned_blade(self.length, ends, &s))
+    }
+
+    /// Step `k`: the move into it from `state` pushed on `out` (or `None` where not
+    /// followed), `state` updated. Whether a move was followed.
+    fn step(
+        &self,
+        state: &mut Walk,
+        poses: &[BladePose],
+        k: usize,
+        out: &mut ProgramShapes,
+    ) -> bool {
+        let length = self.length;
+        state.snapped = false;
+        let Some(ends) = held(&poses[k], state.blade.as_ref().map(|s| s.ends.angles)) else {
             out.moves.push(None);
-            state = None;
-            continue;
+            state.blade = None;
+            return false;
         };
         // out of a taut, straight blade (after the mount) the blade may go either way: a
         // snap unless it stays straight
-        if k > 1 && state.is_none() && was_taut && !taut(&ends) {
+        if k > 1 && state.blade.is_none() && state.was_taut && !self.taut(&ends) {
             out.moves.push(Some(MoveShape {
                 min_margin: f64::NAN,
                 margin: f64::NAN,
@@ -224,24 +330,24 @@ pub fn follow_steps_with(
             }));
             out.transitions += 1;
             out.snaps += 1;
-            was_taut = false;
-            state = straight_or_planned(k, ends);
-            if check {
-                break;
-            }
-            continue;
+            *state = Walk {
+                blade: self.planned(k, ends),
+                was_taut: false,
+                snapped: true,
+            };
+            return true;
         }
-        was_taut = taut(&ends);
-        let Some(from) = state.take().filter(|_| k > 0) else {
+        state.was_taut = self.taut(&ends);
+        let Some(from) = state.blade.take().filter(|_| k > 0) else {
             // the first step, or after a taut or unknown state: the blade takes the
             // planned shape (or, straight, none)
             out.moves.push(None);
-            state = if taut(&ends) {
+            state.blade = if self.taut(&ends) {
                 None
             } else {
-                straight_or_planned(k, ends)
+                self.planned(k, ends)
             };
-            continue;
+            return false;
         };
         let (a, b) = (poses[k - 1], poses[k]);
         let start_angles = from.ends.angles;
@@ -251,53 +357,22 @@ pub fn follow_steps_with(
                 angles: start_angles,
             })
         };
-        let f = follow(&from, &path, &params);
-        let mut snap = f.snap.map(SnapKind::from);
+        let f = follow(&from, &path, &self.params);
         let snap_at = f.snap.map(|s| match s {
             Snap::Fold { at, .. } | Snap::Lost { at, .. } => at,
         });
-        let mut next = Some(f.blade.clone());
-        if snap.is_none() {
-            if let Some(shape) = shapes.get(k).copied().flatten() {
-                match planned_blade(length, f.blade.ends, &shape) {
-                    Some(p) if p.distance(&f.blade) <= SAME * length => {}
-                    Some(p) => {
-                        snap = Some(SnapKind::OtherShape);
-                        next = Some(p);
-                    }
-                    // the planned shape is not an equilibrium the discrete blade finds:
-                    // compared by its points
-                    None => {
-                        let pts = f.blade.points();
-                        let h = length / SEGMENTS as f64;
-                        let mut q = [-0.5 * f.blade.ends.chord, 0.0];
-                        let mut far = 0.0f64;
-                        for (i, p) in pts.iter().enumerate().skip(1) {
-                            let t = shape_angle(&shape, (i as f64 - 0.5) / SEGMENTS as f64);
-                            q = [q[0] + h * t.cos(), q[1] + h * t.sin()];
-                            far = far.max((p[0] - q[0]).hypot(p[1] - q[1]));
-                        }
-                        if far > 1e-3 * length {
-                            snap = Some(SnapKind::OtherShape);
-                        }
-                    }
-                }
-            }
-        } else {
+        let (snap, next) = match f.snap {
             // after a snap the blade is wherever it landed, which is not followed: the
             // program is followed again from the next step with a planned shape
-            next = shapes
-                .get(k)
-                .copied()
-                .flatten()
-                .and_then(|s| planned_blade(length, ends, &s));
-        }
+            Some(s) => (Some(SnapKind::from(s)), self.planned(k, ends)),
+            None => self.arrival(k, f.blade.clone()),
+        };
         let margin = f.margins.last().map_or(f64::NAN, |m| m.1);
         let min_margin = f.min_margin();
         out.transitions += 1;
         out.snaps += usize::from(snap.is_some());
         out.min_margin = out.min_margin.min(min_margin);
-        let snapped = snap.is_some();
+        state.snapped = snap.is_some();
         out.moves.push(Some(MoveShape {
             min_margin,
             margin,
@@ -305,10 +380,41 @@ pub fn follow_steps_with(
             snap_at,
             profile: f.margins,
         }));
-        state = next;
-        if snapped && check {
-            break;
+        state.blade = next;
+        true
+    }
+
+    /// The blade `arrived` at step `k` against its planned shape, if it has one: a snap
+    /// to another shape, and the blade the program goes on from.
+    fn arrival(
+        &self,
+        k: usize,
+        arrived: DiscreteBlade,
+    ) -> (Option<SnapKind>, Option<DiscreteBlade>) {
+        let length = self.length;
+        let Some(shape) = self.shapes.get(k).copied().flatten() else {
+            return (None, Some(arrived));
+        };
+        match planned_blade(length, arrived.ends, &shape) {
+            Some(p) if p.distance(&arrived) <= SAME * length => (None, Some(arrived)),
+            Some(p) => (Some(SnapKind::OtherShape), Some(p)),
+            // the planned shape is not an equilibrium the discrete blade finds: compared
+            // by its points
+            None => {
+                let pts = arrived.points();
+                let h = length / SEGMENTS as f64;
+                let mut q = [-0.5 * arrived.ends.chord, 0.0];
+                let mut far = 0.0f64;
+                for (i, p) in pts.iter().enumerate().skip(1) {
+                    let t = shape_angle(&shape, (i as f64 - 0.5) / SEGMENTS as f64);
+                    q = [q[0] + h * t.cos(), q[1] + h * t.sin()];
+                    far = far.max((p[0] - q[0]).hypot(p[1] - q[1]));
+                }
+                (
+                    (far > 1e-3 * length).then_some(SnapKind::OtherShape),
+                    Some(arrived),
+                )
+            }
         }
     }
-    out
 }

@@ -316,20 +316,19 @@ fn ends_of(cell: &FixtureCell, b: &BlockCut) -> Result<Ends> {
 /// little above their closed form). `Err(curvature)` names the worst bend over the limit.
 fn travel_low(
     cell: &FixtureCell,
-    risen: &BladePose,
+    first: &blade::BladeShape,
     path: &[BladePose],
 ) -> Result<std::result::Result<f64, f64>> {
-    let first = blade::shape(risen, cell.blade_length)?;
-    let last = match path.last() {
-        Some(p) => blade::shape(p, cell.blade_length)?,
-        None => first.clone(),
-    };
+    let shapes = path
+        .iter()
+        .map(|p| blade::shape(p, cell.blade_length))
+        .collect::<Result<Vec<_>>>()?;
+    let last = shapes.last().unwrap_or(first);
     let limit = cell.max_curvature.map_or(f64::INFINITY, |k| {
         k.max(first.max_curvature).max(last.max_curvature) * (1.0 + 1e-6)
     });
     let (mut low, mut worst) = (first.lowest(), 0.0f64);
-    for p in path {
-        let s = blade::shape(p, cell.blade_length)?;
+    for s in &shapes {
         worst = worst.max(s.max_curvature);
         low = low.min(s.lowest());
     }
@@ -431,11 +430,12 @@ fn travel_path(
     let mut best: Option<(usize, Vec<BladePose>, f64, usize)> = None;
     let mut worst = 0.0f64;
     let sides = [bulge(a, shapes[0])?, bulge(b, shapes[1])?];
+    let first = blade::shape(a, cell.blade_length)?;
     for (i, path) in routes(cell, a, b, sides)?.into_iter().enumerate() {
         if route.is_some_and(|r| r != i) {
             continue;
         }
-        let low = match travel_low(cell, a, &path)? {
+        let low = match travel_low(cell, &first, &path)? {
             Ok(low) => low,
             Err(k) => {
                 worst = worst.max(k);

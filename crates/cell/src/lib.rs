@@ -73,3 +73,20 @@ pub use conf::{conf, Conf};
 pub use error::{CellError, Result};
 pub use kinematics::{forward, inverse, nearest, Joints};
 pub use model::RobotModel;
+
+/// Runs `f` over `items` in order: in parallel with the `parallel` feature. The results
+/// come back in the items' order either way.
+pub(crate) fn map_in_order<T: Sync, R: Send>(
+    items: &[T],
+    f: impl Fn(&T) -> R + Sync + Send,
+) -> Vec<R> {
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        items.par_iter().map(f).collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        items.iter().map(f).collect()
+    }
+}

@@ -65,20 +65,6 @@ pub struct Motion {
     pub approach: f64,
 }
 
-/// Runs `f` over `items` in order: in parallel with the `parallel` feature. The results
-/// come back in the items' order either way.
-fn map_in_order<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync + Send) -> Vec<R> {
-    #[cfg(feature = "parallel")]
-    {
-        use rayon::prelude::*;
-        items.par_iter().map(f).collect()
-    }
-    #[cfg(not(feature = "parallel"))]
-    {
-        items.iter().map(f).collect()
-    }
-}
-
 /// The blocks in their own frames, with the blade's ends in them.
 fn block_cuts(blocks: &[PlacedBlock]) -> Vec<BlockCut> {
     blocks
@@ -270,7 +256,7 @@ fn plan_fixture(s: &Setup<'_>) -> Result<(ResolvedCell, Program)> {
     // whatever the thread count
     let mut best: Option<(ResolvedCell, Program)> = None;
     for chunk in tries.chunks(4) {
-        let solved = map_in_order(chunk, |(layout, start)| {
+        let solved = crate::map_in_order(chunk, |(layout, start)| {
             let cell = s.resolve(*layout);
             let program = crate::fixture::solve(&s.fixture_cell(&cell, *start), &moves)?;
             Ok((cell, Program::from(program)))
@@ -333,7 +319,7 @@ fn plan_carried(s: &Setup<'_>) -> Result<(ResolvedCell, Program)> {
         .iter()
         .flat_map(|a| starts.iter().map(move |b| (*a, *b)))
         .collect();
-    let solved = map_in_order(&tries, |(a, b)| {
+    let solved = crate::map_in_order(&tries, |(a, b)| {
         let program = crate::carrier::solve(&carrier_cell(*a, *b), &moves, &poses)?;
         Ok((cell.clone(), Program::from(program)))
     })

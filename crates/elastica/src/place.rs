@@ -39,11 +39,45 @@ fn shares(own: f64) -> impl Iterator<Item = (f64, bool)> {
 pub fn snapping_moves(blades: &[Blade]) -> usize {
     blades
         .windows(2)
-        .filter(|w| {
-            crate::stability::follow::transition(&w[0].segment, &w[1].segment)
-                .map_or(true, |t| t.snap.is_some())
-        })
+        .filter(|w| snaps(&w[0].segment, &w[1].segment))
         .count()
+}
+
+/// Moves judged lately on this thread, newest last: (from, to, snaps).
+type Judged = Vec<(Segment, Segment, bool)>;
+
+/// How many judged moves each thread remembers.
+const REMEMBERED: usize = 256;
+
+thread_local! {
+    /// The same moves are judged again and again — by the placement's score, the
+    /// refinement and the verdicts — at ~0.1 ms each: each thread remembers its last
+    /// [`REMEMBERED`] (found by exact equality of both blades, so results are the same
+    /// with or without it, on any number of threads).
+    static JUDGED: std::cell::RefCell<Judged> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Whether the move from blade `a` to blade `b` snaps ([`snapping_moves`]).
+fn snaps(a: &Segment, b: &Segment) -> bool {
+    let known = JUDGED.with(|j| {
+        j.borrow()
+            .iter()
+            .rev()
+            .find(|(x, y, _)| x == a && y == b)
+            .map(|&(_, _, s)| s)
+    });
+    if let Some(s) = known {
+        return s;
+    }
+    let s = crate::stability::follow::transition(a, b).map_or(true, |t| t.snap.is_some());
+    JUDGED.with(|j| {
+        let mut j = j.borrow_mut();
+        if j.len() >= REMEMBERED {
+            j.drain(..REMEMBERED / 2);
+        }
+        j.push((*a, *b, s));
+    });
+    s
 }
 
 /// Within the blade's limits and a stable equilibrium.
@@ -216,9 +250,7 @@ pub fn place_all_by(
         (broken + snaps, shaky)
     };
     // then (planes not clean, the worst badness)
-    let score = |all: &[(Blade, Clearance)]| {
-        let blades: Vec<Blade> = all.iter().map(|(b, _)| b.clone()).collect();
-        let (broken, shaky) = held(&blades);
+    let score = |all: &[(Blade, Clearance)], (broken, shaky): (usize, f64)| {
         let unclean = all.iter().filter(|(_, c)| !c.is_clean()).count();
         let worst = all
             .iter()
@@ -233,11 +265,10 @@ pub fn place_all_by(
             .then(a.3.total_cmp(&b.3))
             .is_lt()
     };
-    let mut best = (
-        cleared(blades_at(params.lead_in_share)?)?,
-        params.lead_in_share,
-    );
-    let mut best_score = score(&best.0);
+    let own = blades_at(params.lead_in_share)?;
+    let own_held = held(&own);
+    let mut best = (cleared(own)?, params.lead_in_share);
+    let mut best_score = score(&best.0, own_held);
     for (share, fine) in shares(params.lead_in_share) {
         // the fine places are tried only for blades outside the limits or unstable
         if best_score.0 == 0 && (best_score.2 == 0 || fine) {
@@ -256,7 +287,7 @@ pub fn place_all_by(
         let Ok(all) = cleared(blades) else {
             continue;
         };
-        let s = score(&all);
+        let s = score(&all, (broken, shaky));
         if better(&s, &best_score) {
             (best, best_score) = ((all, share), s);
         }
