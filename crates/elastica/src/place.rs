@@ -37,10 +37,20 @@ fn shares(own: f64) -> impl Iterator<Item = (f64, bool)> {
 /// robots moving both ends straight) snap the blade to another shape
 /// ([`crate::stability::follow::transition`]; a move that cannot be assessed counts).
 pub fn snapping_moves(blades: &[Blade]) -> usize {
-    blades
-        .windows(2)
-        .filter(|w| snaps(&w[0].segment, &w[1].segment))
-        .count()
+    snapping_moves_up_to(blades, usize::MAX)
+}
+
+/// [`snapping_moves`], counted no further than `limit + 1` (enough to tell that there
+/// are more than `limit`).
+fn snapping_moves_up_to(blades: &[Blade], limit: usize) -> usize {
+    let mut n = 0;
+    for w in blades.windows(2) {
+        if n > limit {
+            break;
+        }
+        n += usize::from(snaps(&w[0].segment, &w[1].segment));
+    }
+    n
 }
 
 /// Moves judged lately on this thread, newest last: (from, to, snaps).
@@ -239,9 +249,13 @@ pub fn place_all_by(
     // the blades' part of the score: (planes outside the limits or not stable, and — when
     // every blade holds — the moves from one plane's blade to the next that snap; the
     // least margin among those)
-    let held = |all: &[Blade]| {
+    let held = |all: &[Blade], limit: usize| {
         let broken = all.iter().filter(|b| !within_limits(b)).count();
-        let snaps = if broken == 0 { snapping_moves(all) } else { 0 };
+        let snaps = if broken == 0 {
+            snapping_moves_up_to(all, limit)
+        } else {
+            0
+        };
         let shaky = all
             .iter()
             .filter(|b| !b.stability_ok)
@@ -266,7 +280,7 @@ pub fn place_all_by(
             .is_lt()
     };
     let own = blades_at(params.lead_in_share)?;
-    let own_held = held(&own);
+    let own_held = held(&own, usize::MAX);
     let mut best = (cleared(own)?, params.lead_in_share);
     let mut best_score = score(&best.0, own_held);
     for (share, fine) in shares(params.lead_in_share) {
@@ -280,7 +294,8 @@ pub fn place_all_by(
         };
         // the block is slid and the blades cleared only for places whose blades hold at
         // least as well as the best's
-        let (broken, shaky) = held(&blades);
+        // (counting snaps no further than it takes to lose to the best)
+        let (broken, shaky) = held(&blades, best_score.0);
         if (broken, shaky) > (best_score.0, best_score.1) {
             continue;
         }

@@ -668,8 +668,10 @@ pub fn transition(a: &crate::Segment, b: &crate::Segment) -> Result<Transition, 
         SEGMENTS,
         None,
     )?;
+    // whether it snaps, not where: the fold located to a thousandth of the move
     let quick = FollowParams {
         margins: false,
+        min_step: 1e-3,
         ..FollowParams::default()
     };
     let f = follow(&start, &path, &quick);
