@@ -248,8 +248,25 @@ pub fn refine_judged(
         };
         match split {
             Split::At(u, worst) => match cut_cell(facade, &cells[i], u, worst, p.min_length) {
+                // a piece whose blade does not hold is split only where one half then
+                // holds: the blade's stability hangs on where the inflections of the
+                // extension fall, not on the piece's length alone, and halves that fail
+                // as the whole did only multiply the pieces
                 Some((a, b, seam)) => {
                     let (ma, mb) = (measure(&a), measure(&b));
+                    let holds =
+                        |m: &Option<Piece>| m.as_ref().is_some_and(|q| q.verdicts.stability);
+                    if failing(&piece, c) == "stability" && !holds(&ma) && !holds(&mb) {
+                        let (what, j) = worst_part(facade, c, &piece);
+                        reasons.push((
+                            i,
+                            what,
+                            j,
+                            "the blade extended from its parts does not hold its shape (an unstable or marginal equilibrium) at any place along it, nor from either half of the piece".into(),
+                        ));
+                        settled[i] = true;
+                        continue;
+                    }
                     cells.splice(i..=i, [a, b]);
                     measured.splice(i..=i, [ma, mb]);
                     settled.splice(i..=i, [false, false]);

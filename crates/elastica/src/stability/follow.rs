@@ -194,7 +194,7 @@ impl DiscreteBlade {
             ends: &ends,
         };
         let load = load.unwrap_or_else(|| fitted_load(&model, guess));
-        let (theta, load) = newton(&model, guess.to_vec(), load, length, 40)
+        let (theta, load) = newton(&model, guess.to_vec(), load, length, (40, 20))
             .ok_or_else(|| StabilityError::Invalid("no equilibrium near the guess".into()))?;
         Ok(DiscreteBlade {
             length,
@@ -303,14 +303,14 @@ fn fitted_load(model: &Model<'_>, th: &[f64]) -> [f64; 2] {
     [(-ag * bb + bg * ab) / det, (-bg * aa + ag * ab) / det]
 }
 
-/// Newton's method on the KKT system with step halving on the residual; `None` when it
-/// does not converge in `iterations`.
+/// Newton's method on the KKT system with step halving on the residual, at most
+/// `halvings` times per iteration; `None` when it does not converge in `iterations`.
 fn newton(
     model: &Model<'_>,
     mut th: Vec<f64>,
     mut load: [f64; 2],
     length: f64,
-    iterations: usize,
+    (iterations, halvings): (usize, usize),
 ) -> Option<(Vec<f64>, [f64; 2])> {
     let mut trig = Trig::of(&th);
     let (mut g, mut c) = model.residual_at(&th, &trig, load);
@@ -324,7 +324,7 @@ fn newton(
         let (dx, dy) = bordered_solve(&diag, &off, [&rows[0], &rows[1]], &f, [-c[0], -c[1]])?;
         let mut step = 1.0;
         let mut improved = false;
-        for _ in 0..20 {
+        for _ in 0..halvings {
             let t: Vec<f64> = th.iter().zip(&dx).map(|(a, d)| a + step * d).collect();
             let l = [load[0] + step * dy[0], load[1] + step * dy[1]];
             let tt = Trig::of(&t);
@@ -497,7 +497,9 @@ pub fn follow(
         };
         let model = Model { h, ends: &ends };
         let solved = if ok {
-            newton(&model, guess, load_guess, length, 12)
+            // from the predictor, a step of the path converges at once or is too long:
+            // Newton's steps damped below 1/32 mean a shorter step of the path
+            newton(&model, guess, load_guess, length, (12, 6))
         } else {
             None
         };
