@@ -182,7 +182,7 @@ impl Pencil {
         if self.len() <= self.rows.len() {
             return None;
         }
-        let (lo, mut hi) = self.bounds();
+        let (mut lo, mut hi) = self.bounds();
         if !(lo.is_finite() && hi.is_finite()) {
             return None;
         }
@@ -193,32 +193,8 @@ impl Pencil {
             .fold(hi, f64::min);
         // widen by a hair so that the bounds themselves bracket
         let pad = 1e-12 * (lo.abs() + hi.abs()) + f64::MIN_POSITIVE;
-        Some(self.bisect(lo - pad, hi + pad, tol))
-    }
-
-    /// [`Pencil::smallest`] when it is known to lie near `guess` (within `width`, say):
-    /// the bracket `guess ± width` is checked by two counts (widened fourfold up to eight
-    /// times where it does not hold), so that bisection starts from it.
-    pub fn smallest_near(&self, tol: f64, guess: f64, width: f64) -> Option<f64> {
-        if self.len() <= self.rows.len() {
-            return None;
-        }
-        let mut w = width.abs();
-        for _ in 0..8 {
-            let (lo, hi) = (guess - w, guess + w);
-            if !(lo.is_finite() && hi.is_finite() && w > 0.0) {
-                break;
-            }
-            if self.count_below(lo) == 0 && self.count_below(hi) >= 1 {
-                return Some(self.bisect(lo, hi, tol));
-            }
-            w *= 4.0;
-        }
-        self.smallest(tol)
-    }
-
-    /// Bisection of the bracket `[lo, hi]` of the smallest eigenvalue down to `tol`.
-    fn bisect(&self, mut lo: f64, mut hi: f64, tol: f64) -> f64 {
+        lo -= pad;
+        hi += pad;
         // bisection halves the bracket: the iterations are bounded by the bits of f64
         for _ in 0..2100 {
             if hi - lo <= tol.max(4.0 * f64::EPSILON * lo.abs().max(hi.abs())) {
@@ -231,7 +207,7 @@ impl Pencil {
                 lo = mid;
             }
         }
-        0.5 * (lo + hi)
+        Some(0.5 * (lo + hi))
     }
 }
 
