@@ -385,18 +385,34 @@ fn measure(modules: &[String; 2], length: f64) -> Result<Measured, String> {
     Ok(m)
 }
 
-/// Measures every program in `HOTCUT_MEASURE_DIR` (a directory of run outputs, one
-/// directory per job, e.g. written by an older hotcut) for BENCHMARKS.md's "Blade
-/// stability": `HOTCUT_MEASURE_DIR=/tmp/out cargo test --test stability_replay --
-/// --ignored --nocapture`.
+/// The measurement of a freshly written program finds what the planner promised: every
+/// cutting pose stable beyond the marginal margin, no move that folds or loses its
+/// equilibrium. With `HOTCUT_MEASURE_DIR` set (a directory of run outputs, one directory
+/// per job, e.g. written by an older hotcut) it also prints the measurement of every
+/// program there, as in BENCHMARKS.md's "Blade stability":
+/// `HOTCUT_MEASURE_DIR=/tmp/out cargo test --test stability_replay measure -- --nocapture`.
 #[test]
-#[ignore = "a measurement for BENCHMARKS.md: set HOTCUT_MEASURE_DIR"]
-fn measure_programs_in_a_directory() {
-    let Ok(dir) = std::env::var("HOTCUT_MEASURE_DIR") else {
-        println!("SKIPPED: HOTCUT_MEASURE_DIR is not set");
-        return;
-    };
-    let mut jobs: Vec<PathBuf> = std::fs::read_dir(&dir)
+fn measure_finds_what_the_planner_promised() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs/hot-blade-saddle.ron");
+    let w = run(&path);
+    let m = measure(&w.modules, w.blade).unwrap();
+    let poses: usize = w.targets["blocks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b["poses"].as_array().unwrap().len())
+        .sum();
+    assert_eq!(m.poses, poses, "{m:?}");
+    assert_eq!((m.unstable, m.marginal, m.snaps), (0, 0, 0), "{m:?}");
+    assert!(m.moves > m.poses && m.least_margin >= 0.05, "{m:?}");
+    if let Ok(dir) = std::env::var("HOTCUT_MEASURE_DIR") {
+        measure_directory(Path::new(&dir));
+    }
+}
+
+/// Prints [`measure`] of every program in `dir` as a BENCHMARKS.md row.
+fn measure_directory(dir: &Path) {
+    let mut jobs: Vec<PathBuf> = std::fs::read_dir(dir)
         .unwrap()
         .flatten()
         .map(|e| e.path())
