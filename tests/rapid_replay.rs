@@ -693,19 +693,9 @@ fn design_programs_keep_the_multimove_rules_the_blade_and_the_robots() {
 
 /// The line declaring robtarget `name` with its position shifted by `d`.
 fn shifted(module: &str, name: &str, d: [f64; 3]) -> String {
-    let line = module
-        .lines()
-        .find(|l| l.contains(&format!("robtarget {name} ")))
-        .unwrap_or_else(|| panic!("no robtarget {name}"))
-        .to_string();
-    let start = line.find(":= [[").unwrap() + 5;
-    let end = start + line[start..].find(']').unwrap();
-    let xyz: Vec<f64> = line[start..end]
-        .split(',')
-        .map(|v| v.parse().unwrap())
-        .collect();
-    let moved = format!("{},{},{}", xyz[0] + d[0], xyz[1] + d[1], xyz[2] + d[2]);
-    module.replace(&line, &format!("{}{moved}{}", &line[..start], &line[end..]))
+    reader::edit_robtarget(module, name, 0, |p| {
+        format!("{},{},{}", p[0] + d[0], p[1] + d[1], p[2] + d[2])
+    })
 }
 
 #[test]

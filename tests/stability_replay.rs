@@ -264,22 +264,12 @@ fn every_program_keeps_the_blade_on_its_planned_shapes() {
 /// The robtarget `name` of `module` turned about its tool's z (the plane's normal) by
 /// `angle`.
 fn turned(module: &str, name: &str, angle: f64) -> String {
-    let line = module
-        .lines()
-        .find(|l| l.contains(&format!("robtarget {name} ")))
-        .unwrap_or_else(|| panic!("no robtarget {name}"))
-        .to_string();
-    let start = line.find("],[").unwrap() + 3;
-    let end = start + line[start..].find(']').unwrap();
-    let q: Vec<f64> = line[start..end]
-        .split(',')
-        .map(|v| v.parse().unwrap())
-        .collect();
-    let r = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]));
-    let r = r * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), angle);
-    let c = r.as_ref().coords;
-    let new = format!("{:.7},{:.7},{:.7},{:.7}", c.w, c.x, c.y, c.z);
-    module.replace(&line, &format!("{}{new}{}", &line[..start], &line[end..]))
+    reader::edit_robtarget(module, name, 1, |q| {
+        let r = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]));
+        let r = r * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), angle);
+        let c = r.as_ref().coords;
+        format!("{:.7},{:.7},{:.7},{:.7}", c.w, c.x, c.y, c.z)
+    })
 }
 
 #[test]

@@ -372,3 +372,29 @@ fn stopped(s: &State, line: &str) -> Result<(), String> {
         _ => Ok(()),
     }
 }
+
+/// `module` with one group of robtarget `name`'s numbers replaced by `edit` of them: group
+/// 0 its position, 1 its orientation (for tests that spoil a program on purpose).
+pub fn edit_robtarget(
+    module: &str,
+    name: &str,
+    group: usize,
+    edit: impl Fn(&[f64]) -> String,
+) -> String {
+    let line = module
+        .lines()
+        .find(|l| l.contains(&format!("robtarget {name} ")))
+        .unwrap_or_else(|| panic!("no robtarget {name}"))
+        .to_string();
+    let mut start = line.find(":= [[").unwrap() + 5;
+    for _ in 0..group {
+        start += line[start..].find("],[").unwrap() + 3;
+    }
+    let end = start + line[start..].find(']').unwrap();
+    let values: Vec<f64> = line[start..end]
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let new = edit(&values);
+    module.replace(&line, &format!("{}{new}{}", &line[..start], &line[end..]))
+}
