@@ -50,6 +50,16 @@ pub struct ProgramShapes {
 }
 
 impl ProgramShapes {
+    /// No moves yet.
+    fn empty() -> ProgramShapes {
+        ProgramShapes {
+            moves: Vec::new(),
+            transitions: 0,
+            snaps: 0,
+            min_margin: f64::INFINITY,
+        }
+    }
+
     /// The least margin over steps `range` (the moves into them).
     pub fn min_over(&self, range: std::ops::Range<usize>) -> f64 {
         self.moves[range]
@@ -191,12 +201,7 @@ pub fn follow_steps_with(
     how: Follow,
 ) -> ProgramShapes {
     let n = poses.len();
-    let mut out = ProgramShapes {
-        moves: Vec::with_capacity(n),
-        transitions: 0,
-        snaps: 0,
-        min_margin: f64::INFINITY,
-    };
+    let mut out = ProgramShapes::empty();
     let f = Follower::new(length, shapes, how);
     if how == Follow::Check || n < 3 {
         let mut state = Walk::default();
@@ -214,12 +219,7 @@ pub fn follow_steps_with(
     bounds.dedup();
     let stretches: Vec<(usize, usize)> = bounds.windows(2).map(|w| (w[0], w[1])).collect();
     let walk = |&(a, b): &(usize, usize), mut state: Walk| {
-        let mut part = ProgramShapes {
-            moves: Vec::new(),
-            transitions: 0,
-            snaps: 0,
-            min_margin: f64::INFINITY,
-        };
+        let mut part = ProgramShapes::empty();
         for k in a + 1..=b {
             f.step(&mut state, poses, k, &mut part);
         }
@@ -227,12 +227,7 @@ pub fn follow_steps_with(
     };
     let started = |a: usize| {
         let mut state = Walk::default();
-        let mut first = ProgramShapes {
-            moves: Vec::new(),
-            transitions: 0,
-            snaps: 0,
-            min_margin: f64::INFINITY,
-        };
+        let mut first = ProgramShapes::empty();
         f.step(&mut state, poses, a, &mut first);
         (first, state)
     };
