@@ -10,7 +10,7 @@
 //! not followed but taken as planned, since its tension is undetermined; the program
 //! bends it first along circular arcs, each of which holds ([`crate::fixture`]).
 //!
-//! Entry point: [`follow_steps`].
+//! Entry point: [`follow_steps`](crate::equilibrium::follow_steps).
 
 use elastica::stability::follow::{follow, DiscreteBlade, FollowParams, HeldEnds, Snap, SEGMENTS};
 use elastica::sweep::SHAPE_STATIONS;

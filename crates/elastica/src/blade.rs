@@ -3,7 +3,7 @@
 //! two robots need — the blade ends' positions and end-tangent angles ("Robotic Hot-Blade
 //! Cutting" §4) — with the checks that keep the blade safe: max |κ| against the limit the
 //! blade tolerates, the number of inflections on the whole blade, and whether the held
-//! blade is a stable equilibrium ([`crate::stability`]).
+//! blade is a stable equilibrium ([`crate::stability()`]).
 
 use crate::elliptic::EllipticError;
 use crate::segment::Segment;

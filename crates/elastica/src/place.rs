@@ -3,7 +3,7 @@
 //! keeps, the held ends clear the block, and the blade holds its shape — a stable
 //! equilibrium on every plane, carried from plane to plane without snapping.
 //!
-//! Entry points: [`place`] (one plane), [`place_all`] and [`place_all_by`] (the planes of
+//! Entry points: [`place`](crate::place::place) (one plane), [`place_all`](crate::place::place_all) and [`place_all_by`](crate::place::place_all_by) (the planes of
 //! one block, one place for all of them, and where no one place holds, a place per plane
 //! chosen plane after plane).
 

@@ -7,7 +7,7 @@
 //! reads fewer than the task's 2000, to answer within a millisecond), and
 //! fitted by one elastica ([`elastica::fit_points`]), whose distance from the points is
 //! held to the tolerance; the elastica is then extended to the blade's length where along
-//! it the blade holds its shape best ([`elastica::stability`]), as the segmentation places
+//! it the blade holds its shape best ([`elastica::stability()`]), as the segmentation places
 //! its pieces.
 //!
 //! Entry point: [`check_section`](crate::check::check_section).

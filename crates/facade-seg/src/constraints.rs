@@ -101,7 +101,7 @@ pub struct Verdicts {
     /// No part (design or elastica) bending beyond `max_curvature` (§5.1.4).
     pub blade_strain: bool,
     /// Every blade the piece is cut with holds its shape: a stable equilibrium by at least
-    /// the stated margin ([`elastica::stability`]), within the blade's inflection limit
+    /// the stated margin ([`elastica::stability()`]), within the blade's inflection limit
     /// when one is set, and carried from each plane's shape to the next's without snapping
     /// (rationalized runs; true otherwise). The seed's "instability of the blade due to
     /// multiple inflection points", measured.

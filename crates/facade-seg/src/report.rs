@@ -135,7 +135,7 @@ pub struct BladeFit {
     pub holder_clearance: f64,
     /// Both held ends at least 1 % of the blade's length from the block.
     pub holders_clear: bool,
-    /// The held blade's stability margin ([`elastica::stability`]: the second variation's
+    /// The held blade's stability margin ([`elastica::stability()`]: the second variation's
     /// smallest eigenvalue over a straight blade's, unit-free).
     pub margin: f64,
     /// Stable, marginal or unstable.

@@ -28,7 +28,7 @@ pub struct BladeLimits {
     /// Most inflections the whole held blade may have, if limited (besides
     /// `max_inflections`).
     pub max_blade_inflections: Option<u32>,
-    /// Least stability margin a held blade keeps ([`elastica::stability`]; below it a
+    /// Least stability margin a held blade keeps ([`elastica::stability()`]; below it a
     /// blade is marginal).
     pub min_margin: f64,
 }

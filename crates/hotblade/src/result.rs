@@ -192,7 +192,7 @@ pub struct Flags {
     /// inside the block (issue 37).
     pub gouge: bool,
     /// A blade does not hold its shape: an unstable or marginal equilibrium
-    /// ([`elastica::stability`]), or one that snaps to another shape as the robots carry
+    /// ([`elastica::stability()`]), or one that snaps to another shape as the robots carry
     /// it to the next plane's.
     pub stability: bool,
 }
@@ -249,7 +249,7 @@ pub struct BlockReport {
     pub max_abs_curvature: f64,
     /// Most inflections on a blade.
     pub max_inflections: usize,
-    /// The least stability margin of a blade (unit-free; [`elastica::stability`]; `None`
+    /// The least stability margin of a blade (unit-free; [`elastica::stability()`]; `None`
     /// without sections).
     pub min_margin: Option<f64>,
     /// Largest angle between a cutting plane and the surface normal.

@@ -6,15 +6,15 @@
 //!
 //! The blade is described in its chord frame: the first end at `(−c/2, 0)`, the second
 //! at `(c/2, 0)`, the end tangents at angles `a₀`, `a₁` against the chord
-//! ([`HeldEnds`]). The energy is `½ Σ wᵢ αᵢ²/h` (`αᵢ` the turning angles, `w = 2` for the
+//! ([`HeldEnds`](crate::stability::follow::HeldEnds)). The energy is `½ Σ wᵢ αᵢ²/h` (`αᵢ` the turning angles, `w = 2` for the
 //! two half-segment end turns), the constraint `h Σ (cos θᵢ, sin θᵢ) = (c, 0)`, and the
-//! multipliers are the papers' `λ` (as [`super::multipliers`]). Every Newton step solves
-//! a tridiagonal system bordered by two rows, in O(n) ([`super::pencil`]); the reduced
+//! multipliers are the papers' `λ` (as [`multipliers`](crate::stability::multipliers)). Every Newton step solves
+//! a tridiagonal system bordered by two rows, in O(n) (the module `pencil`); the reduced
 //! Hessian's smallest eigenvalue is found by Sturm counts, also in O(n) per count. The
 //! margin converges to the closed form's at O(1/n²): the two differ by less than
 //! `6(π/n)²(1 + |m| + P)²`, `P = |λ|L²/4π²` the load over the buckling load, away from
 //! margin 0 (|m| > 0.05) and from nearly straight waves, where the shape itself converges
-//! more slowly (measured in the tests; about 0.03 for a blade pose at [`SEGMENTS`]
+//! more slowly (measured in the tests; about 0.03 for a blade pose at [`SEGMENTS`](crate::stability::follow::SEGMENTS)
 //! segments).
 
 use super::pencil::{bordered_solve, Pencil};

@@ -17,12 +17,12 @@
 //! shape at the slightest disturbance. It is unit-free: the same in millimetres and in
 //! metres, and under rigid motion.
 //!
-//! [`stability`] computes it along the closed form: `Q` discretised by finite differences
+//! [`stability`](crate::stability::stability()) computes it along the closed form: `Q` discretised by finite differences
 //! on `n` and `2n` cells, its smallest restricted eigenvalue found by Sturm counts in O(n)
-//! ([`pencil`]), the two combined by Richardson extrapolation (the error expands in even
+//! (the module `pencil`), the two combined by Richardson extrapolation (the error expands in even
 //! powers of the cell size), so the margin is accurate to ~1e-7 for smooth shapes. The
 //! tests cross-check it with Jacobi's conjugate-point test along the closed form.
-//! [`follow`] gives the discrete blade the robots move through, its equilibrium followed
+//! [`follow`](crate::stability::follow) gives the discrete blade the robots move through, its equilibrium followed
 //! by continuation as the ends move, with its own reduced Hessian.
 //!
 //! The loads follow from the multipliers: the blade carries the constant internal force
