@@ -28,15 +28,22 @@ def test_the_grasshopper_script_runs_on_plain_points():
 
     import hotcut
 
-    scope = {
-        "points": [Point3d(3.0 * i, 100.0, 40 * math.sin(3.0 * i / 100)) for i in range(200)],
-        "blade_length": 1200.0,
-        "max_curvature": 0.01,
-    }
-    try:
-        exec(compile(_blocks()[1], "README grasshopper", "exec"), scope)
-    finally:
-        hotcut.use_numpy(True)
+    points = [Point3d(3.0 * i, 100.0, 40 * math.sin(3.0 * i / 100)) for i in range(200)]
+
+    def run(blade_length):
+        scope = {"points": points, "blade_length": blade_length, "max_curvature": 0.01}
+        try:
+            exec(compile(_blocks()[1], "README grasshopper", "exec"), scope)
+        finally:
+            hotcut.use_numpy(True)
+        return scope
+
+    # a 1200 mm blade continues the section's wave (period ~630 mm) into more inflections:
+    # it does not hold its shape, and the script says so
+    long = run(1200.0)
+    assert long["ok"] is False and len(long["why"]) == 1
+    assert long["why"][0].startswith("blade Unstable"), long["why"]
+    scope = run(800.0)
     assert scope["ok"] is True and scope["why"] == []
     blade = scope["blade"]
     assert len(blade) == 50 and all(type(p) is tuple and len(p) == 3 for p in blade)
