@@ -264,17 +264,7 @@ impl Problem {
             if rn < 1e-13 * (1.0 + length) {
                 break;
             }
-            let mut k = DMatrix::<f64>::zeros(n + 2, n + 2);
-            self.add_energy_hessian(&mut k);
-            for i in 0..n {
-                let (s, c) = theta[i].sin_cos();
-                k[(i, i)] += -mu[0] * h * c - mu[1] * h * s;
-                k[(i, n)] = -h * s;
-                k[(n, i)] = -h * s;
-                k[(i, n + 1)] = h * c;
-                k[(n + 1, i)] = h * c;
-            }
-            let Some(step) = k.lu().solve(&(-&r)) else {
+            let Some(step) = self.kkt_step(&theta, &mu, &r) else {
                 break;
             };
             let mut lambda = 1.0;
@@ -303,6 +293,49 @@ impl Problem {
             end_error: end_err,
             iterations,
         }
+    }
+
+    /// The Newton step of the KKT system at `(theta, mu)` with residual `r`: the
+    /// tridiagonal Hessian bordered by the two constraint rows, solved in O(n)
+    /// ([`crate::stability::pencil`]'s bordered solve) and, where the Hessian alone is
+    /// singular, by a dense LU of the whole matrix.
+    fn kkt_step(&self, theta: &[f64], mu: &[f64; 2], r: &DVector<f64>) -> Option<DVector<f64>> {
+        let (n, h) = (self.n, self.h);
+        let trig: Vec<(f64, f64)> = theta.iter().map(|t| t.sin_cos()).collect();
+        let diag: Vec<f64> = (0..n)
+            .map(|i| {
+                let (s, c) = trig[i];
+                2.0 * (self.weight(i) + self.weight(i + 1)) - mu[0] * h * c - mu[1] * h * s
+            })
+            .collect();
+        let off: Vec<f64> = (1..n).map(|i| -2.0 * self.weight(i)).collect();
+        let rows = [
+            trig.iter().map(|&(s, _)| -h * s).collect::<Vec<f64>>(),
+            trig.iter().map(|&(_, c)| h * c).collect::<Vec<f64>>(),
+        ];
+        let f: Vec<f64> = (0..n).map(|i| -r[i]).collect();
+        if let Some((x, y)) = crate::stability::pencil::bordered_solve(
+            &diag,
+            &off,
+            [&rows[0], &rows[1]],
+            &f,
+            [-r[n], -r[n + 1]],
+        ) {
+            return Some(DVector::from_iterator(n + 2, x.into_iter().chain(y)));
+        }
+        let mut k = DMatrix::<f64>::zeros(n + 2, n + 2);
+        for i in 0..n {
+            k[(i, i)] = diag[i];
+            if i + 1 < n {
+                k[(i, i + 1)] = off[i];
+                k[(i + 1, i)] = off[i];
+            }
+            for (j, row) in rows.iter().enumerate() {
+                k[(i, n + j)] = row[i];
+                k[(n + j, i)] = row[i];
+            }
+        }
+        k.lu().solve(&(-r))
     }
 
     /// Augmented Lagrangian minimisation of E·h subject to c = 0, with the constraint

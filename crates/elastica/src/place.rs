@@ -53,40 +53,78 @@ fn snapping_moves_up_to(blades: &[Blade], limit: usize) -> usize {
     n
 }
 
-/// Moves judged lately on this thread, newest last: (from, to, snaps).
-type Judged = Vec<(Segment, Segment, bool)>;
+/// A blade's exact bits: equal keys are equal blades.
+type Key = [u64; 10];
 
-/// How many judged moves each thread remembers.
-const REMEMBERED: usize = 256;
-
-thread_local! {
-    /// The same moves are judged again and again — by the placement's score, the
-    /// refinement and the verdicts — at ~0.1 ms each: each thread remembers its last
-    /// [`REMEMBERED`] (found by exact equality of both blades, so results are the same
-    /// with or without it, on any number of threads).
-    static JUDGED: std::cell::RefCell<Judged> = const { std::cell::RefCell::new(Vec::new()) };
+/// The key of blade `s`: its variant, then the bits of its numbers.
+fn key(s: &Segment) -> Key {
+    let mut k = [0u64; 10];
+    let put = |k: &mut Key, tag: u64, v: &[f64]| {
+        k[0] = tag;
+        for (slot, x) in k[1..].iter_mut().zip(v) {
+            *slot = x.to_bits();
+        }
+    };
+    match *s {
+        Segment::Line {
+            x0,
+            y0,
+            phi,
+            length,
+        } => put(&mut k, 0, &[x0, y0, phi, length]),
+        Segment::Arc {
+            x0,
+            y0,
+            phi,
+            curvature,
+            length,
+        } => put(&mut k, 1, &[x0, y0, phi, curvature, length]),
+        Segment::Elastica(e) => put(
+            &mut k,
+            2 + e.family as u64 + 2 * u64::from(e.one_minus_k.is_some()),
+            &[
+                e.k,
+                e.s0,
+                e.l,
+                e.scale,
+                e.phi,
+                e.x0,
+                e.y0,
+                e.one_minus_k.unwrap_or(0.0),
+            ],
+        ),
+    }
+    k
 }
+
+/// How many judged moves are remembered; when full, all are forgotten.
+const REMEMBERED: usize = 1 << 16;
+
+/// The same moves are judged again and again — by the placement's score at each place
+/// tried, the halves of refined pieces, the verdicts — at 0.1–2 ms each: the process
+/// remembers them (by the exact bits of both blades, so results are the same with or
+/// without it, on any number of threads).
+static JUDGED: std::sync::Mutex<Option<std::collections::HashMap<(Key, Key), bool>>> =
+    std::sync::Mutex::new(None);
 
 /// Whether the move from blade `a` to blade `b` snaps ([`snapping_moves`]).
 fn snaps(a: &Segment, b: &Segment) -> bool {
-    let known = JUDGED.with(|j| {
-        j.borrow()
-            .iter()
-            .rev()
-            .find(|(x, y, _)| x == a && y == b)
-            .map(|&(_, _, s)| s)
-    });
+    let k = (key(a), key(b));
+    let known = JUDGED
+        .lock()
+        .ok()
+        .and_then(|j| j.as_ref().and_then(|m| m.get(&k).copied()));
     if let Some(s) = known {
         return s;
     }
     let s = crate::stability::follow::transition(a, b).map_or(true, |t| t.snap.is_some());
-    JUDGED.with(|j| {
-        let mut j = j.borrow_mut();
-        if j.len() >= REMEMBERED {
-            j.drain(..REMEMBERED / 2);
+    if let Ok(mut j) = JUDGED.lock() {
+        let m = j.get_or_insert_with(Default::default);
+        if m.len() >= REMEMBERED {
+            m.clear();
         }
-        j.push((*a, *b, s));
-    });
+        m.insert(k, s);
+    }
     s
 }
 

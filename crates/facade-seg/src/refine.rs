@@ -221,7 +221,12 @@ pub fn refine_judged(
             q
         })
     };
-    let mut measured: Vec<Option<Piece>> = cells.iter().map(measure).collect();
+    // every piece is judged on its own (its blades posed, when the run rationalizes):
+    // in parallel, in piece order
+    let mut measured: Vec<Option<Piece>> = {
+        use rayon::prelude::*;
+        cells.par_iter().map(measure).collect()
+    };
     let before = counts(&measured);
     let mut seams: Vec<Seam> = Vec::new();
     let mut settled = vec![false; cells.len()];
@@ -253,7 +258,7 @@ pub fn refine_judged(
                 // extension fall, not on the piece's length alone, and halves that fail
                 // as the whole did only multiply the pieces
                 Some((a, b, seam)) => {
-                    let (ma, mb) = (measure(&a), measure(&b));
+                    let (ma, mb) = rayon::join(|| measure(&a), || measure(&b));
                     let holds =
                         |m: &Option<Piece>| m.as_ref().is_some_and(|q| q.verdicts.stability);
                     if failing(&piece, c) == "stability" && !holds(&ma) && !holds(&mb) {

@@ -368,6 +368,16 @@ impl Default for FollowParams {
     }
 }
 
+/// The largest change of a segment's direction between two blades.
+fn max_turn_between(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+}
+
+/// The share of [`FollowParams::max_turn`] a step of [`follow`] aims to turn.
+const TURN_AIM: f64 = 0.8;
+
 /// How a followed equilibrium was lost.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
@@ -467,8 +477,9 @@ pub fn follow(
     let mut last = first;
     // the previous accepted state and its step, for the secant predictor
     let mut previous: Option<(Vec<f64>, [f64; 2], f64)> = None;
-    // every attempt halves the step or advances by it: bounded by the steps of min_step
-    let attempts = (4.0 / min_step).min(4.0e6) as usize + 64;
+    // every attempt shortens the step by at least TURN_AIM or advances by it, and an
+    // advance at most doubles it: bounded by the steps of min_step
+    let attempts = (8.0 / min_step).min(8.0e6) as usize + 64;
     for _ in 0..attempts {
         if w >= 1.0 {
             break;
@@ -495,6 +506,13 @@ pub fn follow(
             }
             _ => (cur.theta.clone(), cur.load),
         };
+        // a secant predictor turning a segment further than a step may: a shorter step,
+        // to about 0.8 of that (the predictor's turn scales with the step)
+        let predicted = max_turn_between(&guess, &cur.theta);
+        if predicted > params.max_turn && dw > min_step {
+            dw = (dw * TURN_AIM * params.max_turn / predicted).max(min_step);
+            continue;
+        }
         let model = Model { h, ends: &ends };
         let solved = if ok {
             // from the predictor, a step of the path converges at once or is too long:
@@ -503,20 +521,28 @@ pub fn follow(
         } else {
             None
         };
-        let accepted = solved.and_then(|(theta, load)| {
-            let turn = theta
-                .iter()
-                .zip(&cur.theta)
-                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-            (turn <= params.max_turn).then_some(DiscreteBlade {
-                length,
-                ends,
-                theta,
-                load,
-            })
-        });
+        // the step taken, or why not: `Err(Some(turn))` converged but turned too far
+        let accepted = match solved {
+            Some((theta, load)) => {
+                let turn = max_turn_between(&theta, &cur.theta);
+                if turn <= params.max_turn {
+                    Ok((
+                        DiscreteBlade {
+                            length,
+                            ends,
+                            theta,
+                            load,
+                        },
+                        turn,
+                    ))
+                } else {
+                    Err(Some(turn))
+                }
+            }
+            None => Err(None),
+        };
         match accepted {
-            Some(b) => {
+            Ok((b, turn)) => {
                 if !b.is_stable() {
                     // stability lost between w and to: a fold or a bifurcation, unless a
                     // smaller step finds the stable side still reaching on
@@ -538,9 +564,15 @@ pub fn follow(
                 }
                 out.blade = b;
                 w = to;
-                dw = (2.0 * dw * reach.min(1.0)).min(1.0);
+                // the next step aimed at turning about 0.8 of the most, at most doubled
+                let grow = if turn > 0.0 {
+                    (TURN_AIM * params.max_turn / turn).min(2.0)
+                } else {
+                    2.0
+                };
+                dw = (grow * dw * reach.min(1.0)).clamp(min_step, 1.0);
             }
-            None => {
+            Err(turned) => {
                 if dw <= min_step {
                     let last = margin(&out.blade);
                     out.snap = Some(if last < 2.0 * super::MARGINAL {
@@ -556,8 +588,10 @@ pub fn follow(
                     });
                     return out;
                 }
-                dw *= 0.5;
-                previous = None;
+                // turned too far: the step that would have turned about 0.8 of the
+                // most; else (no equilibrium found) half the step
+                dw *= turned.map_or(0.5, |t| (TURN_AIM * params.max_turn / t).min(0.5));
+                dw = dw.max(min_step);
             }
         }
     }
@@ -670,7 +704,9 @@ pub fn transition(a: &crate::Segment, b: &crate::Segment) -> Result<Transition, 
         SEGMENTS,
         None,
     )?;
-    // whether it snaps, not where: the fold located to a thousandth of the move
+    // whether it snaps, not where: the fold located to a thousandth of the move (steps
+    // turning a segment twice the default 0.05 rad step over folds: one of seg-wavy-45-
+    // inflection's pieces then passes, which fails at 0.05 and at 0.025)
     let quick = FollowParams {
         margins: false,
         min_step: 1e-3,
