@@ -17,7 +17,8 @@ use crate::segment::Segment;
 pub const LEAD_IN_SHARES: [f64; 4] = [0.25, 0.75, 0.0, 1.0];
 
 /// Places tried after [`LEAD_IN_SHARES`] while the blade is still outside its limits or
-/// not a stable equilibrium at every one: every sixteenth of the extension. Where the
+/// not a stable equilibrium at every one — unless the piece itself is outside the limits,
+/// which no place mends: every sixteenth of the extension. Where the
 /// piece sits along the blade decides where the extension's inflections fall, and with
 /// them the held blade's stability.
 pub const FINE_SHARES: usize = 16;
@@ -128,6 +129,21 @@ fn snaps(a: &Segment, b: &Segment) -> bool {
     s
 }
 
+/// Whether no place along the blade can bring it within its limits: the piece itself
+/// bends beyond the curvature limit, or has more inflections than the blade may (the
+/// blade holds the piece whole, so it bends and turns at least as the piece does). The
+/// fine places are not tried then: they are for the extension's bends and inflections,
+/// and the held blade's stability, which the place decides.
+fn beyond_reach(section: &Segment, params: &BladeParams) -> bool {
+    let bent = params
+        .max_curvature
+        .is_some_and(|k| section.max_abs_curvature().is_ok_and(|c| c > k));
+    let waved = params
+        .max_inflections
+        .is_some_and(|n| section.inflections().is_ok_and(|v| v.len() > n));
+    bent || waved
+}
+
 /// Within the blade's limits and a stable equilibrium.
 fn within_limits(b: &Blade) -> bool {
     b.curvature_ok && b.inflections_ok && b.stability_ok
@@ -180,8 +196,12 @@ pub fn place(
     };
     let first = extend_to_blade(section, params)?;
     let mut best = (clearance(&first, block, tolerance)?, first);
+    let hopeless = std::cell::OnceCell::new();
     for (share, fine) in shares(params.lead_in_share) {
         if within_limits(&best.1) && (best.0.is_clean() || fine) {
+            break;
+        }
+        if fine && *hopeless.get_or_init(|| beyond_reach(section, params)) {
             break;
         }
         let blade = extend_to_blade(
@@ -321,9 +341,14 @@ pub fn place_all_by(
     let own_held = held(&own, usize::MAX);
     let mut best = (cleared(own)?, params.lead_in_share);
     let mut best_score = score(&best.0, own_held);
+    let hopeless = std::cell::OnceCell::new();
     for (share, fine) in shares(params.lead_in_share) {
-        // the fine places are tried only for blades outside the limits or unstable
+        // the fine places are tried only for blades outside the limits or unstable, and
+        // only where a place could bring them within
         if best_score.0 == 0 && (best_score.2 == 0 || fine) {
+            break;
+        }
+        if fine && *hopeless.get_or_init(|| sections.iter().any(|s| beyond_reach(s, params))) {
             break;
         }
         // a place the blade cannot be extended to (or evaluated at) is not a candidate
