@@ -56,6 +56,8 @@ pub mod discrete;
 pub mod elliptic;
 /// Fitting curves by elastica segments (variable projection + Levenberg–Marquardt).
 pub mod fit;
+/// Process-wide memos of costly functions of blades, keyed by their exact bits.
+pub(crate) mod memo;
 /// Where along the blade a piece sits: clear of its block, stable, without snapping.
 pub mod place;
 /// Elastica segments (closed form, line, arc): evaluation, derivatives, inflections.

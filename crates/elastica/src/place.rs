@@ -9,6 +9,7 @@
 
 use crate::blade::{extend_to_blade, Blade, BladeError, BladeParams};
 use crate::clearance::{clearance, Clearance, Section, HOLDER_MARGIN};
+use crate::memo::{key, Key, Memo};
 use crate::segment::Segment;
 
 /// Where along the blade the piece may sit, after the blade's own share of the extension
@@ -54,79 +55,19 @@ fn snapping_moves_up_to(blades: &[Blade], limit: usize) -> usize {
     n
 }
 
-/// A blade's exact bits: equal keys are equal blades.
-type Key = [u64; 10];
-
-/// The key of blade `s`: its variant, then the bits of its numbers.
-fn key(s: &Segment) -> Key {
-    let mut k = [0u64; 10];
-    let put = |k: &mut Key, tag: u64, v: &[f64]| {
-        k[0] = tag;
-        for (slot, x) in k[1..].iter_mut().zip(v) {
-            *slot = x.to_bits();
-        }
-    };
-    match *s {
-        Segment::Line {
-            x0,
-            y0,
-            phi,
-            length,
-        } => put(&mut k, 0, &[x0, y0, phi, length]),
-        Segment::Arc {
-            x0,
-            y0,
-            phi,
-            curvature,
-            length,
-        } => put(&mut k, 1, &[x0, y0, phi, curvature, length]),
-        Segment::Elastica(e) => put(
-            &mut k,
-            2 + e.family as u64 + 2 * u64::from(e.one_minus_k.is_some()),
-            &[
-                e.k,
-                e.s0,
-                e.l,
-                e.scale,
-                e.phi,
-                e.x0,
-                e.y0,
-                e.one_minus_k.unwrap_or(0.0),
-            ],
-        ),
-    }
-    k
-}
-
-/// How many judged moves are remembered; when full, all are forgotten.
+/// How many judged moves are remembered.
 const REMEMBERED: usize = 1 << 16;
 
-/// The same moves are judged again and again — by the placement's score at each place
-/// tried, the halves of refined pieces, the verdicts — at 0.1–2 ms each: the process
-/// remembers them (by the exact bits of both blades, so results are the same with or
-/// without it, on any number of threads).
-static JUDGED: std::sync::Mutex<Option<std::collections::HashMap<(Key, Key), bool>>> =
-    std::sync::Mutex::new(None);
+/// The moves judged so far ([`crate::memo`]).
+static JUDGED: Memo<(Key, Key), bool> = Memo::new(REMEMBERED);
 
 /// Whether the move from blade `a` to blade `b` snaps ([`snapping_moves`]).
 fn snaps(a: &Segment, b: &Segment) -> bool {
-    let k = (key(a), key(b));
-    let known = JUDGED
-        .lock()
-        .ok()
-        .and_then(|j| j.as_ref().and_then(|m| m.get(&k).copied()));
-    if let Some(s) = known {
-        return s;
-    }
-    let s = crate::stability::follow::transition(a, b).map_or(true, |t| t.snap.is_some());
-    if let Ok(mut j) = JUDGED.lock() {
-        let m = j.get_or_insert_with(Default::default);
-        if m.len() >= REMEMBERED {
-            m.clear();
-        }
-        m.insert(k, s);
-    }
-    s
+    JUDGED
+        .get_or((key(a), key(b)), || {
+            Some(crate::stability::follow::transition(a, b).map_or(true, |t| t.snap.is_some()))
+        })
+        .unwrap_or(true)
 }
 
 /// Whether no place along the blade can bring it within its limits: the piece itself

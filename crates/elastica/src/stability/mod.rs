@@ -407,6 +407,29 @@ fn smallest_fd(
 /// # Errors
 /// The segment's evaluation errors, or [`StabilityError::Invalid`] for bad parameters.
 pub fn stability(segment: &Segment, params: &StabilityParams) -> Result<Stability, StabilityError> {
+    let k = (
+        crate::memo::key(segment),
+        params.marginal.to_bits(),
+        params.cells,
+    );
+    let mut failed = None;
+    ASSESSED
+        .get_or(k, || {
+            assess(segment, params).map_err(|e| failed = Some(e)).ok()
+        })
+        .ok_or_else(|| failed.unwrap_or_else(|| StabilityError::Invalid("not assessed".into())))
+}
+
+/// How many assessed blades [`stability`] remembers.
+const ASSESSED_CAP: usize = 1 << 14;
+
+/// The blades assessed so far ([`crate::memo`]): a blade is assessed for its place, for
+/// the refinement's verdict and again when its piece is posed.
+static ASSESSED: crate::memo::Memo<(crate::memo::Key, u64, usize), Stability> =
+    crate::memo::Memo::new(ASSESSED_CAP);
+
+/// [`stability`], assessed.
+fn assess(segment: &Segment, params: &StabilityParams) -> Result<Stability, StabilityError> {
     let length = segment.length();
     if !(params.marginal >= 0.0 && params.marginal.is_finite()) {
         return Err(StabilityError::Invalid(format!(
