@@ -407,11 +407,9 @@ fn smallest_fd(
 /// # Errors
 /// The segment's evaluation errors, or [`StabilityError::Invalid`] for bad parameters.
 pub fn stability(segment: &Segment, params: &StabilityParams) -> Result<Stability, StabilityError> {
-    let k = (
-        crate::memo::key(segment),
-        params.marginal.to_bits(),
-        params.cells,
-    );
+    // every parameter in the key (a field added to the params fails to compile here)
+    let StabilityParams { marginal, cells } = *params;
+    let k = (crate::memo::key(segment), marginal.to_bits(), cells);
     let mut failed = None;
     ASSESSED
         .get_or(k, || {
