@@ -69,15 +69,15 @@ impl<K: Eq + Hash, V: Clone> Memo<K, V> {
         }
     }
 
-    /// The value remembered for `k`, else `f()`, remembered when it is `Some`.
-    pub(crate) fn get_or(&self, k: K, f: impl FnOnce() -> Option<V>) -> Option<V> {
+    /// The value remembered for `k`, else `f()`, remembered when it is `Ok`.
+    pub(crate) fn get_or<E>(&self, k: K, f: impl FnOnce() -> Result<V, E>) -> Result<V, E> {
         let known = self
             .map
             .lock()
             .ok()
             .and_then(|m| m.as_ref().and_then(|m| m.get(&k).cloned()));
-        if known.is_some() {
-            return known;
+        if let Some(v) = known {
+            return Ok(v);
         }
         let v = f()?;
         if let Ok(mut m) = self.map.lock() {
@@ -87,6 +87,6 @@ impl<K: Eq + Hash, V: Clone> Memo<K, V> {
             }
             m.insert(k, v.clone());
         }
-        Some(v)
+        Ok(v)
     }
 }

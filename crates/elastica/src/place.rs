@@ -63,11 +63,13 @@ static JUDGED: Memo<(Key, Key), bool> = Memo::new(REMEMBERED);
 
 /// Whether the move from blade `a` to blade `b` snaps ([`snapping_moves`]).
 fn snaps(a: &Segment, b: &Segment) -> bool {
-    JUDGED
-        .get_or((key(a), key(b)), || {
-            Some(crate::stability::follow::transition(a, b).map_or(true, |t| t.snap.is_some()))
-        })
-        .unwrap_or(true)
+    // a move that cannot be assessed counts as a snap
+    let judged = JUDGED.get_or((key(a), key(b)), || {
+        Ok::<_, std::convert::Infallible>(
+            crate::stability::follow::transition(a, b).map_or(true, |t| t.snap.is_some()),
+        )
+    });
+    judged.unwrap_or(true)
 }
 
 /// Whether no place along the blade can bring it within its limits: the piece itself

@@ -410,12 +410,7 @@ pub fn stability(segment: &Segment, params: &StabilityParams) -> Result<Stabilit
     // every parameter in the key (a field added to the params fails to compile here)
     let StabilityParams { marginal, cells } = *params;
     let k = (crate::memo::key(segment), marginal.to_bits(), cells);
-    let mut failed = None;
-    ASSESSED
-        .get_or(k, || {
-            assess(segment, params).map_err(|e| failed = Some(e)).ok()
-        })
-        .ok_or_else(|| failed.unwrap_or_else(|| StabilityError::Invalid("not assessed".into())))
+    ASSESSED.get_or(k, || assess(segment, params))
 }
 
 /// How many assessed blades [`stability`] remembers.
